@@ -1,0 +1,276 @@
+//! Curve subdivision of tangents on the Gaussian sphere (paper 000, §3.5–3.7).
+//!
+//! Open polylines of `n ≥ 2` tangents. One step of each scheme (SPEC §2):
+//!
+//! | scheme | rule | count |
+//! |---|---|---|
+//! | Chaikin (Eqs. 51–53) | each leg gives `blend(tᵢ,tᵢ₊₁,¼)`, `blend(tᵢ,tᵢ₊₁,¾)`, as two midpoints (Eq. 53) | `2(n−1)` |
+//! | cubic B-spline (Eqs. 57–58) | `mid(t₀,t₁)`, then per inner vertex `mid(blend(tᵢ₋₁,tᵢ,¾), blend(tᵢ,tᵢ₊₁,¼))` and edge `mid(tᵢ,tᵢ₊₁)` | `2n−3` |
+//! | 4-point (Eqs. 59–61) | keep `tᵢ`; insert `mid(blend(tᵢ₋₁,tᵢ,(8+ω)/8), blend(tᵢ₊₁,tᵢ₊₂,−ω/8))` | `2n−1` |
+//!
+//! The 4-point end legs use the 3-point rule `mid(blend(t₀,t₁,¼), blend(t₁,t₂,−¼))`
+//! (planar `⅜p₀ + ¾p₁ − ⅛p₂`), mirrored at the far end; two tangents get their midpoint.
+
+use crate::error::KernelError;
+use crate::limits::{MAX_DEPTH, MAX_TANGENTS_PER_LEVEL};
+use crate::sphere::{FixedBlend, mid};
+use crate::tangent::normalize_all;
+use glam::DVec3;
+
+/// The upper bound (exclusive) of ω for the 4-point rule: `2(√5 − 1)`, where the
+/// planar scheme stops being C¹ (Dyn–Levin–Gregory, `w = ω/16 < (√5−1)/8`).
+pub const OMEGA_MAX: f64 = 2.472_135_954_999_579_3;
+
+/// The default ω (the classic 4-point weight `w = 1/16`).
+pub const OMEGA_DEFAULT: f64 = 1.0;
+
+/// A curve subdivision scheme on the sphere (and on scalars, for parameters).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CurveScheme {
+    /// Chaikin's corner cutting (quadratic B-spline), approximating.
+    Chaikin,
+    /// Cubic B-spline refinement, approximating.
+    CubicBSpline,
+    /// The 4-point interpolatory scheme with tension ω.
+    FourPoint { omega: f64 },
+}
+
+impl CurveScheme {
+    /// Checks ω. Call once at the boundary; refinement assumes a valid scheme.
+    pub fn validate(self) -> Result<Self, KernelError> {
+        if let CurveScheme::FourPoint { omega } = self
+            && !(omega.is_finite() && (0.0..OMEGA_MAX).contains(&omega))
+        {
+            return Err(KernelError::OmegaOutOfRange { omega });
+        }
+        Ok(self)
+    }
+
+    /// A short lowercase name (`chaikin`, `cubic-bspline`, `four-point`).
+    pub fn name(self) -> &'static str {
+        match self {
+            CurveScheme::Chaikin => "chaikin",
+            CurveScheme::CubicBSpline => "cubic-bspline",
+            CurveScheme::FourPoint { .. } => "four-point",
+        }
+    }
+
+    /// The fewest tangents one step accepts.
+    pub fn min_len(self) -> usize {
+        match self {
+            CurveScheme::CubicBSpline => 3,
+            _ => 2,
+        }
+    }
+
+    /// Number of tangents after one step from `n`.
+    pub fn refined_len(self, n: usize) -> usize {
+        match self {
+            CurveScheme::Chaikin => 2 * (n - 1),
+            CurveScheme::CubicBSpline => 2 * n - 3,
+            CurveScheme::FourPoint { .. } => 2 * n - 1,
+        }
+    }
+
+    /// Number of tangents after `depth` steps from `n`, or `None` on overflow.
+    pub fn len_at_depth(self, mut n: usize, depth: u32) -> Option<usize> {
+        for _ in 0..depth {
+            if n < self.min_len() {
+                return None;
+            }
+            n = n.checked_mul(2)?;
+            n = self.refined_len(n / 2);
+        }
+        Some(n)
+    }
+
+    /// How many coarse cells on each side an output depends on (DESIGN, incremental rebuild).
+    pub fn stencil_radius(self) -> usize {
+        match self {
+            CurveScheme::FourPoint { .. } => 2,
+            _ => 1,
+        }
+    }
+
+    /// Checks that `n` tangents can be refined `depth` times within the size cap.
+    pub fn check_depth(self, n: usize, depth: u32, rows: usize) -> Result<(), KernelError> {
+        if n < self.min_len() {
+            return Err(KernelError::TooFewTangents { what: self.name(), got: n, need: self.min_len() });
+        }
+        let cap = MAX_TANGENTS_PER_LEVEL;
+        let too_big = |tangents| KernelError::DepthTooLarge { depth, tangents, cap };
+        if depth > MAX_DEPTH {
+            return Err(too_big(usize::MAX));
+        }
+        let mut m = n;
+        for d in 1..=depth {
+            if m < self.min_len() {
+                return Err(KernelError::TooFewTangents { what: self.name(), got: m, need: self.min_len() });
+            }
+            m = self.refined_len(m);
+            let total = m.saturating_mul(rows);
+            if total > cap {
+                let _ = d;
+                return Err(too_big(total));
+            }
+        }
+        Ok(())
+    }
+
+    /// One refinement step of unit tangents into `out` (cleared first).
+    /// `input.len() ≥ self.min_len()` and the inputs are unit (not re-checked).
+    pub fn refine_tangents(self, input: &[DVec3], out: &mut Vec<DVec3>) {
+        out.clear();
+        let n = input.len();
+        debug_assert!(n >= self.min_len());
+        out.reserve(self.refined_len(n));
+        match self {
+            CurveScheme::Chaikin => {
+                for w in input.windows(2) {
+                    let m = mid(w[0], w[1]);
+                    out.push(mid(w[0], m)); // blend(a, b, 1/4), Eq. 53
+                    out.push(mid(m, w[1])); // blend(a, b, 3/4)
+                }
+            }
+            CurveScheme::CubicBSpline => {
+                out.push(mid(input[0], input[1]));
+                for i in 1..n - 1 {
+                    let (a, b, c) = (input[i - 1], input[i], input[i + 1]);
+                    let l = mid(mid(a, b), b); // blend(a, b, 3/4)
+                    let r = mid(b, mid(b, c)); // blend(b, c, 1/4)
+                    out.push(mid(l, r)); // vertex point, Eq. 58
+                    out.push(mid(b, c)); // edge point, Eq. 57
+                }
+            }
+            CurveScheme::FourPoint { omega } => {
+                let rule = FourPointRule::new(omega);
+                rule.refine(input, out);
+            }
+        }
+    }
+
+    /// One refinement step of planar scalars (the parameter grids: SPEC §4), the
+    /// same scheme with the ordinary affine combinations (Eqs. 49–50, 55–56, 60).
+    pub fn refine_scalars(self, input: &[f64], out: &mut Vec<f64>) {
+        crate::scalar::refine(self, input, out);
+    }
+}
+
+/// The 4-point rule with its blends precomputed for one ω.
+#[derive(Debug, Clone, Copy)]
+pub struct FourPointRule {
+    /// `blend(·,·,(8+ω)/8)`.
+    outer: FixedBlend,
+    /// `blend(·,·,−ω/8)`.
+    inner: FixedBlend,
+    /// `blend(·,·,¼)` and `blend(·,·,−¼)` for the end legs.
+    quarter: FixedBlend,
+    minus_quarter: FixedBlend,
+}
+
+impl FourPointRule {
+    /// Precomputes the blends for `omega` (assumed validated).
+    pub fn new(omega: f64) -> Self {
+        FourPointRule {
+            outer: FixedBlend::new((8.0 + omega) / 8.0),
+            inner: FixedBlend::new(-omega / 8.0),
+            quarter: FixedBlend::new(0.25),
+            minus_quarter: FixedBlend::new(-0.25),
+        }
+    }
+
+    /// The tangent inserted between `b` and `c` with outer neighbours `a`, `d` (Eq. 61).
+    #[inline]
+    pub fn interior(&self, a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> DVec3 {
+        mid(self.outer.apply(a, b), self.inner.apply(c, d))
+    }
+
+    /// The tangent inserted between `a` and `b` with `c` beyond `b` (3-point end rule).
+    #[inline]
+    pub fn end(&self, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
+        mid(self.quarter.apply(a, b), self.minus_quarter.apply(b, c))
+    }
+
+    /// One step into `out` (appended). `input.len() ≥ 2`.
+    pub fn refine(&self, t: &[DVec3], out: &mut Vec<DVec3>) {
+        let n = t.len();
+        if n == 2 {
+            out.extend_from_slice(&[t[0], mid(t[0], t[1]), t[1]]);
+            return;
+        }
+        out.push(t[0]);
+        out.push(self.end(t[0], t[1], t[2]));
+        for i in 1..n - 2 {
+            out.push(t[i]);
+            out.push(self.interior(t[i - 1], t[i], t[i + 1], t[i + 2]));
+        }
+        out.push(t[n - 2]);
+        out.push(self.end(t[n - 1], t[n - 2], t[n - 3]));
+        out.push(t[n - 1]);
+    }
+}
+
+/// Refines a curve of tangents `depth` times: the kernel's boundary for curves.
+/// Inputs are normalised (zero or non-finite ones are errors); ω and the size are checked.
+pub fn subdivide(scheme: CurveScheme, tangents: &[DVec3], depth: u32) -> Result<Vec<DVec3>, KernelError> {
+    let scheme = scheme.validate()?;
+    let mut cur = normalize_all(tangents)?;
+    scheme.check_depth(cur.len(), depth, 1)?;
+    let mut next = Vec::new();
+    for _ in 0..depth {
+        scheme.refine_tangents(&cur, &mut next);
+        std::mem::swap(&mut cur, &mut next);
+    }
+    Ok(cur)
+}
+
+/// Like [`subdivide`] for inputs already unit and a scheme already validated,
+/// reusing two buffers (no allocation once they are large enough). The result
+/// is in `a`. For benchmarks and the incremental pipeline.
+pub fn subdivide_into(scheme: CurveScheme, depth: u32, a: &mut Vec<DVec3>, b: &mut Vec<DVec3>) {
+    for _ in 0..depth {
+        scheme.refine_tangents(a, b);
+        std::mem::swap(a, b);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn five() -> Vec<DVec3> {
+        [(1.0, 0.0, 0.0), (1.0, 1.0, 0.0), (0.0, 1.0, 0.3), (-1.0, 1.0, 1.0), (-1.0, 0.0, 0.5)]
+            .iter()
+            .map(|&(x, y, z)| DVec3::new(x, y, z))
+            .collect()
+    }
+
+    #[test]
+    fn curve_counts_of_table1() {
+        let t = five();
+        let c = subdivide(CurveScheme::Chaikin, &t, 7).unwrap().len();
+        let b = subdivide(CurveScheme::CubicBSpline, &t, 7).unwrap().len();
+        let f = subdivide(CurveScheme::FourPoint { omega: 1.0 }, &t, 6).unwrap().len();
+        assert_eq!((c, b, f), (386, 259, 257), "Table 1 counts: Chaikin d7, cubic d7, 4-point d6");
+        assert_eq!(CurveScheme::Chaikin.len_at_depth(5, 7), Some(386));
+    }
+
+    #[test]
+    fn curve_bad_input_is_error() {
+        let t = five();
+        assert!(matches!(
+            subdivide(CurveScheme::FourPoint { omega: 2.5 }, &t, 1),
+            Err(KernelError::OmegaOutOfRange { .. })
+        ));
+        assert!(matches!(
+            subdivide(CurveScheme::FourPoint { omega: f64::NAN }, &t, 1),
+            Err(KernelError::OmegaOutOfRange { .. })
+        ));
+        assert!(matches!(subdivide(CurveScheme::Chaikin, &t[..1], 1), Err(KernelError::TooFewTangents { .. })));
+        assert!(matches!(subdivide(CurveScheme::Chaikin, &t, 40), Err(KernelError::DepthTooLarge { .. })));
+        let mut z = t.clone();
+        z[2] = DVec3::ZERO;
+        let e = subdivide(CurveScheme::Chaikin, &z, 1).unwrap_err();
+        assert_eq!(e.to_string(), "tangent 2 is the zero vector, which has no direction; give it a non-zero direction");
+    }
+}

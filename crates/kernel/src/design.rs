@@ -1,0 +1,139 @@
+//! A whole streamline surface: control net, parameters, scheme, blend order,
+//! anchor column and initial curve, and its full build (blend → integrate → mesh).
+
+use crate::error::{KernelError, Place};
+use crate::grid::Grid;
+use crate::initial_curve::InitialCurve;
+use crate::mesh::SurfaceMesh;
+use crate::params::ParamGrid;
+use crate::streamline::place_into;
+use crate::surface::{BlendOrder, SurfaceScheme, normalize_grid, refine_grid};
+use glam::DVec3;
+
+/// Everything that defines a streamline surface at level 0.
+#[derive(Debug, Clone)]
+pub struct Design {
+    /// Unit control tangents, one row per streamline.
+    pub net: Grid<DVec3>,
+    /// Level-0 parameters.
+    pub params: ParamGrid,
+    /// The tensor-product scheme.
+    pub scheme: SurfaceScheme,
+    /// Which direction is blended first.
+    pub order: BlendOrder,
+    /// The anchor column at level 0.
+    pub anchor: usize,
+    /// The initial curve the streamlines start on.
+    pub initial: InitialCurve,
+}
+
+/// One subdivision level: tangents and their parameters.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Level {
+    /// Unit tangents.
+    pub tangents: Grid<DVec3>,
+    /// Their parameters.
+    pub params: ParamGrid,
+}
+
+impl Design {
+    /// Validates and normalises a design.
+    pub fn new(
+        net: &Grid<DVec3>,
+        s: Grid<f64>,
+        t: Vec<f64>,
+        anchor: usize,
+        scheme: SurfaceScheme,
+        order: BlendOrder,
+        initial: InitialCurve,
+    ) -> Result<Self, KernelError> {
+        let scheme = scheme.validate()?;
+        let net = normalize_grid(net)?;
+        if (s.rows(), s.cols()) != (net.rows(), net.cols()) {
+            return Err(KernelError::LengthMismatch { what: "s parameter grid", got: s.rows() * s.cols(), expected: net.rows() * net.cols() });
+        }
+        scheme.check_depth(net.rows(), net.cols(), 0)?;
+        let params = ParamGrid::new(s, t, anchor)?;
+        Ok(Design { net, params, scheme, order, anchor, initial })
+    }
+
+    /// Level 0.
+    pub fn base(&self) -> Level {
+        Level { tangents: self.net.clone(), params: self.params.clone() }
+    }
+
+    /// Levels `0 ..= depth`.
+    pub fn levels(&self, depth: u32) -> Result<Vec<Level>, KernelError> {
+        self.scheme.check_depth(self.net.rows(), self.net.cols(), depth)?;
+        let mut out = vec![self.base()];
+        for d in 1..=depth {
+            let prev = out.last().expect("level 0 exists");
+            out.push(self.refine(prev, d)?);
+        }
+        Ok(out)
+    }
+
+    /// The level `depth` alone.
+    pub fn level(&self, depth: u32) -> Result<Level, KernelError> {
+        self.scheme.check_depth(self.net.rows(), self.net.cols(), depth)?;
+        let mut cur = self.base();
+        for d in 1..=depth {
+            cur = self.refine(&cur, d)?;
+        }
+        Ok(cur)
+    }
+
+    /// One step from `prev` to level `level`.
+    pub fn refine(&self, prev: &Level, level: u32) -> Result<Level, KernelError> {
+        let params = prev.params.refine(self.scheme, self.order, level)?;
+        let tangents = refine_grid(self.scheme, self.order, &prev.tangents);
+        Ok(Level { tangents, params })
+    }
+
+    /// The streamlines of a level: `rows × (cols + 1)` points.
+    pub fn streamlines(&self, level: &Level) -> Grid<DVec3> {
+        let (rows, cols) = (level.tangents.rows(), level.tangents.cols());
+        let mut data = Vec::with_capacity(rows * (cols + 1));
+        let mut buf = Vec::with_capacity(cols + 1);
+        for r in 0..rows {
+            self.streamline_into(level, r, &mut buf);
+            data.extend_from_slice(&buf);
+        }
+        Grid::new(rows, cols + 1, data).expect("sizes agree")
+    }
+
+    /// Row `r`'s streamline into `out`.
+    pub fn streamline_into(&self, level: &Level, r: usize, out: &mut Vec<DVec3>) {
+        let origin = self.initial.point(level.params.t[r]);
+        place_into(level.tangents.row(r), level.params.s.row(r), level.params.sigma[r], origin, out);
+    }
+
+    /// Full build at `depth`: blend, integrate, mesh.
+    pub fn build(&self, depth: u32) -> Result<Built, KernelError> {
+        let level = self.level(depth)?;
+        let points = self.streamlines(&level);
+        let mesh = SurfaceMesh::from_points(&points);
+        Ok(Built { level, points, mesh })
+    }
+
+    /// Replaces one control tangent (normalised), for editing.
+    pub fn set_tangent(&mut self, row: usize, col: usize, v: DVec3) -> Result<(), KernelError> {
+        if row >= self.net.rows() || col >= self.net.cols() {
+            return Err(KernelError::IndexOutOfRange { what: "tangent", index: row * self.net.cols() + col, len: self.net.data().len() });
+        }
+        let t = crate::tangent::normalize_at(v, Place::Grid { row, col })?;
+        self.net.set(row, col, t);
+        Ok(())
+    }
+}
+
+/// The result of a full build.
+#[derive(Debug, Clone)]
+pub struct Built {
+    /// The finest level.
+    pub level: Level,
+    /// Its streamlines.
+    pub points: Grid<DVec3>,
+    /// The triangle mesh.
+    pub mesh: SurfaceMesh,
+}

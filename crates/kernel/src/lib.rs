@@ -1,0 +1,39 @@
+//! # streamline-kernel
+//!
+//! The geometry kernel of Streamline Studio: streamline modeling with subdivision
+//! on the Gaussian sphere (Miura, Wang, Cheng, *CAD* 33, 2001 — "paper 000").
+//!
+//! A *tangent* is a unit vector, a point of the Gaussian sphere S². Tangents are
+//! blended on the sphere ([`sphere`]), refined as curves ([`curve`], [`qi`]) and as
+//! tensor-product surfaces ([`surface`]); each row of a refined net is integrated
+//! into an arc-length streamline ([`streamline`]) placed on an initial curve
+//! ([`initial_curve`]); the rows together make a triangle mesh ([`mesh`]).
+//!
+//! Conventions (see `SPEC.md`): all math is `f64` ([`glam::DVec3`]); inputs are
+//! normalised at the kernel's boundary ([`Tangent::new`], [`tangent::normalize_all`]);
+//! degenerate geometry is a documented branch, never a NaN; invalid input is a
+//! [`KernelError`] that names the place and the fix. This crate never imports Bevy.
+
+pub mod curve;
+pub mod design;
+pub mod error;
+pub mod grid;
+pub mod initial_curve;
+pub mod limits;
+pub mod mesh;
+pub mod params;
+pub mod presets;
+pub mod qi;
+pub mod scalar;
+pub mod sphere;
+pub mod streamline;
+pub mod surface;
+pub mod tangent;
+
+pub use curve::CurveScheme;
+pub use design::{Built, Design, Level};
+pub use error::{KernelError, Place};
+pub use glam::{DQuat, DVec3};
+pub use grid::Grid;
+pub use surface::{BlendOrder, SurfaceScheme};
+pub use tangent::Tangent;

@@ -1,0 +1,82 @@
+//! Parameter grids (SPEC §4): an arc-length parameter `s` per control tangent,
+//! strictly increasing along its row; per row a `t` (arc length along the
+//! initial curve where the streamline starts) and an anchor arc length `σ`
+//! (`s` of the anchor column at level 0). All are subdivided with the same
+//! scheme as the tangents, as planar scalars, so every refined tangent has its
+//! `s` and every refined row its `(t, σ)`.
+
+use crate::error::{KernelError, Place};
+use crate::grid::Grid;
+use crate::surface::{BlendOrder, SurfaceScheme, refine_grid};
+
+/// The parameters of one subdivision level.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParamGrid {
+    /// Arc length of each tangent along its streamline.
+    pub s: Grid<f64>,
+    /// Arc length along the initial curve of each row.
+    pub t: Vec<f64>,
+    /// Arc length of each row's anchor point.
+    pub sigma: Vec<f64>,
+}
+
+impl ParamGrid {
+    /// Level-0 parameters: `s` per tangent, `t` per row, and the anchor column
+    /// whose `s` gives `σ`. Checks finiteness, sizes and strict increase.
+    pub fn new(s: Grid<f64>, t: Vec<f64>, anchor: usize) -> Result<Self, KernelError> {
+        if t.len() != s.rows() {
+            return Err(KernelError::LengthMismatch { what: "row parameters t", got: t.len(), expected: s.rows() });
+        }
+        if anchor >= s.cols() {
+            return Err(KernelError::IndexOutOfRange { what: "anchor column", index: anchor, len: s.cols() });
+        }
+        for (r, &tv) in t.iter().enumerate() {
+            if !tv.is_finite() {
+                return Err(KernelError::NonFiniteParameter { what: "row parameter t", at: Place::Grid { row: r, col: 0 } });
+            }
+        }
+        let sigma = (0..s.rows()).map(|r| s.get(r, anchor)).collect();
+        let p = ParamGrid { s, t, sigma };
+        p.check(0)?;
+        Ok(p)
+    }
+
+    /// Uniform parameters: each row from 0 to `length` in equal intervals, rows
+    /// at `t = 0 ..= width` evenly.
+    pub fn uniform(rows: usize, cols: usize, length: f64, width: f64, anchor: usize) -> Result<Self, KernelError> {
+        let s = (0..rows * cols).map(|i| length * (i % cols) as f64 / (cols - 1).max(1) as f64).collect();
+        let t = (0..rows).map(|r| width * r as f64 / (rows - 1).max(1) as f64).collect();
+        ParamGrid::new(Grid::new(rows, cols, s)?, t, anchor)
+    }
+
+    /// Every `s` finite and strictly increasing along its row; `t`, `σ` finite.
+    pub fn check(&self, level: u32) -> Result<(), KernelError> {
+        for r in 0..self.s.rows() {
+            let row = self.s.row(r);
+            for (c, &v) in row.iter().enumerate() {
+                if !v.is_finite() {
+                    return Err(KernelError::NonFiniteParameter { what: "arc-length parameter s", at: Place::Grid { row: r, col: c } });
+                }
+                if c > 0 && v <= row[c - 1] {
+                    return Err(KernelError::ParamsNotIncreasing { level, at: Place::Grid { row: r, col: c } });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// One step with the surface's scheme (scalars commute, so the order only
+    /// affects rounding; it is kept equal to the tangents' for consistency).
+    /// Refused if `s` stops increasing strictly (very uneven intervals under the 4-point rule).
+    pub fn refine(&self, scheme: SurfaceScheme, order: BlendOrder, level: u32) -> Result<Self, KernelError> {
+        let c = scheme.curve();
+        let s = refine_grid(scheme, order, &self.s);
+        let mut t = Vec::new();
+        c.refine_scalars(&self.t, &mut t);
+        let mut sigma = Vec::new();
+        c.refine_scalars(&self.sigma, &mut sigma);
+        let p = ParamGrid { s, t, sigma };
+        p.check(level)?;
+        Ok(p)
+    }
+}

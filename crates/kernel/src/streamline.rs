@@ -1,0 +1,128 @@
+//! Streamline integration (paper 000, Eq. 65; SPEC §4).
+//!
+//! For tangents `t₀ … t_n` at arc lengths `s₀ … s_n` the streamline has `n+2` points:
+//! `p₁ = p₀ + ½(s₁ − s₀) t₀`, `p_{i+1} = p_i + ½(s_{i+1} − s_{i−1}) t_i` for
+//! `i = 1 … n−1`, `p_{n+1} = p_n + ½(s_n − s_{n−1}) t_n`. Point `k` sits at arc
+//! length `s₀` (k = 0), `(s_{k−1} + s_k)/2` (1 ≤ k ≤ n) or `s_n` (k = n+1): the
+//! segment around `s_i` has direction `t_i`, so the length is exactly `s_n − s₀`.
+//!
+//! Placement (Eqs. 1–2): the point at the anchor arc length `σ` is put on the
+//! initial curve. `σ` outside `[s₀, s_n]` (approximating schemes shrink the `s`
+//! range) continues the end segment's direction.
+
+use crate::error::{KernelError, Place};
+use crate::tangent::normalize_all;
+use glam::DVec3;
+
+/// Eq. 65 from `p₀ = 0`, appending `n+2` points to `out` (cleared first).
+/// `tangents.len() == s.len() ≥ 2`, tangents unit, `s` increasing (not re-checked).
+#[inline]
+pub fn integrate_into(tangents: &[DVec3], s: &[f64], out: &mut Vec<DVec3>) {
+    out.clear();
+    let n = tangents.len() - 1;
+    let mut p = DVec3::ZERO;
+    out.push(p);
+    p += tangents[0] * (0.5 * (s[1] - s[0]));
+    out.push(p);
+    for i in 1..n {
+        p += tangents[i] * (0.5 * (s[i + 1] - s[i - 1]));
+        out.push(p);
+    }
+    p += tangents[n] * (0.5 * (s[n] - s[n - 1]));
+    out.push(p);
+}
+
+/// Arc length of point `k` of the polyline.
+#[inline]
+pub fn point_arclength(s: &[f64], k: usize) -> f64 {
+    let n = s.len() - 1;
+    match k {
+        0 => s[0],
+        k if k > n => s[n],
+        k => 0.5 * (s[k - 1] + s[k]),
+    }
+}
+
+/// The point of the polyline `points` (from [`integrate_into`]) at arc length `sigma`.
+pub fn point_at(points: &[DVec3], tangents: &[DVec3], s: &[f64], sigma: f64) -> DVec3 {
+    let n = s.len() - 1;
+    if sigma <= s[0] {
+        return points[0] + tangents[0] * (sigma - s[0]);
+    }
+    if sigma >= s[n] {
+        return points[n + 1] + tangents[n] * (sigma - s[n]);
+    }
+    // Segment k → k+1 has direction t_k and spans [arclen(k), arclen(k+1)].
+    let k = match s.binary_search_by(|x| x.total_cmp(&sigma)) {
+        Ok(i) => i,
+        Err(i) => {
+            // sigma in (s[i-1], s[i]): segment i-1 covers up to (s[i-1]+s[i])/2, segment i after.
+            if sigma < 0.5 * (s[i - 1] + s[i]) { i - 1 } else { i }
+        }
+    };
+    points[k] + tangents[k] * (sigma - point_arclength(s, k))
+}
+
+/// Integrates and places one streamline so that its point at arc length
+/// `sigma` is `origin`, writing `n+2` points into `out`.
+pub fn place_into(tangents: &[DVec3], s: &[f64], sigma: f64, origin: DVec3, out: &mut Vec<DVec3>) {
+    integrate_into(tangents, s, out);
+    let shift = origin - point_at(out, tangents, s, sigma);
+    for p in out.iter_mut() {
+        *p += shift;
+    }
+}
+
+/// The kernel's boundary for one streamline: validates and normalises the input,
+/// then integrates with anchor column `anchor` placed at `origin` (the point at
+/// arc length `s[anchor]` is `origin`).
+pub fn streamline(tangents: &[DVec3], s: &[f64], anchor: usize, origin: DVec3) -> Result<Vec<DVec3>, KernelError> {
+    let t = normalize_all(tangents)?;
+    if t.len() < 2 {
+        return Err(KernelError::TooFewTangents { what: "a streamline", got: t.len(), need: 2 });
+    }
+    if s.len() != t.len() {
+        return Err(KernelError::LengthMismatch { what: "s", got: s.len(), expected: t.len() });
+    }
+    for (i, &v) in s.iter().enumerate() {
+        if !v.is_finite() {
+            return Err(KernelError::NonFiniteParameter { what: "arc-length parameter s", at: Place::Curve(i) });
+        }
+        if i > 0 && v <= s[i - 1] {
+            return Err(KernelError::ParamsNotIncreasing { level: 0, at: Place::Curve(i) });
+        }
+    }
+    if anchor >= t.len() {
+        return Err(KernelError::IndexOutOfRange { what: "anchor", index: anchor, len: t.len() });
+    }
+    if !origin.is_finite() {
+        return Err(KernelError::NonFiniteParameter { what: "origin", at: Place::Curve(0) });
+    }
+    let mut out = Vec::with_capacity(t.len() + 2);
+    place_into(&t, s, s[anchor], origin, &mut out);
+    Ok(out)
+}
+
+/// Length of a polyline.
+pub fn polyline_length(points: &[DVec3]) -> f64 {
+    points.windows(2).map(|w| (w[1] - w[0]).length()).sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn streamline_length_is_s_range() {
+        let t = [DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 1.0), DVec3::Z];
+        let s = [0.0, 0.5, 2.0, 2.25];
+        let p = streamline(&t, &s, 0, DVec3::ZERO).unwrap();
+        assert_eq!(p.len(), 5, "4 tangents (n = 3) give n + 2 = 5 points");
+        assert!((polyline_length(&p) - 2.25).abs() < 1e-14);
+        let q = streamline(&t, &s, 2, DVec3::new(1.0, 2.0, 3.0)).unwrap();
+        let mut raw = Vec::new();
+        integrate_into(&normalize_all(&t).unwrap(), &s, &mut raw);
+        let at = point_at(&q, &normalize_all(&t).unwrap(), &s, 2.0);
+        assert!((at - DVec3::new(1.0, 2.0, 3.0)).length() < 1e-14, "anchor placed: {at:?}");
+    }
+}

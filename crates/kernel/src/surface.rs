@@ -1,0 +1,205 @@
+//! Tensor-product subdivision surfaces on the Gaussian sphere (paper 000, §4).
+//!
+//! An open regular control net of `nt` rows × `ns` columns of tangents; each row
+//! is one streamline (parameter `s` along it, `t` across rows).
+//! Kobbelt = 4-point ⊗ 4-point, Catmull–Clark = cubic B-spline ⊗ cubic B-spline,
+//! Doo–Sabin = Chaikin ⊗ Chaikin. On the sphere the two directions do not
+//! commute, so the [`BlendOrder`] is chosen by the scene (000 §4, last paragraph
+//! before §5): [`BlendOrder::SFirst`] refines every row, then every column of the result.
+
+use crate::curve::{CurveScheme, OMEGA_DEFAULT};
+use crate::error::{KernelError, Place};
+use crate::grid::Grid;
+use crate::tangent::normalize_at;
+use glam::DVec3;
+
+/// A tensor-product subdivision scheme for regular nets.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SurfaceScheme {
+    /// Kobbelt's interpolatory scheme: 4-point ⊗ 4-point with tension ω.
+    Kobbelt { omega: f64 },
+    /// Catmull–Clark on the regular grid: cubic B-spline ⊗ cubic B-spline.
+    CatmullClark,
+    /// Doo–Sabin on the regular grid: Chaikin ⊗ Chaikin.
+    DooSabin,
+}
+
+impl Default for SurfaceScheme {
+    fn default() -> Self {
+        SurfaceScheme::Kobbelt { omega: OMEGA_DEFAULT }
+    }
+}
+
+impl SurfaceScheme {
+    /// The curve scheme applied in each direction.
+    pub fn curve(self) -> CurveScheme {
+        match self {
+            SurfaceScheme::Kobbelt { omega } => CurveScheme::FourPoint { omega },
+            SurfaceScheme::CatmullClark => CurveScheme::CubicBSpline,
+            SurfaceScheme::DooSabin => CurveScheme::Chaikin,
+        }
+    }
+
+    /// A short lowercase name (`kobbelt`, `catmull-clark`, `doo-sabin`).
+    pub fn name(self) -> &'static str {
+        match self {
+            SurfaceScheme::Kobbelt { .. } => "kobbelt",
+            SurfaceScheme::CatmullClark => "catmull-clark",
+            SurfaceScheme::DooSabin => "doo-sabin",
+        }
+    }
+
+    /// Whether the scheme keeps the control net at even indices.
+    pub fn is_interpolatory(self) -> bool {
+        matches!(self, SurfaceScheme::Kobbelt { .. })
+    }
+
+    /// Checks ω.
+    pub fn validate(self) -> Result<Self, KernelError> {
+        self.curve().validate().map(|_| self)
+    }
+
+    /// Grid size after `depth` steps from `rows × cols`, with the size cap checked.
+    pub fn check_depth(self, rows: usize, cols: usize, depth: u32) -> Result<(usize, usize), KernelError> {
+        let c = self.curve();
+        let (mut r, mut k) = (rows, cols);
+        for _ in 0..depth {
+            for n in [r, k] {
+                if n < c.min_len() {
+                    return Err(KernelError::TooFewTangents { what: self.name(), got: n, need: c.min_len() });
+                }
+            }
+            r = c.refined_len(r);
+            k = c.refined_len(k);
+            let total = r.saturating_mul(k);
+            if total > crate::limits::MAX_TANGENTS_PER_LEVEL || depth > crate::limits::MAX_DEPTH {
+                return Err(KernelError::DepthTooLarge { depth, tangents: total, cap: crate::limits::MAX_TANGENTS_PER_LEVEL });
+            }
+        }
+        if depth == 0 {
+            for n in [r, k] {
+                if n < 2 {
+                    return Err(KernelError::TooFewTangents { what: self.name(), got: n, need: 2 });
+                }
+            }
+        }
+        Ok((r, k))
+    }
+}
+
+/// Which direction is blended first in each step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum BlendOrder {
+    /// Every row (along `s`), then every column of the result (along `t`).
+    #[default]
+    SFirst,
+    /// Every column (along `t`), then every row of the result.
+    TFirst,
+}
+
+impl BlendOrder {
+    /// `s-first` or `t-first`.
+    pub fn name(self) -> &'static str {
+        match self {
+            BlendOrder::SFirst => "s-first",
+            BlendOrder::TFirst => "t-first",
+        }
+    }
+}
+
+/// A 1D refinement applied along rows and columns of a grid; implemented for
+/// tangents (on the sphere) and scalars (parameter grids).
+pub trait Refine: Copy + Default {
+    /// One step of `scheme` on `input` into `out`.
+    fn refine(scheme: CurveScheme, input: &[Self], out: &mut Vec<Self>);
+}
+
+impl Refine for DVec3 {
+    fn refine(scheme: CurveScheme, input: &[Self], out: &mut Vec<Self>) {
+        scheme.refine_tangents(input, out);
+    }
+}
+
+impl Refine for f64 {
+    fn refine(scheme: CurveScheme, input: &[Self], out: &mut Vec<Self>) {
+        scheme.refine_scalars(input, out);
+    }
+}
+
+/// Refines every row of `g`.
+pub fn refine_rows<T: Refine>(scheme: CurveScheme, g: &Grid<T>) -> Grid<T> {
+    let cols = scheme.refined_len(g.cols());
+    let mut data = Vec::with_capacity(g.rows() * cols);
+    let mut buf = Vec::with_capacity(cols);
+    for r in 0..g.rows() {
+        T::refine(scheme, g.row(r), &mut buf);
+        data.extend_from_slice(&buf);
+    }
+    Grid::new(g.rows(), cols, data).expect("sizes agree by construction")
+}
+
+/// Refines every column of `g`.
+pub fn refine_cols<T: Refine>(scheme: CurveScheme, g: &Grid<T>) -> Grid<T> {
+    let rows = scheme.refined_len(g.rows());
+    let mut out = Grid::filled(rows, g.cols(), T::default());
+    let mut col = Vec::with_capacity(g.rows());
+    let mut buf = Vec::with_capacity(rows);
+    for c in 0..g.cols() {
+        col.clear();
+        col.extend((0..g.rows()).map(|r| g.get(r, c)));
+        T::refine(scheme, &col, &mut buf);
+        for (r, &v) in buf.iter().enumerate() {
+            out.set(r, c, v);
+        }
+    }
+    out
+}
+
+/// One tensor-product step in the given blend order.
+pub fn refine_grid<T: Refine>(scheme: SurfaceScheme, order: BlendOrder, g: &Grid<T>) -> Grid<T> {
+    let c = scheme.curve();
+    match order {
+        BlendOrder::SFirst => refine_cols(c, &refine_rows(c, g)),
+        BlendOrder::TFirst => refine_rows(c, &refine_cols(c, g)),
+    }
+}
+
+/// Normalises every tangent of a net, reporting the first bad one by row and column.
+pub fn normalize_grid(g: &Grid<DVec3>) -> Result<Grid<DVec3>, KernelError> {
+    let mut out = g.clone();
+    for r in 0..g.rows() {
+        for c in 0..g.cols() {
+            out.set(r, c, normalize_at(g.get(r, c), Place::Grid { row: r, col: c })?);
+        }
+    }
+    Ok(out)
+}
+
+/// Refines a net of tangents `depth` times: the kernel's boundary for surfaces.
+pub fn subdivide(scheme: SurfaceScheme, order: BlendOrder, net: &Grid<DVec3>, depth: u32) -> Result<Grid<DVec3>, KernelError> {
+    let scheme = scheme.validate()?;
+    scheme.check_depth(net.rows(), net.cols(), depth)?;
+    let mut g = normalize_grid(net)?;
+    for _ in 0..depth {
+        g = refine_grid(scheme, order, &g);
+    }
+    Ok(g)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn surface_counts_car_net() {
+        let net = Grid::filled(6, 9, DVec3::X);
+        let g = subdivide(SurfaceScheme::default(), BlendOrder::SFirst, &net, 5).unwrap();
+        assert_eq!((g.rows(), g.cols()), (161, 257), "9x6 Kobbelt depth 5 is 257x161");
+        let cc = SurfaceScheme::CatmullClark.check_depth(6, 9, 2).unwrap();
+        assert_eq!(cc, (15, 27));
+        assert!(matches!(
+            SurfaceScheme::default().check_depth(6, 9, 12),
+            Err(KernelError::DepthTooLarge { .. })
+        ));
+    }
+}

@@ -1,0 +1,132 @@
+//! SPEC §4: streamline integration (Eq. 65), placement, flat strips and circular arcs.
+
+mod common;
+
+use common::*;
+use glam::DVec3;
+use proptest::prelude::*;
+use streamline_kernel::design::Design;
+use streamline_kernel::grid::Grid;
+use streamline_kernel::initial_curve::InitialCurve;
+use streamline_kernel::streamline::{point_at, polyline_length, streamline};
+use streamline_kernel::surface::{BlendOrder, SurfaceScheme};
+
+fn intervals(n: std::ops::RangeInclusive<usize>) -> impl Strategy<Value = Vec<f64>> {
+    (-5.0f64..5.0, prop::collection::vec(1e-3f64..3.0, n)).prop_map(|(s0, d)| {
+        let mut s = vec![s0];
+        for x in d {
+            let last = *s.last().unwrap();
+            s.push(last + x);
+        }
+        s
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    #[test]
+    fn streamline_length_equals_s_range(s in intervals(1..=12), seed in walk(13..=13, 2.0), anchor in 0usize..13, origin in unit()) {
+        let n = s.len();
+        let t = &seed[..n];
+        let anchor = anchor % n;
+        let p = streamline(t, &s, anchor, origin * 3.0).unwrap();
+        prop_assert_eq!(p.len(), n + 1, "n+1 tangents → n+2 points");
+        let len = polyline_length(&p);
+        let want = s[n - 1] - s[0];
+        prop_assert!((len - want).abs() < 1e-12 * want.max(1.0), "length {len} vs s_n − s_0 = {want}");
+        let ut: Vec<DVec3> = t.iter().map(|v| v.normalize()).collect();
+        let at = point_at(&p, &ut, &s, s[anchor]);
+        prop_assert!((at - origin * 3.0).length() < 1e-12, "anchor point {at:?} vs origin");
+    }
+
+    #[test]
+    fn flat_strip_from_constant_net(x in unit(), rows in 2usize..6, cols in 2usize..7, depth in 0u32..4, which in 0usize..3) {
+        // All tangents x, straight initial curve along y: a flat strip, closed form
+        // p = origin + t·y + (arclen − σ)·x.
+        prop_assume!(x.cross(DVec3::Y).length() > 0.1);
+        let scheme = [SurfaceScheme::default(), SurfaceScheme::CatmullClark, SurfaceScheme::DooSabin][which];
+        prop_assume!(rows >= scheme.curve().min_len() && cols >= scheme.curve().min_len());
+        let net = Grid::filled(rows, cols, x);
+        let s = Grid::new(rows, cols, (0..rows * cols).map(|i| (i % cols) as f64 * 0.7 + (i / cols) as f64 * 0.1).collect()).unwrap();
+        let t: Vec<f64> = (0..rows).map(|r| r as f64 * 0.5).collect();
+        let initial = InitialCurve::new(&[DVec3::Y, DVec3::Y], 2, 3.0, DVec3::ZERO).unwrap();
+        let d = Design::new(&net, s, t, 0, scheme, BlendOrder::SFirst, initial).unwrap();
+        let level = d.level(depth).unwrap();
+        let pts = d.streamlines(&level);
+        let normal = x.cross(DVec3::Y).normalize();
+        for r in 0..pts.rows() {
+            let srow = level.params.s.row(r);
+            for k in 0..pts.cols() {
+                let arclen = streamline_kernel::streamline::point_arclength(srow, k);
+                let want = DVec3::Y * level.params.t[r] + x * (arclen - level.params.sigma[r]);
+                let got = pts.get(r, k);
+                prop_assert!((got - want).length() < 1e-11, "row {r} point {k}: {got:?} vs {want:?}");
+                prop_assert!(got.dot(normal).abs() < 1e-11, "off the plane");
+            }
+        }
+    }
+}
+
+#[test]
+fn circular_arc_closed_form() {
+    // Tangents turning at constant rate κ over uniform spacing h: Eq. 65's interior
+    // vertices are those of a regular polygon with edge h and turning angle κh, so
+    // they lie on a circle of radius h / (2 sin(κh/2)) = (1/κ)(1 + (κh)²/24 + …).
+    for (kappa, n, h) in [(0.5, 9usize, 0.25), (2.0, 30, 0.05), (0.1, 5, 1.0)] {
+        let s: Vec<f64> = (0..n).map(|i| i as f64 * h).collect();
+        let t: Vec<DVec3> = s.iter().map(|&v| DVec3::new((kappa * v).cos(), (kappa * v).sin(), 0.0)).collect();
+        let p = streamline(&t, &s, 0, DVec3::ZERO).unwrap();
+        let radius = h / (2.0 * (kappa * h / 2.0).sin());
+        // centre: from vertex 1 along the inward normal of edge 1 rotated back by half a turn
+        let centre = {
+            let (a, b, c) = (p[1], p[2], p[3]);
+            circumcentre(a, b, c)
+        };
+        for (k, q) in p.iter().enumerate().take(n).skip(1) {
+            let r = (*q - centre).length();
+            assert!((r - radius).abs() < 1e-12, "κ={kappa} h={h}: vertex {k} at radius {r}, closed form {radius}");
+        }
+        let rel = (radius * kappa - 1.0).abs();
+        assert!(rel < (kappa * h).powi(2) / 20.0, "second order: radius·κ − 1 = {rel:e}");
+    }
+}
+
+fn circumcentre(a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
+    let (ab, ac) = (b - a, c - a);
+    let n = ab.cross(ac);
+    a + (n.cross(ab) * ac.length_squared() + ac.cross(n) * ab.length_squared()) / (2.0 * n.length_squared())
+}
+
+#[test]
+fn kobbelt_surface_of_arcs_stays_circular() {
+    // Every row turns at the same constant rate in the xz-plane: Kobbelt refinement
+    // reproduces the uniform angles (4-point reproduces cubics), so every refined
+    // row is still a regular polygon on a circle of radius h'/(2 sin(κh'/2)).
+    let (rows, cols, h, kappa) = (4usize, 7usize, 0.5, 0.6);
+    let mut net = Vec::new();
+    let mut s = Vec::new();
+    for _ in 0..rows {
+        for c in 0..cols {
+            let a = kappa * c as f64 * h;
+            net.push(DVec3::new(a.cos(), 0.0, a.sin()));
+            s.push(c as f64 * h);
+        }
+    }
+    let initial = InitialCurve::new(&[DVec3::Y, DVec3::Y], 2, 3.0, DVec3::ZERO).unwrap();
+    let d = Design::new(&Grid::new(rows, cols, net).unwrap(), Grid::new(rows, cols, s).unwrap(), vec![0.0, 1.0, 2.0, 3.0], 0, SurfaceScheme::default(), BlendOrder::SFirst, initial).unwrap();
+    for depth in 1..=3u32 {
+        let level = d.level(depth).unwrap();
+        let pts = d.streamlines(&level);
+        let hh = h / f64::from(1u32 << depth);
+        let radius = hh / (2.0 * (kappa * hh / 2.0).sin());
+        for r in 0..pts.rows() {
+            let row = pts.row(r);
+            let centre = circumcentre(row[1], row[2], row[3]);
+            for (k, q) in row.iter().enumerate().take(row.len() - 1).skip(1) {
+                let rr = (*q - centre).length();
+                assert!((rr - radius).abs() < 1e-11, "depth {depth} row {r} vertex {k}: radius {rr} vs {radius}");
+            }
+        }
+    }
+}
