@@ -1,1 +1,35 @@
-fn main(){}
+//! The paper's Table 1 side by side (subdivision vs QI curves, 5 control tangents)
+//! and full builds of the 9×6 car surface at depths 0–5. The workloads are the
+//! ones `streamline-studio bench` runs (`src/workloads.rs`).
+//!
+//! Run: `cargo bench --bench table1`. Figures and ratios: docs/benchmarks.md.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use std::hint::black_box;
+use std::time::Duration;
+use streamline_studio::workloads;
+
+fn table1(c: &mut Criterion) {
+    let mut g = c.benchmark_group("table1");
+    g.warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2))
+        .sample_size(40);
+    for mut w in workloads::table1() {
+        g.bench_function(&w.name, |b| b.iter(|| black_box((w.run)())));
+    }
+    g.finish();
+}
+
+fn surface(c: &mut Criterion) {
+    let mut g = c.benchmark_group("surface");
+    g.warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3))
+        .sample_size(20);
+    for mut w in workloads::car_surface(0..=5) {
+        g.bench_function(&w.name, |b| b.iter(|| black_box((w.run)())));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, table1, surface);
+criterion_main!(benches);

@@ -19,7 +19,7 @@ use glam::DVec3;
 
 /// The upper bound (exclusive) of ω for the 4-point rule: `2(√5 − 1)`, where the
 /// planar scheme stops being C¹ (Dyn–Levin–Gregory, `w = ω/16 < (√5−1)/8`).
-pub const OMEGA_MAX: f64 = 2.472_135_954_999_579_3;
+pub const OMEGA_MAX: f64 = 2.472_135_954_999_579;
 
 /// The default ω (the classic 4-point weight `w = 1/16`).
 pub const OMEGA_DEFAULT: f64 = 1.0;
@@ -95,17 +95,29 @@ impl CurveScheme {
     /// Checks that `n` tangents can be refined `depth` times within the size cap.
     pub fn check_depth(self, n: usize, depth: u32, rows: usize) -> Result<(), KernelError> {
         if n < self.min_len() {
-            return Err(KernelError::TooFewTangents { what: self.name(), got: n, need: self.min_len() });
+            return Err(KernelError::TooFewTangents {
+                what: self.name(),
+                got: n,
+                need: self.min_len(),
+            });
         }
         let cap = MAX_TANGENTS_PER_LEVEL;
-        let too_big = |tangents| KernelError::DepthTooLarge { depth, tangents, cap };
+        let too_big = |tangents| KernelError::DepthTooLarge {
+            depth,
+            tangents,
+            cap,
+        };
         if depth > MAX_DEPTH {
             return Err(too_big(usize::MAX));
         }
         let mut m = n;
         for d in 1..=depth {
             if m < self.min_len() {
-                return Err(KernelError::TooFewTangents { what: self.name(), got: m, need: self.min_len() });
+                return Err(KernelError::TooFewTangents {
+                    what: self.name(),
+                    got: m,
+                    need: self.min_len(),
+                });
             }
             m = self.refined_len(m);
             let total = m.saturating_mul(rows);
@@ -212,7 +224,11 @@ impl FourPointRule {
 
 /// Refines a curve of tangents `depth` times: the kernel's boundary for curves.
 /// Inputs are normalised (zero or non-finite ones are errors); ω and the size are checked.
-pub fn subdivide(scheme: CurveScheme, tangents: &[DVec3], depth: u32) -> Result<Vec<DVec3>, KernelError> {
+pub fn subdivide(
+    scheme: CurveScheme,
+    tangents: &[DVec3],
+    depth: u32,
+) -> Result<Vec<DVec3>, KernelError> {
     let scheme = scheme.validate()?;
     let mut cur = normalize_all(tangents)?;
     scheme.check_depth(cur.len(), depth, 1)?;
@@ -239,10 +255,16 @@ mod tests {
     use super::*;
 
     fn five() -> Vec<DVec3> {
-        [(1.0, 0.0, 0.0), (1.0, 1.0, 0.0), (0.0, 1.0, 0.3), (-1.0, 1.0, 1.0), (-1.0, 0.0, 0.5)]
-            .iter()
-            .map(|&(x, y, z)| DVec3::new(x, y, z))
-            .collect()
+        [
+            (1.0, 0.0, 0.0),
+            (1.0, 1.0, 0.0),
+            (0.0, 1.0, 0.3),
+            (-1.0, 1.0, 1.0),
+            (-1.0, 0.0, 0.5),
+        ]
+        .iter()
+        .map(|&(x, y, z)| DVec3::new(x, y, z))
+        .collect()
     }
 
     #[test]
@@ -250,8 +272,14 @@ mod tests {
         let t = five();
         let c = subdivide(CurveScheme::Chaikin, &t, 7).unwrap().len();
         let b = subdivide(CurveScheme::CubicBSpline, &t, 7).unwrap().len();
-        let f = subdivide(CurveScheme::FourPoint { omega: 1.0 }, &t, 6).unwrap().len();
-        assert_eq!((c, b, f), (386, 259, 257), "Table 1 counts: Chaikin d7, cubic d7, 4-point d6");
+        let f = subdivide(CurveScheme::FourPoint { omega: 1.0 }, &t, 6)
+            .unwrap()
+            .len();
+        assert_eq!(
+            (c, b, f),
+            (386, 259, 257),
+            "Table 1 counts: Chaikin d7, cubic d7, 4-point d6"
+        );
         assert_eq!(CurveScheme::Chaikin.len_at_depth(5, 7), Some(386));
     }
 
@@ -266,11 +294,20 @@ mod tests {
             subdivide(CurveScheme::FourPoint { omega: f64::NAN }, &t, 1),
             Err(KernelError::OmegaOutOfRange { .. })
         ));
-        assert!(matches!(subdivide(CurveScheme::Chaikin, &t[..1], 1), Err(KernelError::TooFewTangents { .. })));
-        assert!(matches!(subdivide(CurveScheme::Chaikin, &t, 40), Err(KernelError::DepthTooLarge { .. })));
+        assert!(matches!(
+            subdivide(CurveScheme::Chaikin, &t[..1], 1),
+            Err(KernelError::TooFewTangents { .. })
+        ));
+        assert!(matches!(
+            subdivide(CurveScheme::Chaikin, &t, 40),
+            Err(KernelError::DepthTooLarge { .. })
+        ));
         let mut z = t.clone();
         z[2] = DVec3::ZERO;
         let e = subdivide(CurveScheme::Chaikin, &z, 1).unwrap_err();
-        assert_eq!(e.to_string(), "tangent 2 is the zero vector, which has no direction; give it a non-zero direction");
+        assert_eq!(
+            e.to_string(),
+            "tangent 2 is the zero vector, which has no direction; give it a non-zero direction"
+        );
     }
 }

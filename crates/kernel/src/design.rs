@@ -50,21 +50,36 @@ impl Design {
         let scheme = scheme.validate()?;
         let net = normalize_grid(net)?;
         if (s.rows(), s.cols()) != (net.rows(), net.cols()) {
-            return Err(KernelError::LengthMismatch { what: "s parameter grid", got: s.rows() * s.cols(), expected: net.rows() * net.cols() });
+            return Err(KernelError::LengthMismatch {
+                what: "s parameter grid",
+                got: s.rows() * s.cols(),
+                expected: net.rows() * net.cols(),
+            });
         }
         scheme.check_depth(net.rows(), net.cols(), 0)?;
         let params = ParamGrid::new(s, t, anchor)?;
-        Ok(Design { net, params, scheme, order, anchor, initial })
+        Ok(Design {
+            net,
+            params,
+            scheme,
+            order,
+            anchor,
+            initial,
+        })
     }
 
     /// Level 0.
     pub fn base(&self) -> Level {
-        Level { tangents: self.net.clone(), params: self.params.clone() }
+        Level {
+            tangents: self.net.clone(),
+            params: self.params.clone(),
+        }
     }
 
     /// Levels `0 ..= depth`.
     pub fn levels(&self, depth: u32) -> Result<Vec<Level>, KernelError> {
-        self.scheme.check_depth(self.net.rows(), self.net.cols(), depth)?;
+        self.scheme
+            .check_depth(self.net.rows(), self.net.cols(), depth)?;
         let mut out = vec![self.base()];
         for d in 1..=depth {
             let prev = out.last().expect("level 0 exists");
@@ -75,7 +90,8 @@ impl Design {
 
     /// The level `depth` alone.
     pub fn level(&self, depth: u32) -> Result<Level, KernelError> {
-        self.scheme.check_depth(self.net.rows(), self.net.cols(), depth)?;
+        self.scheme
+            .check_depth(self.net.rows(), self.net.cols(), depth)?;
         let mut cur = self.base();
         for d in 1..=depth {
             cur = self.refine(&cur, d)?;
@@ -105,7 +121,13 @@ impl Design {
     /// Row `r`'s streamline into `out`.
     pub fn streamline_into(&self, level: &Level, r: usize, out: &mut Vec<DVec3>) {
         let origin = self.initial.point(level.params.t[r]);
-        place_into(level.tangents.row(r), level.params.s.row(r), level.params.sigma[r], origin, out);
+        place_into(
+            level.tangents.row(r),
+            level.params.s.row(r),
+            level.params.sigma[r],
+            origin,
+            out,
+        );
     }
 
     /// Full build at `depth`: blend, integrate, mesh.
@@ -113,13 +135,21 @@ impl Design {
         let level = self.level(depth)?;
         let points = self.streamlines(&level);
         let mesh = SurfaceMesh::from_points(&points);
-        Ok(Built { level, points, mesh })
+        Ok(Built {
+            level,
+            points,
+            mesh,
+        })
     }
 
     /// Replaces one control tangent (normalised), for editing.
     pub fn set_tangent(&mut self, row: usize, col: usize, v: DVec3) -> Result<(), KernelError> {
         if row >= self.net.rows() || col >= self.net.cols() {
-            return Err(KernelError::IndexOutOfRange { what: "tangent", index: row * self.net.cols() + col, len: self.net.data().len() });
+            return Err(KernelError::IndexOutOfRange {
+                what: "tangent",
+                index: row * self.net.cols() + col,
+                len: self.net.data().len(),
+            });
         }
         let t = crate::tangent::normalize_at(v, Place::Grid { row, col })?;
         self.net.set(row, col, t);

@@ -30,21 +30,41 @@ pub enum KernelError {
     /// ω of the 4-point rule outside `0 ≤ ω < 2(√5 − 1)`.
     OmegaOutOfRange { omega: f64 },
     /// Too few tangents for the scheme.
-    TooFewTangents { what: &'static str, got: usize, need: usize },
+    TooFewTangents {
+        what: &'static str,
+        got: usize,
+        need: usize,
+    },
     /// QI curve order outside `2 ..= number of tangents`.
     OrderOutOfRange { order: usize, tangents: usize },
     /// The refined net would exceed [`crate::limits::MAX_TANGENTS_PER_LEVEL`].
-    DepthTooLarge { depth: u32, tangents: usize, cap: usize },
+    DepthTooLarge {
+        depth: u32,
+        tangents: usize,
+        cap: usize,
+    },
     /// Rows of a grid differ in length.
-    RaggedGrid { row: usize, len: usize, expected: usize },
+    RaggedGrid {
+        row: usize,
+        len: usize,
+        expected: usize,
+    },
     /// Two inputs that must have matching lengths do not.
-    LengthMismatch { what: &'static str, got: usize, expected: usize },
+    LengthMismatch {
+        what: &'static str,
+        got: usize,
+        expected: usize,
+    },
     /// A parameter (s, t, σ, length, origin…) is NaN or infinite.
     NonFiniteParameter { what: &'static str, at: Place },
     /// Arc-length parameters must increase strictly along each row.
     ParamsNotIncreasing { level: u32, at: Place },
     /// An index (anchor column…) points outside its range.
-    IndexOutOfRange { what: &'static str, index: usize, len: usize },
+    IndexOutOfRange {
+        what: &'static str,
+        index: usize,
+        len: usize,
+    },
     /// A positive quantity (length, sample count) is not positive.
     NotPositive { what: &'static str, value: f64 },
 }
@@ -67,14 +87,21 @@ impl fmt::Display for KernelError {
                 crate::curve::OMEGA_MAX
             ),
             TooFewTangents { what, got, need } => {
-                write!(f, "{what} needs at least {need} tangents, got {got}; add tangents")
+                write!(
+                    f,
+                    "{what} needs at least {need} tangents, got {got}; add tangents"
+                )
             }
             OrderOutOfRange { order, tangents } => write!(
                 f,
                 "QI curve order {order} is not allowed with {tangents} tangents; use an order from 2 to {} (3, 4 or 5 are usual)",
                 (*tangents).min(crate::qi::MAX_ORDER)
             ),
-            DepthTooLarge { depth, tangents, cap } => write!(
+            DepthTooLarge {
+                depth,
+                tangents,
+                cap,
+            } => write!(
                 f,
                 "depth {depth} would produce {tangents} tangents per level, over the cap of {cap}; choose a smaller depth"
             ),
@@ -82,8 +109,15 @@ impl fmt::Display for KernelError {
                 f,
                 "row {row} has {len} tangents but row 0 has {expected}; every row must have the same number"
             ),
-            LengthMismatch { what, got, expected } => {
-                write!(f, "{what} has {got} entries but {expected} are needed; make the counts match")
+            LengthMismatch {
+                what,
+                got,
+                expected,
+            } => {
+                write!(
+                    f,
+                    "{what} has {got} entries but {expected} are needed; make the counts match"
+                )
             }
             NonFiniteParameter { what, at } => {
                 write!(f, "{what} at {at} is NaN or infinite; give a finite number")
@@ -93,9 +127,15 @@ impl fmt::Display for KernelError {
                 "arc-length parameter s does not increase strictly at {at} (subdivision level {level}); make the intervals positive and neighbouring intervals more even"
             ),
             IndexOutOfRange { what, index, len } => {
-                write!(f, "{what} {index} is out of range (there are {len}); use 0 to {}", len.saturating_sub(1))
+                write!(
+                    f,
+                    "{what} {index} is out of range (there are {len}); use 0 to {}",
+                    len.saturating_sub(1)
+                )
             }
-            NotPositive { what, value } => write!(f, "{what} is {value}; it must be a positive finite number"),
+            NotPositive { what, value } => {
+                write!(f, "{what} is {value}; it must be a positive finite number")
+            }
         }
     }
 }

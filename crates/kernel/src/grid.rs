@@ -15,14 +15,22 @@ impl<T: Copy> Grid<T> {
     /// A grid from row-major data; `data.len()` must be `rows * cols`.
     pub fn new(rows: usize, cols: usize, data: Vec<T>) -> Result<Self, KernelError> {
         if data.len() != rows * cols {
-            return Err(KernelError::LengthMismatch { what: "grid data", got: data.len(), expected: rows * cols });
+            return Err(KernelError::LengthMismatch {
+                what: "grid data",
+                got: data.len(),
+                expected: rows * cols,
+            });
         }
         Ok(Grid { rows, cols, data })
     }
 
     /// A grid filled with one value.
     pub fn filled(rows: usize, cols: usize, value: T) -> Self {
-        Grid { rows, cols, data: vec![value; rows * cols] }
+        Grid {
+            rows,
+            cols,
+            data: vec![value; rows * cols],
+        }
     }
 
     /// A grid from nested rows; rows of different lengths are an error naming the row.
@@ -31,11 +39,19 @@ impl<T: Copy> Grid<T> {
         let mut data = Vec::with_capacity(rows.len() * cols);
         for (r, row) in rows.iter().enumerate() {
             if row.len() != cols {
-                return Err(KernelError::RaggedGrid { row: r, len: row.len(), expected: cols });
+                return Err(KernelError::RaggedGrid {
+                    row: r,
+                    len: row.len(),
+                    expected: cols,
+                });
             }
             data.extend_from_slice(row);
         }
-        Ok(Grid { rows: rows.len(), cols, data })
+        Ok(Grid {
+            rows: rows.len(),
+            cols,
+            data,
+        })
     }
 
     /// Number of rows (streamlines).
@@ -100,7 +116,11 @@ impl<T: Copy> Grid<T> {
                 data.push(self.get(r, c));
             }
         }
-        Grid { rows: self.cols, cols: self.rows, data }
+        Grid {
+            rows: self.cols,
+            cols: self.rows,
+            data,
+        }
     }
 
     /// Reverses the order of rows.
@@ -109,7 +129,11 @@ impl<T: Copy> Grid<T> {
         for r in (0..self.rows).rev() {
             data.extend_from_slice(self.row(r));
         }
-        Grid { rows: self.rows, cols: self.cols, data }
+        Grid {
+            rows: self.rows,
+            cols: self.cols,
+            data,
+        }
     }
 
     /// Reverses every row (the order of columns).
@@ -123,6 +147,10 @@ impl<T: Copy> Grid<T> {
 
     /// Applies `f` to every entry.
     pub fn map<U: Copy>(&self, f: impl FnMut(T) -> U) -> Grid<U> {
-        Grid { rows: self.rows, cols: self.cols, data: self.data.iter().copied().map(f).collect() }
+        Grid {
+            rows: self.rows,
+            cols: self.cols,
+            data: self.data.iter().copied().map(f).collect(),
+        }
     }
 }

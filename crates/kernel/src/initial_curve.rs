@@ -49,12 +49,23 @@ impl InitialCurve {
     pub const PANELS_PER_SPAN: usize = 16;
 
     /// A QI initial curve of `order` through `tangents`, of arc length `length`, starting at `origin`.
-    pub fn new(tangents: &[DVec3], order: usize, length: f64, origin: DVec3) -> Result<Self, KernelError> {
+    pub fn new(
+        tangents: &[DVec3],
+        order: usize,
+        length: f64,
+        origin: DVec3,
+    ) -> Result<Self, KernelError> {
         if !(length.is_finite() && length > 0.0) {
-            return Err(KernelError::NotPositive { what: "initial curve length", value: length });
+            return Err(KernelError::NotPositive {
+                what: "initial curve length",
+                value: length,
+            });
         }
         if !origin.is_finite() {
-            return Err(KernelError::NonFiniteParameter { what: "initial curve origin", at: Place::Curve(0) });
+            return Err(KernelError::NonFiniteParameter {
+                what: "initial curve origin",
+                at: Place::Curve(0),
+            });
         }
         let qi = QiCurve::new(tangents, order)?;
         Ok(Self::from_qi(qi, length, origin, Self::PANELS_PER_SPAN))
@@ -75,7 +86,13 @@ impl InitialCurve {
                 nodes_int.push(acc);
             }
         }
-        InitialCurve { qi, length, origin, nodes_u, nodes_int }
+        InitialCurve {
+            qi,
+            length,
+            origin,
+            nodes_u,
+            nodes_int,
+        }
     }
 
     /// The curve's QI tangents.
@@ -95,7 +112,11 @@ impl InitialCurve {
 
     /// `∫₀ᵘ t(v) dv` for `u ∈ [0, 1]`.
     fn integral(&self, u: f64) -> DVec3 {
-        let i = self.nodes_u.partition_point(|&x| x <= u).saturating_sub(1).min(self.nodes_u.len() - 2);
+        let i = self
+            .nodes_u
+            .partition_point(|&x| x <= u)
+            .saturating_sub(1)
+            .min(self.nodes_u.len() - 2);
         self.nodes_int[i] + gauss(&self.qi, self.nodes_u[i], u)
     }
 
@@ -106,7 +127,9 @@ impl InitialCurve {
             return self.origin + self.qi.tangent(0.0) * t;
         }
         if u > 1.0 {
-            return self.origin + self.integral(1.0) * self.length + self.qi.tangent(1.0) * (t - self.length);
+            return self.origin
+                + self.integral(1.0) * self.length
+                + self.qi.tangent(1.0) * (t - self.length);
         }
         self.origin + self.integral(u) * self.length
     }
@@ -119,13 +142,20 @@ impl InitialCurve {
     /// `m ≥ 2` points at evenly spaced arc lengths, for drawing.
     pub fn polyline(&self, m: usize) -> Vec<DVec3> {
         let m = m.max(2);
-        (0..m).map(|j| self.point(self.length * j as f64 / (m - 1) as f64)).collect()
+        (0..m)
+            .map(|j| self.point(self.length * j as f64 / (m - 1) as f64))
+            .collect()
     }
 
     /// Largest distance between the end point from the default rule and from a
     /// rule with 8× as many panels: an estimate of the quadrature error.
     pub fn quadrature_error_estimate(&self) -> f64 {
-        let fine = Self::from_qi(self.qi.clone(), self.length, self.origin, Self::PANELS_PER_SPAN * 8);
+        let fine = Self::from_qi(
+            self.qi.clone(),
+            self.length,
+            self.origin,
+            Self::PANELS_PER_SPAN * 8,
+        );
         (fine.point(self.length) - self.point(self.length)).length()
     }
 }
@@ -167,7 +197,12 @@ mod tests {
 
     #[test]
     fn initial_curve_quadrature_error_small() {
-        let t = [DVec3::new(0.0, 1.0, -0.6), DVec3::Y, DVec3::new(0.0, 1.0, 0.6), DVec3::new(1.0, 0.2, 0.0)];
+        let t = [
+            DVec3::new(0.0, 1.0, -0.6),
+            DVec3::Y,
+            DVec3::new(0.0, 1.0, 0.6),
+            DVec3::new(1.0, 0.2, 0.0),
+        ];
         for k in 2..=4 {
             let c = InitialCurve::new(&t, k, 2.0, DVec3::ZERO).unwrap();
             let e = c.quadrature_error_estimate();

@@ -25,14 +25,25 @@ impl ParamGrid {
     /// whose `s` gives `σ`. Checks finiteness, sizes and strict increase.
     pub fn new(s: Grid<f64>, t: Vec<f64>, anchor: usize) -> Result<Self, KernelError> {
         if t.len() != s.rows() {
-            return Err(KernelError::LengthMismatch { what: "row parameters t", got: t.len(), expected: s.rows() });
+            return Err(KernelError::LengthMismatch {
+                what: "row parameters t",
+                got: t.len(),
+                expected: s.rows(),
+            });
         }
         if anchor >= s.cols() {
-            return Err(KernelError::IndexOutOfRange { what: "anchor column", index: anchor, len: s.cols() });
+            return Err(KernelError::IndexOutOfRange {
+                what: "anchor column",
+                index: anchor,
+                len: s.cols(),
+            });
         }
         for (r, &tv) in t.iter().enumerate() {
             if !tv.is_finite() {
-                return Err(KernelError::NonFiniteParameter { what: "row parameter t", at: Place::Grid { row: r, col: 0 } });
+                return Err(KernelError::NonFiniteParameter {
+                    what: "row parameter t",
+                    at: Place::Grid { row: r, col: 0 },
+                });
             }
         }
         let sigma = (0..s.rows()).map(|r| s.get(r, anchor)).collect();
@@ -43,9 +54,19 @@ impl ParamGrid {
 
     /// Uniform parameters: each row from 0 to `length` in equal intervals, rows
     /// at `t = 0 ..= width` evenly.
-    pub fn uniform(rows: usize, cols: usize, length: f64, width: f64, anchor: usize) -> Result<Self, KernelError> {
-        let s = (0..rows * cols).map(|i| length * (i % cols) as f64 / (cols - 1).max(1) as f64).collect();
-        let t = (0..rows).map(|r| width * r as f64 / (rows - 1).max(1) as f64).collect();
+    pub fn uniform(
+        rows: usize,
+        cols: usize,
+        length: f64,
+        width: f64,
+        anchor: usize,
+    ) -> Result<Self, KernelError> {
+        let s = (0..rows * cols)
+            .map(|i| length * (i % cols) as f64 / (cols - 1).max(1) as f64)
+            .collect();
+        let t = (0..rows)
+            .map(|r| width * r as f64 / (rows - 1).max(1) as f64)
+            .collect();
         ParamGrid::new(Grid::new(rows, cols, s)?, t, anchor)
     }
 
@@ -55,10 +76,16 @@ impl ParamGrid {
             let row = self.s.row(r);
             for (c, &v) in row.iter().enumerate() {
                 if !v.is_finite() {
-                    return Err(KernelError::NonFiniteParameter { what: "arc-length parameter s", at: Place::Grid { row: r, col: c } });
+                    return Err(KernelError::NonFiniteParameter {
+                        what: "arc-length parameter s",
+                        at: Place::Grid { row: r, col: c },
+                    });
                 }
                 if c > 0 && v <= row[c - 1] {
-                    return Err(KernelError::ParamsNotIncreasing { level, at: Place::Grid { row: r, col: c } });
+                    return Err(KernelError::ParamsNotIncreasing {
+                        level,
+                        at: Place::Grid { row: r, col: c },
+                    });
                 }
             }
         }
@@ -68,7 +95,12 @@ impl ParamGrid {
     /// One step with the surface's scheme (scalars commute, so the order only
     /// affects rounding; it is kept equal to the tangents' for consistency).
     /// Refused if `s` stops increasing strictly (very uneven intervals under the 4-point rule).
-    pub fn refine(&self, scheme: SurfaceScheme, order: BlendOrder, level: u32) -> Result<Self, KernelError> {
+    pub fn refine(
+        &self,
+        scheme: SurfaceScheme,
+        order: BlendOrder,
+        level: u32,
+    ) -> Result<Self, KernelError> {
         let c = scheme.curve();
         let s = refine_grid(scheme, order, &self.s);
         let mut t = Vec::new();

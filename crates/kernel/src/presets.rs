@@ -28,33 +28,62 @@ fn car(pitch: [f64; 9], yaw_front: f64, yaw_back: f64, length: f64) -> Design {
         for (c, &p) in pitch.iter().enumerate() {
             let along = c as f64 / (cols - 1) as f64;
             let yaw = f * (yaw_front * (1.0 - along) - yaw_back * along);
-            net.push(dir(p * (1.0 - 0.35 * f * f), yaw * (1.0 - 2.0 * along).abs()));
+            net.push(dir(
+                p * (1.0 - 0.35 * f * f),
+                yaw * (1.0 - 2.0 * along).abs(),
+            ));
             s.push(row_len * along);
         }
     }
     let net = Grid::new(rows, cols, net).expect("6x9");
     let s = Grid::new(rows, cols, s).expect("6x9");
     let width = 2.0;
-    let t = (0..rows).map(|r| width * r as f64 / (rows - 1) as f64).collect();
+    let t = (0..rows)
+        .map(|r| width * r as f64 / (rows - 1) as f64)
+        .collect();
     let initial = InitialCurve::new(
-        &[DVec3::new(0.0, 1.0, 0.55), DVec3::new(0.0, 1.0, 0.12), DVec3::new(0.0, 1.0, -0.12), DVec3::new(0.0, 1.0, -0.55)],
+        &[
+            DVec3::new(0.0, 1.0, 0.55),
+            DVec3::new(0.0, 1.0, 0.12),
+            DVec3::new(0.0, 1.0, -0.12),
+            DVec3::new(0.0, 1.0, -0.55),
+        ],
         3,
         width,
         DVec3::new(0.0, -0.95, 0.25),
     )
     .expect("valid initial curve");
-    Design::new(&net, s, t, 0, SurfaceScheme::default(), BlendOrder::SFirst, initial).expect("valid car design")
+    Design::new(
+        &net,
+        s,
+        t,
+        0,
+        SurfaceScheme::default(),
+        BlendOrder::SFirst,
+        initial,
+    )
+    .expect("valid car design")
 }
 
 /// The paper's car model no. 1 (Figs. 8–10): a 9×6 Kobbelt net, a long
 /// car-roof-like surface (bumper, hood, windshield, roof, rear window, trunk, tail).
 pub fn car1() -> Design {
-    car([55.0, 12.0, 6.0, 34.0, 3.0, -3.0, -24.0, -6.0, -58.0], 14.0, 10.0, 4.4)
+    car(
+        [55.0, 12.0, 6.0, 34.0, 3.0, -3.0, -24.0, -6.0, -58.0],
+        14.0,
+        10.0,
+        4.4,
+    )
 }
 
 /// The reshaped car model no. 2 (Fig. 11): a sportier fastback from the same net shape.
 pub fn car2() -> Design {
-    car([45.0, 8.0, 3.0, 26.0, 9.0, -9.0, -17.0, -13.0, -50.0], 18.0, 14.0, 4.6)
+    car(
+        [45.0, 8.0, 3.0, 26.0, 9.0, -9.0, -17.0, -13.0, -50.0],
+        18.0,
+        14.0,
+        4.6,
+    )
 }
 
 /// The QI-surface examples of Fig. 2: a 3×3 net of `+x` tangents whose centre
@@ -68,8 +97,18 @@ pub fn qi_demo(which: u8) -> Design {
     let mut net = Grid::filled(3, 3, DVec3::X);
     net.set(1, 1, centre);
     let s = Grid::new(3, 3, (0..9).map(|i| (i % 3) as f64).collect()).expect("3x3");
-    let initial = InitialCurve::new(&[DVec3::Y, DVec3::Y], 2, 2.0, DVec3::new(0.0, -1.0, 0.0)).expect("line");
-    Design::new(&net, s, vec![0.0, 1.0, 2.0], 0, SurfaceScheme::default(), BlendOrder::SFirst, initial).expect("valid")
+    let initial =
+        InitialCurve::new(&[DVec3::Y, DVec3::Y], 2, 2.0, DVec3::new(0.0, -1.0, 0.0)).expect("line");
+    Design::new(
+        &net,
+        s,
+        vec![0.0, 1.0, 2.0],
+        0,
+        SurfaceScheme::default(),
+        BlendOrder::SFirst,
+        initial,
+    )
+    .expect("valid")
 }
 
 /// The smallest design: 2×2 tangents along `+x`, a flat unit square.
@@ -77,7 +116,16 @@ pub fn minimal() -> Design {
     let net = Grid::filled(2, 2, DVec3::X);
     let s = Grid::new(2, 2, vec![0.0, 1.0, 0.0, 1.0]).expect("2x2");
     let initial = InitialCurve::new(&[DVec3::Y, DVec3::Y], 2, 1.0, DVec3::ZERO).expect("line");
-    Design::new(&net, s, vec![0.0, 1.0], 0, SurfaceScheme::default(), BlendOrder::SFirst, initial).expect("valid")
+    Design::new(
+        &net,
+        s,
+        vec![0.0, 1.0],
+        0,
+        SurfaceScheme::default(),
+        BlendOrder::SFirst,
+        initial,
+    )
+    .expect("valid")
 }
 
 #[cfg(test)]
@@ -86,12 +134,29 @@ mod tests {
 
     #[test]
     fn presets_build() {
-        for (name, d, depth) in [("car1", car1(), 5), ("car2", car2(), 3), ("qi-down", qi_demo(0), 3), ("minimal", minimal(), 3)] {
+        for (name, d, depth) in [
+            ("car1", car1(), 5),
+            ("car2", car2(), 3),
+            ("qi-down", qi_demo(0), 3),
+            ("minimal", minimal(), 3),
+        ] {
             let b = d.build(depth).unwrap();
-            assert!(b.mesh.positions.iter().all(|p| p.is_finite()), "{name}: finite");
-            assert!(b.mesh.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-9), "{name}: unit normals");
+            assert!(
+                b.mesh.positions.iter().all(|p| p.is_finite()),
+                "{name}: finite"
+            );
+            assert!(
+                b.mesh
+                    .normals
+                    .iter()
+                    .all(|n| (n.length() - 1.0).abs() < 1e-9),
+                "{name}: unit normals"
+            );
         }
         let b = car1().build(5).unwrap();
-        assert_eq!((b.level.tangents.rows(), b.level.tangents.cols()), (161, 257));
+        assert_eq!(
+            (b.level.tangents.rows(), b.level.tangents.cols()),
+            (161, 257)
+        );
     }
 }

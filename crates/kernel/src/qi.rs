@@ -35,10 +35,17 @@ impl QiCurve {
     pub fn new(tangents: &[DVec3], order: usize) -> Result<Self, KernelError> {
         let t = normalize_all(tangents)?;
         if t.len() < 2 {
-            return Err(KernelError::TooFewTangents { what: "a QI curve", got: t.len(), need: 2 });
+            return Err(KernelError::TooFewTangents {
+                what: "a QI curve",
+                got: t.len(),
+                need: 2,
+            });
         }
         if order < 2 || order > t.len() || order > MAX_ORDER {
-            return Err(KernelError::OrderOutOfRange { order, tangents: t.len() });
+            return Err(KernelError::OrderOutOfRange {
+                order,
+                tangents: t.len(),
+            });
         }
         let n = t.len() - 1;
         let k = order;
@@ -71,7 +78,13 @@ impl QiCurve {
                 angles.push(std::f64::consts::PI);
             }
         }
-        Ok(QiCurve { tangents: t, order, knots, axes, angles })
+        Ok(QiCurve {
+            tangents: t,
+            order,
+            knots,
+            axes,
+            angles,
+        })
     }
 
     /// The order `k`.
@@ -171,9 +184,15 @@ impl QiCurve {
     /// `m ≥ 2` tangents at evenly spaced `u = j/(m−1)`.
     pub fn sample(&self, m: usize) -> Result<Vec<DVec3>, KernelError> {
         if m < 2 {
-            return Err(KernelError::TooFewTangents { what: "QI sampling", got: m, need: 2 });
+            return Err(KernelError::TooFewTangents {
+                what: "QI sampling",
+                got: m,
+                need: 2,
+            });
         }
-        Ok((0..m).map(|j| self.tangent(j as f64 / (m - 1) as f64)).collect())
+        Ok((0..m)
+            .map(|j| self.tangent(j as f64 / (m - 1) as f64))
+            .collect())
     }
 }
 
@@ -186,16 +205,34 @@ mod tests {
 
     #[test]
     fn qi_endpoints_and_partition() {
-        let t = [DVec3::X, DVec3::Y, DVec3::new(0.0, 1.0, 1.0), DVec3::Z, DVec3::new(-1.0, 0.0, 1.0)];
+        let t = [
+            DVec3::X,
+            DVec3::Y,
+            DVec3::new(0.0, 1.0, 1.0),
+            DVec3::Z,
+            DVec3::new(-1.0, 0.0, 1.0),
+        ];
         for k in 2..=5 {
             let q = QiCurve::new(&t, k).unwrap();
             assert!((q.tangent(0.0) - DVec3::X).length() < 1e-15, "k={k} t(0)");
-            assert!((q.tangent(1.0) - q.tangents()[4]).length() < 1e-14, "k={k} t(1)");
+            assert!(
+                (q.tangent(1.0) - q.tangents()[4]).length() < 1e-14,
+                "k={k} t(1)"
+            );
             let mut cb = [0.0; 4];
             q.cumulative_basis(0.37, &mut cb);
-            assert!(cb.windows(2).all(|w| w[0] >= w[1] - 1e-15), "B̃ non-increasing: {cb:?}");
+            assert!(
+                cb.windows(2).all(|w| w[0] >= w[1] - 1e-15),
+                "B̃ non-increasing: {cb:?}"
+            );
         }
-        assert!(matches!(QiCurve::new(&t, 6), Err(KernelError::OrderOutOfRange { .. })));
-        assert!(matches!(QiCurve::new(&t, 1), Err(KernelError::OrderOutOfRange { .. })));
+        assert!(matches!(
+            QiCurve::new(&t, 6),
+            Err(KernelError::OrderOutOfRange { .. })
+        ));
+        assert!(matches!(
+            QiCurve::new(&t, 1),
+            Err(KernelError::OrderOutOfRange { .. })
+        ));
     }
 }

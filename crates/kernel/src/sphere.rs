@@ -121,7 +121,11 @@ impl FixedBlend {
             cc *= (-u + kf) * (u + kf) / ((0.5 + kf) * (kf + 1.0));
             sc *= (1.0 - u + kf) * (1.0 + u + kf) / ((1.5 + kf) * (kf + 1.0));
         }
-        FixedBlend { u, cos_coef, sin_coef }
+        FixedBlend {
+            u,
+            cos_coef,
+            sin_coef,
+        }
     }
 
     /// The blend parameter.
@@ -203,7 +207,7 @@ fn combine_rec(ts: &[DVec3], cs: &[f64]) -> DVec3 {
     }
     let total: f64 = cs.iter().sum();
     let (left_t, left_c, right_t, right_c): (&[DVec3], Vec<f64>, &[DVec3], Vec<f64>);
-    if len % 2 == 0 {
+    if len.is_multiple_of(2) {
         let h = len / 2;
         left_t = &ts[..h];
         right_t = &ts[h..];
@@ -213,8 +217,16 @@ fn combine_rec(ts: &[DVec3], cs: &[f64]) -> DVec3 {
         let m = len / 2;
         left_t = &ts[..=m];
         right_t = &ts[m..];
-        left_c = cs[..=m].iter().enumerate().map(|(i, &c)| if i == m { c / 2.0 } else { c }).collect();
-        right_c = cs[m..].iter().enumerate().map(|(i, &c)| if i == 0 { c / 2.0 } else { c }).collect();
+        left_c = cs[..=m]
+            .iter()
+            .enumerate()
+            .map(|(i, &c)| if i == m { c / 2.0 } else { c })
+            .collect();
+        right_c = cs[m..]
+            .iter()
+            .enumerate()
+            .map(|(i, &c)| if i == 0 { c / 2.0 } else { c })
+            .collect();
     }
     let d0: f64 = left_c.iter().sum::<f64>() / total;
     let d1 = 1.0 - d0;
@@ -244,7 +256,10 @@ mod tests {
         let b = unit(-0.5, 3f64.sqrt() / 2.0, 0.0);
         let m = blend(a, b, 0.5);
         let expect = unit(0.5, 3f64.sqrt() / 2.0, 0.0);
-        assert!((m - expect).length() < 1e-15, "blend(a,b,1/2) = {m:?}, expected {expect:?}");
+        assert!(
+            (m - expect).length() < 1e-15,
+            "blend(a,b,1/2) = {m:?}, expected {expect:?}"
+        );
     }
 
     #[test]
@@ -262,12 +277,22 @@ mod tests {
             assert!((e - a).length() < 1e-15, "equal pair at u={u}: {e:?}");
             let before = antipodal_events();
             let r = blend(a, -a, u);
-            assert!((r.length() - 1.0).abs() < 1e-14 && r.is_finite(), "antipodal u={u}: {r:?}");
+            assert!(
+                (r.length() - 1.0).abs() < 1e-14 && r.is_finite(),
+                "antipodal u={u}: {r:?}"
+            );
             assert!(antipodal_events() > before, "antipodal event counted");
             let expect_angle = (u * std::f64::consts::PI).rem_euclid(std::f64::consts::TAU);
             let got = a.dot(r).clamp(-1.0, 1.0).acos();
-            let want = if expect_angle > std::f64::consts::PI { std::f64::consts::TAU - expect_angle } else { expect_angle };
-            assert!((got - want).abs() < 1e-7, "antipodal angle u={u}: {got} vs {want}");
+            let want = if expect_angle > std::f64::consts::PI {
+                std::f64::consts::TAU - expect_angle
+            } else {
+                expect_angle
+            };
+            assert!(
+                (got - want).abs() < 1e-7,
+                "antipodal angle u={u}: {got} vs {want}"
+            );
         }
         let m = mid(a, -a);
         assert!((m.length() - 1.0).abs() < 1e-14 && m.dot(a).abs() < 1e-12);

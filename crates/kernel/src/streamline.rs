@@ -57,7 +57,11 @@ pub fn point_at(points: &[DVec3], tangents: &[DVec3], s: &[f64], sigma: f64) -> 
         Ok(i) => i,
         Err(i) => {
             // sigma in (s[i-1], s[i]): segment i-1 covers up to (s[i-1]+s[i])/2, segment i after.
-            if sigma < 0.5 * (s[i - 1] + s[i]) { i - 1 } else { i }
+            if sigma < 0.5 * (s[i - 1] + s[i]) {
+                i - 1
+            } else {
+                i
+            }
         }
     };
     points[k] + tangents[k] * (sigma - point_arclength(s, k))
@@ -76,27 +80,53 @@ pub fn place_into(tangents: &[DVec3], s: &[f64], sigma: f64, origin: DVec3, out:
 /// The kernel's boundary for one streamline: validates and normalises the input,
 /// then integrates with anchor column `anchor` placed at `origin` (the point at
 /// arc length `s[anchor]` is `origin`).
-pub fn streamline(tangents: &[DVec3], s: &[f64], anchor: usize, origin: DVec3) -> Result<Vec<DVec3>, KernelError> {
+pub fn streamline(
+    tangents: &[DVec3],
+    s: &[f64],
+    anchor: usize,
+    origin: DVec3,
+) -> Result<Vec<DVec3>, KernelError> {
     let t = normalize_all(tangents)?;
     if t.len() < 2 {
-        return Err(KernelError::TooFewTangents { what: "a streamline", got: t.len(), need: 2 });
+        return Err(KernelError::TooFewTangents {
+            what: "a streamline",
+            got: t.len(),
+            need: 2,
+        });
     }
     if s.len() != t.len() {
-        return Err(KernelError::LengthMismatch { what: "s", got: s.len(), expected: t.len() });
+        return Err(KernelError::LengthMismatch {
+            what: "s",
+            got: s.len(),
+            expected: t.len(),
+        });
     }
     for (i, &v) in s.iter().enumerate() {
         if !v.is_finite() {
-            return Err(KernelError::NonFiniteParameter { what: "arc-length parameter s", at: Place::Curve(i) });
+            return Err(KernelError::NonFiniteParameter {
+                what: "arc-length parameter s",
+                at: Place::Curve(i),
+            });
         }
         if i > 0 && v <= s[i - 1] {
-            return Err(KernelError::ParamsNotIncreasing { level: 0, at: Place::Curve(i) });
+            return Err(KernelError::ParamsNotIncreasing {
+                level: 0,
+                at: Place::Curve(i),
+            });
         }
     }
     if anchor >= t.len() {
-        return Err(KernelError::IndexOutOfRange { what: "anchor", index: anchor, len: t.len() });
+        return Err(KernelError::IndexOutOfRange {
+            what: "anchor",
+            index: anchor,
+            len: t.len(),
+        });
     }
     if !origin.is_finite() {
-        return Err(KernelError::NonFiniteParameter { what: "origin", at: Place::Curve(0) });
+        return Err(KernelError::NonFiniteParameter {
+            what: "origin",
+            at: Place::Curve(0),
+        });
     }
     let mut out = Vec::with_capacity(t.len() + 2);
     place_into(&t, s, s[anchor], origin, &mut out);
@@ -123,6 +153,9 @@ mod tests {
         let mut raw = Vec::new();
         integrate_into(&normalize_all(&t).unwrap(), &s, &mut raw);
         let at = point_at(&q, &normalize_all(&t).unwrap(), &s, 2.0);
-        assert!((at - DVec3::new(1.0, 2.0, 3.0)).length() < 1e-14, "anchor placed: {at:?}");
+        assert!(
+            (at - DVec3::new(1.0, 2.0, 3.0)).length() < 1e-14,
+            "anchor placed: {at:?}"
+        );
     }
 }

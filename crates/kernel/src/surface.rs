@@ -26,7 +26,9 @@ pub enum SurfaceScheme {
 
 impl Default for SurfaceScheme {
     fn default() -> Self {
-        SurfaceScheme::Kobbelt { omega: OMEGA_DEFAULT }
+        SurfaceScheme::Kobbelt {
+            omega: OMEGA_DEFAULT,
+        }
     }
 }
 
@@ -60,26 +62,43 @@ impl SurfaceScheme {
     }
 
     /// Grid size after `depth` steps from `rows × cols`, with the size cap checked.
-    pub fn check_depth(self, rows: usize, cols: usize, depth: u32) -> Result<(usize, usize), KernelError> {
+    pub fn check_depth(
+        self,
+        rows: usize,
+        cols: usize,
+        depth: u32,
+    ) -> Result<(usize, usize), KernelError> {
         let c = self.curve();
         let (mut r, mut k) = (rows, cols);
         for _ in 0..depth {
             for n in [r, k] {
                 if n < c.min_len() {
-                    return Err(KernelError::TooFewTangents { what: self.name(), got: n, need: c.min_len() });
+                    return Err(KernelError::TooFewTangents {
+                        what: self.name(),
+                        got: n,
+                        need: c.min_len(),
+                    });
                 }
             }
             r = c.refined_len(r);
             k = c.refined_len(k);
             let total = r.saturating_mul(k);
             if total > crate::limits::MAX_TANGENTS_PER_LEVEL || depth > crate::limits::MAX_DEPTH {
-                return Err(KernelError::DepthTooLarge { depth, tangents: total, cap: crate::limits::MAX_TANGENTS_PER_LEVEL });
+                return Err(KernelError::DepthTooLarge {
+                    depth,
+                    tangents: total,
+                    cap: crate::limits::MAX_TANGENTS_PER_LEVEL,
+                });
             }
         }
         if depth == 0 {
             for n in [r, k] {
                 if n < 2 {
-                    return Err(KernelError::TooFewTangents { what: self.name(), got: n, need: 2 });
+                    return Err(KernelError::TooFewTangents {
+                        what: self.name(),
+                        got: n,
+                        need: 2,
+                    });
                 }
             }
         }
@@ -169,14 +188,23 @@ pub fn normalize_grid(g: &Grid<DVec3>) -> Result<Grid<DVec3>, KernelError> {
     let mut out = g.clone();
     for r in 0..g.rows() {
         for c in 0..g.cols() {
-            out.set(r, c, normalize_at(g.get(r, c), Place::Grid { row: r, col: c })?);
+            out.set(
+                r,
+                c,
+                normalize_at(g.get(r, c), Place::Grid { row: r, col: c })?,
+            );
         }
     }
     Ok(out)
 }
 
 /// Refines a net of tangents `depth` times: the kernel's boundary for surfaces.
-pub fn subdivide(scheme: SurfaceScheme, order: BlendOrder, net: &Grid<DVec3>, depth: u32) -> Result<Grid<DVec3>, KernelError> {
+pub fn subdivide(
+    scheme: SurfaceScheme,
+    order: BlendOrder,
+    net: &Grid<DVec3>,
+    depth: u32,
+) -> Result<Grid<DVec3>, KernelError> {
     let scheme = scheme.validate()?;
     scheme.check_depth(net.rows(), net.cols(), depth)?;
     let mut g = normalize_grid(net)?;
@@ -194,7 +222,11 @@ mod tests {
     fn surface_counts_car_net() {
         let net = Grid::filled(6, 9, DVec3::X);
         let g = subdivide(SurfaceScheme::default(), BlendOrder::SFirst, &net, 5).unwrap();
-        assert_eq!((g.rows(), g.cols()), (161, 257), "9x6 Kobbelt depth 5 is 257x161");
+        assert_eq!(
+            (g.rows(), g.cols()),
+            (161, 257),
+            "9x6 Kobbelt depth 5 is 257x161"
+        );
         let cc = SurfaceScheme::CatmullClark.check_depth(6, 9, 2).unwrap();
         assert_eq!(cc, (15, 27));
         assert!(matches!(

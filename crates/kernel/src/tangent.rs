@@ -48,10 +48,12 @@ impl From<Tangent> for DVec3 {
 
 /// Normalises one vector, reporting a fault at `at`.
 pub fn normalize_at(v: DVec3, at: Place) -> Result<DVec3, KernelError> {
-    Tangent::new(v).map(Tangent::get).map_err(|fault| match fault {
-        TangentFault::Zero => KernelError::ZeroTangent { at },
-        TangentFault::NonFinite => KernelError::NonFiniteTangent { at },
-    })
+    Tangent::new(v)
+        .map(Tangent::get)
+        .map_err(|fault| match fault {
+            TangentFault::Zero => KernelError::ZeroTangent { at },
+            TangentFault::NonFinite => KernelError::NonFiniteTangent { at },
+        })
 }
 
 /// Normalises a curve's tangents; the first bad one is reported by index.
@@ -81,7 +83,13 @@ mod tests {
     #[test]
     fn tangent_rejects_zero_and_nan() {
         assert_eq!(Tangent::new(DVec3::ZERO), Err(TangentFault::Zero));
-        assert_eq!(Tangent::new(DVec3::new(f64::NAN, 0.0, 1.0)), Err(TangentFault::NonFinite));
-        assert_eq!(Tangent::new(DVec3::new(f64::INFINITY, 0.0, 1.0)), Err(TangentFault::NonFinite));
+        assert_eq!(
+            Tangent::new(DVec3::new(f64::NAN, 0.0, 1.0)),
+            Err(TangentFault::NonFinite)
+        );
+        assert_eq!(
+            Tangent::new(DVec3::new(f64::INFINITY, 0.0, 1.0)),
+            Err(TangentFault::NonFinite)
+        );
     }
 }

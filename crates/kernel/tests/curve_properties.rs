@@ -10,7 +10,11 @@ use streamline_kernel::sphere::{blend, combine, mid};
 use streamline_kernel::tangent::normalize_all;
 
 fn schemes(omega: f64) -> [(CurveScheme, &'static str); 3] {
-    [(CurveScheme::Chaikin, "chaikin"), (CurveScheme::CubicBSpline, "cubic"), (CurveScheme::FourPoint { omega }, "four")]
+    [
+        (CurveScheme::Chaikin, "chaikin"),
+        (CurveScheme::CubicBSpline, "cubic"),
+        (CurveScheme::FourPoint { omega }, "four"),
+    ]
 }
 
 proptest! {
@@ -123,9 +127,20 @@ proptest! {
 
 #[test]
 fn curve_counts_table1_every_depth() {
-    let t: Vec<DVec3> = (0..5).map(|i| DVec3::new(1.0, i as f64 * 0.3, 0.1 * i as f64)).collect();
-    let want = [(CurveScheme::Chaikin, 7, 386), (CurveScheme::CubicBSpline, 7, 259), (CurveScheme::FourPoint { omega: 1.0 }, 6, 257)];
+    let t: Vec<DVec3> = (0..5)
+        .map(|i| DVec3::new(1.0, i as f64 * 0.3, 0.1 * i as f64))
+        .collect();
+    let want = [
+        (CurveScheme::Chaikin, 7, 386),
+        (CurveScheme::CubicBSpline, 7, 259),
+        (CurveScheme::FourPoint { omega: 1.0 }, 6, 257),
+    ];
     for (s, d, n) in want {
-        assert_eq!(subdivide(s, &t, d).unwrap().len(), n, "{} depth {d}: Table 1 says {n}", s.name());
+        assert_eq!(
+            subdivide(s, &t, d).unwrap().len(),
+            n,
+            "{} depth {d}: Table 1 says {n}",
+            s.name()
+        );
     }
 }

@@ -59,10 +59,19 @@ proptest! {
 #[test]
 fn qi_is_not_reversal_symmetric_in_3d() {
     // Eq. 27: r_r(u) ≠ q(1 − u) in general.
-    let t = [DVec3::X, DVec3::Y, DVec3::Z, DVec3::new(1.0, 1.0, 0.0).normalize(), DVec3::new(0.0, 1.0, 1.0).normalize()];
+    let t = [
+        DVec3::X,
+        DVec3::Y,
+        DVec3::Z,
+        DVec3::new(1.0, 1.0, 0.0).normalize(),
+        DVec3::new(0.0, 1.0, 1.0).normalize(),
+    ];
     let q = QiCurve::new(&t, 4).unwrap();
     let rev: Vec<DVec3> = t.iter().rev().copied().collect();
     let r = QiCurve::new(&rev, 4).unwrap();
     let d = (r.tangent(0.7) - q.tangent(0.3)).length();
-    assert!(d > 1e-6, "QI curves differ from their reversal (Eq. 27): {d:e}");
+    assert!(
+        d > 1e-6,
+        "QI curves differ from their reversal (Eq. 27): {d:e}"
+    );
 }

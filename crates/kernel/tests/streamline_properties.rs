@@ -75,7 +75,10 @@ fn circular_arc_closed_form() {
     // they lie on a circle of radius h / (2 sin(κh/2)) = (1/κ)(1 + (κh)²/24 + …).
     for (kappa, n, h) in [(0.5, 9usize, 0.25), (2.0, 30, 0.05), (0.1, 5, 1.0)] {
         let s: Vec<f64> = (0..n).map(|i| i as f64 * h).collect();
-        let t: Vec<DVec3> = s.iter().map(|&v| DVec3::new((kappa * v).cos(), (kappa * v).sin(), 0.0)).collect();
+        let t: Vec<DVec3> = s
+            .iter()
+            .map(|&v| DVec3::new((kappa * v).cos(), (kappa * v).sin(), 0.0))
+            .collect();
         let p = streamline(&t, &s, 0, DVec3::ZERO).unwrap();
         let radius = h / (2.0 * (kappa * h / 2.0).sin());
         // centre: from vertex 1 along the inward normal of edge 1 rotated back by half a turn
@@ -85,17 +88,24 @@ fn circular_arc_closed_form() {
         };
         for (k, q) in p.iter().enumerate().take(n).skip(1) {
             let r = (*q - centre).length();
-            assert!((r - radius).abs() < 1e-12, "κ={kappa} h={h}: vertex {k} at radius {r}, closed form {radius}");
+            assert!(
+                (r - radius).abs() < 1e-12,
+                "κ={kappa} h={h}: vertex {k} at radius {r}, closed form {radius}"
+            );
         }
         let rel = (radius * kappa - 1.0).abs();
-        assert!(rel < (kappa * h).powi(2) / 20.0, "second order: radius·κ − 1 = {rel:e}");
+        assert!(
+            rel < (kappa * h).powi(2) / 20.0,
+            "second order: radius·κ − 1 = {rel:e}"
+        );
     }
 }
 
 fn circumcentre(a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     let (ab, ac) = (b - a, c - a);
     let n = ab.cross(ac);
-    a + (n.cross(ab) * ac.length_squared() + ac.cross(n) * ab.length_squared()) / (2.0 * n.length_squared())
+    a + (n.cross(ab) * ac.length_squared() + ac.cross(n) * ab.length_squared())
+        / (2.0 * n.length_squared())
 }
 
 #[test]
@@ -114,7 +124,16 @@ fn kobbelt_surface_of_arcs_stays_circular() {
         }
     }
     let initial = InitialCurve::new(&[DVec3::Y, DVec3::Y], 2, 3.0, DVec3::ZERO).unwrap();
-    let d = Design::new(&Grid::new(rows, cols, net).unwrap(), Grid::new(rows, cols, s).unwrap(), vec![0.0, 1.0, 2.0, 3.0], 0, SurfaceScheme::default(), BlendOrder::SFirst, initial).unwrap();
+    let d = Design::new(
+        &Grid::new(rows, cols, net).unwrap(),
+        Grid::new(rows, cols, s).unwrap(),
+        vec![0.0, 1.0, 2.0, 3.0],
+        0,
+        SurfaceScheme::default(),
+        BlendOrder::SFirst,
+        initial,
+    )
+    .unwrap();
     for depth in 1..=3u32 {
         let level = d.level(depth).unwrap();
         let pts = d.streamlines(&level);
@@ -125,7 +144,10 @@ fn kobbelt_surface_of_arcs_stays_circular() {
             let centre = circumcentre(row[1], row[2], row[3]);
             for (k, q) in row.iter().enumerate().take(row.len() - 1).skip(1) {
                 let rr = (*q - centre).length();
-                assert!((rr - radius).abs() < 1e-11, "depth {depth} row {r} vertex {k}: radius {rr} vs {radius}");
+                assert!(
+                    (rr - radius).abs() < 1e-11,
+                    "depth {depth} row {r} vertex {k}: radius {rr} vs {radius}"
+                );
             }
         }
     }

@@ -14,16 +14,23 @@ pub fn unit() -> impl Strategy<Value = DVec3> {
 
 /// A random rotation.
 pub fn rotation() -> impl Strategy<Value = DQuat> {
-    (unit(), -std::f64::consts::PI..std::f64::consts::PI).prop_map(|(axis, angle)| DQuat::from_axis_angle(axis, angle))
+    (unit(), -std::f64::consts::PI..std::f64::consts::PI)
+        .prop_map(|(axis, angle)| DQuat::from_axis_angle(axis, angle))
 }
 
 /// A random walk of `n` unit tangents whose neighbours are at most `max_angle` apart.
-pub fn walk(n: std::ops::RangeInclusive<usize>, max_angle: f64) -> impl Strategy<Value = Vec<DVec3>> {
+pub fn walk(
+    n: std::ops::RangeInclusive<usize>,
+    max_angle: f64,
+) -> impl Strategy<Value = Vec<DVec3>> {
     (unit(), prop::collection::vec((unit(), 0.0..max_angle), n)).prop_map(|(start, steps)| {
         let mut out = Vec::with_capacity(steps.len());
         let mut cur = start;
         for (axis, angle) in steps {
-            let perp = axis.reject_from(cur).try_normalize().unwrap_or_else(|| cur.any_orthonormal_vector());
+            let perp = axis
+                .reject_from(cur)
+                .try_normalize()
+                .unwrap_or_else(|| cur.any_orthonormal_vector());
             cur = (DQuat::from_axis_angle(perp, angle) * cur).normalize();
             out.push(cur);
         }
@@ -34,7 +41,15 @@ pub fn walk(n: std::ops::RangeInclusive<usize>, max_angle: f64) -> impl Strategy
 /// Tangents with nasty neighbours: exact antipodes, exact repeats, nearly parallel
 /// pairs, and magnitudes from subnormal to near `f64::MAX` (normalised by the kernel).
 pub fn nasty(n: std::ops::RangeInclusive<usize>) -> impl Strategy<Value = Vec<DVec3>> {
-    prop::collection::vec((unit(), 0u8..6, prop::sample::select(vec![1.0, 1e-300, 1e-310, 1e300, 1e-9, 3.0])), n).prop_map(|v| {
+    prop::collection::vec(
+        (
+            unit(),
+            0u8..6,
+            prop::sample::select(vec![1.0, 1e-300, 1e-310, 1e300, 1e-9, 3.0]),
+        ),
+        n,
+    )
+    .prop_map(|v| {
         let mut out: Vec<DVec3> = Vec::with_capacity(v.len());
         let mut prev = DVec3::X;
         for (i, (u, kind, scale)) in v.into_iter().enumerate() {
@@ -116,9 +131,18 @@ pub fn planar_matrix(scheme: &str, n: usize, omega: f64) -> Vec<Vec<(usize, f64)
                 } else if i == 0 {
                     m.push(vec![(0, 3.0 / 8.0), (1, 6.0 / 8.0), (2, -1.0 / 8.0)]);
                 } else if i == n - 2 {
-                    m.push(vec![(n - 1, 3.0 / 8.0), (n - 2, 6.0 / 8.0), (n - 3, -1.0 / 8.0)]);
+                    m.push(vec![
+                        (n - 1, 3.0 / 8.0),
+                        (n - 2, 6.0 / 8.0),
+                        (n - 3, -1.0 / 8.0),
+                    ]);
                 } else {
-                    m.push(vec![(i - 1, -w), (i, 0.5 + w), (i + 1, 0.5 + w), (i + 2, -w)]);
+                    m.push(vec![
+                        (i - 1, -w),
+                        (i, 0.5 + w),
+                        (i + 1, 0.5 + w),
+                        (i + 2, -w),
+                    ]);
                 }
             }
         }
@@ -132,7 +156,10 @@ pub fn planar(scheme: &str, p: &[f64], depth: u32, omega: f64) -> Vec<f64> {
     let mut cur = p.to_vec();
     for _ in 0..depth {
         let m = planar_matrix(scheme, cur.len(), omega);
-        cur = m.iter().map(|row| row.iter().map(|&(j, w)| w * cur[j]).sum()).collect();
+        cur = m
+            .iter()
+            .map(|row| row.iter().map(|&(j, w)| w * cur[j]).sum())
+            .collect();
     }
     cur
 }
@@ -141,7 +168,11 @@ pub fn planar(scheme: &str, p: &[f64], depth: u32, omega: f64) -> Vec<f64> {
 pub fn bspline_basis(knots: &[f64], j: usize, k: usize, u: f64, last: bool) -> f64 {
     if k == 1 {
         let (a, b) = (knots[j], knots[j + 1]);
-        return if (a <= u && u < b) || (last && u == b && a < b && b == *knots.last().unwrap()) { 1.0 } else { 0.0 };
+        return if (a <= u && u < b) || (last && u == b && a < b && b == *knots.last().unwrap()) {
+            1.0
+        } else {
+            0.0
+        };
     }
     let mut v = 0.0;
     let d1 = knots[j + k - 1] - knots[j];

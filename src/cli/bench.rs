@@ -1,0 +1,59 @@
+//! `bench`: a quick built-in benchmark for users who want their machine's figures.
+//! For careful numbers use `cargo bench` (criterion), which runs the same workloads.
+
+use super::input::CliError;
+use crate::workloads;
+use clap::Args;
+use std::time::Instant;
+
+/// Arguments of `bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// One JSON object per line: {"name", "median_ns", "runs"}.
+    #[arg(long)]
+    json: bool,
+    /// Only rows whose name contains this text.
+    #[arg(long)]
+    filter: Option<String>,
+    /// Approximate time spent per row, in milliseconds.
+    #[arg(long, default_value_t = 300)]
+    millis: u64,
+}
+
+/// `bench`.
+pub fn bench(a: BenchArgs) -> Result<(), CliError> {
+    let budget = std::time::Duration::from_millis(a.millis.max(1));
+    for mut w in workloads::all() {
+        if a.filter.as_deref().is_some_and(|f| !w.name.contains(f)) {
+            continue;
+        }
+        let mut sink = 0.0;
+        // Warm up and size the batch so one sample takes about 1/50 of the budget.
+        let t0 = Instant::now();
+        sink += (w.run)();
+        let once = t0.elapsed().max(std::time::Duration::from_nanos(20));
+        let batch = ((budget / 50).as_nanos() / once.as_nanos()).clamp(1, 1_000_000) as u32;
+        let mut samples = Vec::new();
+        let start = Instant::now();
+        while start.elapsed() < budget || samples.len() < 5 {
+            let t = Instant::now();
+            for _ in 0..batch {
+                sink += (w.run)();
+            }
+            samples.push(t.elapsed().as_nanos() as f64 / f64::from(batch));
+        }
+        samples.sort_by(f64::total_cmp);
+        let median = samples[samples.len() / 2];
+        let runs = samples.len() as u64 * u64::from(batch);
+        std::hint::black_box(sink);
+        if a.json {
+            println!(
+                "{}",
+                serde_json::json!({"name": w.name, "median_ns": median.round(), "runs": runs})
+            );
+        } else {
+            println!("{:<36} {:>14.0} ns  ({runs} runs)", w.name, median);
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,78 @@
+//! Reading JSON from stdin and writing JSON to stdout, with errors that name the place.
+
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+use std::fmt;
+use std::io::{Read, Write};
+use streamline_kernel::KernelError;
+
+/// Why a command failed. Every variant but `Io` is the user's input: exit code 2.
+#[derive(Debug)]
+pub enum CliError {
+    /// The JSON on stdin is malformed or of the wrong shape.
+    Json(serde_json::Error),
+    /// The input is well-formed but geometrically invalid.
+    Kernel(KernelError),
+    /// A command-line value is unusable.
+    Usage(String),
+    /// Reading stdin or writing stdout failed.
+    Io(std::io::Error),
+}
+
+impl CliError {
+    /// 2 for bad input, 1 for I/O failures.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            CliError::Io(_) => 1,
+            _ => 2,
+        }
+    }
+}
+
+impl fmt::Display for CliError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CliError::Json(e) => write!(
+                f,
+                "stdin:{}:{}: {e}; fix the JSON input",
+                e.line(),
+                e.column()
+            ),
+            CliError::Kernel(e) => write!(f, "stdin: {e}"),
+            CliError::Usage(m) => write!(f, "{m}"),
+            CliError::Io(e) => write!(f, "I/O error: {e}"),
+        }
+    }
+}
+
+impl From<KernelError> for CliError {
+    fn from(e: KernelError) -> Self {
+        CliError::Kernel(e)
+    }
+}
+
+impl From<std::io::Error> for CliError {
+    fn from(e: std::io::Error) -> Self {
+        CliError::Io(e)
+    }
+}
+
+/// Parses all of stdin as `T`.
+pub fn read_stdin<T: DeserializeOwned>() -> Result<T, CliError> {
+    let mut s = String::new();
+    std::io::stdin().read_to_string(&mut s)?;
+    parse(&s)
+}
+
+/// Parses a JSON document as `T`.
+pub fn parse<T: DeserializeOwned>(s: &str) -> Result<T, CliError> {
+    serde_json::from_str(s).map_err(CliError::Json)
+}
+
+/// Writes `value` as one line of JSON to stdout.
+pub fn write_stdout<T: Serialize>(value: &T) -> Result<(), CliError> {
+    let mut out = std::io::stdout().lock();
+    serde_json::to_writer(&mut out, value).map_err(|e| CliError::Io(e.into()))?;
+    writeln!(out)?;
+    Ok(())
+}

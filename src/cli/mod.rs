@@ -1,0 +1,63 @@
+//! The headless command line: JSON on stdin, JSON on stdout; bad input exits 2
+//! with a one-line message on stderr, never a panic.
+
+mod bench;
+mod geometry;
+mod input;
+
+use clap::{Parser, Subcommand};
+pub use input::CliError;
+
+/// Streamline Studio: design fair free-form surfaces by streamline modeling.
+///
+/// With no subcommand the editor opens; the subcommands run headless.
+#[derive(Debug, Parser)]
+#[command(name = "streamline-studio", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+/// Headless subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Subdivide a curve of tangents (stdin: [[x,y,z],…]) or sample a QI curve.
+    Curve(geometry::CurveArgs),
+    /// Subdivide a net of tangents (stdin: rows [[[x,y,z],…],…], one row per streamline).
+    Surface(geometry::SurfaceArgs),
+    /// Integrate one streamline by Eq. 65 (stdin: {"tangents", "s", "anchor", "origin"}).
+    Integrate(geometry::IntegrateArgs),
+    /// Time the built-in benchmark rows on this machine.
+    Bench(bench::BenchArgs),
+}
+
+/// Runs the binary; returns the process exit code.
+pub fn main() -> i32 {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() { 2 } else { 0 };
+        }
+    };
+    match run(cli) {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("streamline-studio: {e}");
+            e.exit_code()
+        }
+    }
+}
+
+/// Runs a parsed command line.
+pub fn run(cli: Cli) -> Result<(), CliError> {
+    match cli.command {
+        None => Err(CliError::Usage(
+            "the editor is not built into this binary yet; use a subcommand (see --help)".into(),
+        )),
+        Some(Command::Curve(a)) => geometry::curve(a),
+        Some(Command::Surface(a)) => geometry::surface(a),
+        Some(Command::Integrate(a)) => geometry::integrate(a),
+        Some(Command::Bench(a)) => bench::bench(a),
+    }
+}

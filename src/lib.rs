@@ -1,0 +1,10 @@
+//! Streamline Studio: design fair free-form surfaces by streamline modeling.
+//!
+//! Layers (see README, "Architecture"): the geometry kernel is the separate crate
+//! [`streamline_kernel`] (glam only); this crate adds the headless command line
+//! ([`cli`]) and the shared benchmark workloads ([`workloads`]).
+
+pub mod cli;
+pub mod workloads;
+
+pub use streamline_kernel as kernel;

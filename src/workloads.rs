@@ -1,0 +1,97 @@
+//! The benchmark workloads, shared by `streamline-studio bench` and `cargo bench`
+//! so both measure exactly the same thing.
+
+use streamline_kernel::curve::{CurveScheme, subdivide_into};
+use streamline_kernel::qi::QiCurve;
+use streamline_kernel::{DVec3, Design, presets};
+
+/// The five control tangents of the Table 1 rows (a wavy curve on the sphere).
+pub fn table1_tangents() -> Vec<DVec3> {
+    [
+        (1.0, 0.0, 0.2),
+        (0.8, 0.6, 0.1),
+        (0.2, 0.9, 0.4),
+        (-0.3, 0.8, 0.6),
+        (-0.7, 0.4, 0.5),
+    ]
+    .iter()
+    .map(|&(x, y, z)| DVec3::new(x, y, z).normalize())
+    .collect()
+}
+
+/// A named, repeatable piece of work.
+pub struct Workload {
+    /// Row name, e.g. `curve/chaikin/d7`.
+    pub name: String,
+    /// Runs the work once and returns a value that depends on all of it.
+    pub run: Box<dyn FnMut() -> f64>,
+}
+
+fn curve_row(scheme: CurveScheme, depth: u32) -> Workload {
+    let input = table1_tangents();
+    let (mut a, mut b) = (Vec::with_capacity(512), Vec::with_capacity(512));
+    let name = match scheme {
+        CurveScheme::FourPoint { .. } => format!("curve/four-point/d{depth}"),
+        s => format!("curve/{}/d{depth}", s.name()),
+    };
+    Workload {
+        name,
+        run: Box::new(move || {
+            a.clear();
+            a.extend_from_slice(&input);
+            subdivide_into(scheme, depth, &mut a, &mut b);
+            a[a.len() / 2].x + a.len() as f64
+        }),
+    }
+}
+
+fn qi_row(order: usize, samples: usize) -> Workload {
+    let q = QiCurve::new(&table1_tangents(), order).expect("valid");
+    let mut out = Vec::with_capacity(samples);
+    Workload {
+        name: format!("curve/qi-k{order}/{samples}"),
+        run: Box::new(move || {
+            out.clear();
+            let m = (samples - 1) as f64;
+            out.extend((0..samples).map(|j| q.tangent(j as f64 / m)));
+            out[samples / 2].x
+        }),
+    }
+}
+
+fn surface_row(design: Design, label: &str, depth: u32) -> Workload {
+    Workload {
+        name: format!("surface/kobbelt/{label}/d{depth}/full"),
+        run: Box::new(move || {
+            let b = design.build(depth).expect("valid");
+            b.mesh.positions[b.mesh.positions.len() / 2].x
+        }),
+    }
+}
+
+/// The rows of the paper's Table 1: Chaikin d7, cubic B-spline d7, 4-point d6, QI k = 3, 4, 5 at 257 samples.
+pub fn table1() -> Vec<Workload> {
+    vec![
+        curve_row(CurveScheme::Chaikin, 7),
+        curve_row(CurveScheme::CubicBSpline, 7),
+        curve_row(CurveScheme::FourPoint { omega: 1.0 }, 6),
+        qi_row(3, 257),
+        qi_row(4, 257),
+        qi_row(5, 257),
+    ]
+}
+
+/// Full builds (blend + integrate + mesh) of the 9×6 car at `depths`.
+pub fn car_surface(depths: impl IntoIterator<Item = u32>) -> Vec<Workload> {
+    depths
+        .into_iter()
+        .map(|d| surface_row(presets::car1(), "9x6", d))
+        .collect()
+}
+
+/// Every row `streamline-studio bench` reports.
+pub fn all() -> Vec<Workload> {
+    let mut rows = table1();
+    rows.extend(car_surface([3, 5]));
+    rows
+}

@@ -1,0 +1,198 @@
+//! The headless command line through the real binary: JSON in, JSON out, exit
+//! code 2 and a one-line message for bad input.
+
+use std::io::Write;
+use std::process::{Command, Stdio};
+
+fn run(args: &[&str], stdin: &str) -> (i32, String, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_streamline-studio"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("binary runs");
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(stdin.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+fn vecs(json: &str) -> Vec<[f64; 3]> {
+    serde_json::from_str(json).expect("JSON array of vectors")
+}
+
+const FIVE: &str = "[[1,0,0.2],[0.8,0.6,0.1],[0.2,0.9,0.4],[-0.3,0.8,0.6],[-0.7,0.4,0.5]]";
+
+#[test]
+fn cli_curve_counts_table1() {
+    for (scheme, depth, n) in [
+        ("chaikin", "7", 386),
+        ("cubic-bspline", "7", 259),
+        ("four-point", "6", 257),
+    ] {
+        let (code, out, err) = run(&["curve", "--scheme", scheme, "--depth", depth], FIVE);
+        assert_eq!(code, 0, "{scheme}: {err}");
+        let v = vecs(&out);
+        assert_eq!(v.len(), n, "{scheme} depth {depth}");
+        assert!(
+            v.iter()
+                .all(|p| ((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 1.0).abs() < 1e-12)
+        );
+    }
+    let (code, out, _) = run(
+        &["curve", "--scheme", "qi", "--order", "4", "--samples", "11"],
+        FIVE,
+    );
+    assert_eq!(code, 0);
+    assert_eq!(vecs(&out).len(), 11);
+}
+
+#[test]
+fn cli_surface_and_integrate() {
+    let rows = "[[[1,0,0],[1,0.2,0],[1,0.4,0.1]],[[1,0,0.3],[1,0.1,0.3],[1,0.2,0.3]],[[1,0,0],[1,0,0],[1,0,0]]]";
+    let (code, out, err) = run(
+        &[
+            "surface", "--scheme", "kobbelt", "--depth", "2", "--order", "t-first",
+        ],
+        rows,
+    );
+    assert_eq!(code, 0, "{err}");
+    let r: Vec<Vec<[f64; 3]>> = serde_json::from_str(&out).unwrap();
+    assert_eq!((r.len(), r[0].len()), (9, 9));
+    let (code, out, err) = run(
+        &["integrate"],
+        r#"{"tangents": [[1,0,0],[0,1,0],[1,0,0]], "s": [0,1,2], "anchor": 1, "origin": [5,5,5]}"#,
+    );
+    assert_eq!(code, 0, "{err}");
+    let p = vecs(&out);
+    // points at arc lengths 0, 0.5, 1.5, 2; the one at s=1 (middle of segment 1) is the origin
+    assert_eq!(p.len(), 4);
+    assert_eq!(p[1], [5.0, 4.5, 5.0]);
+    assert_eq!(p[2], [5.0, 5.5, 5.0]);
+}
+
+#[test]
+fn cli_bad_input_exit_2_one_line() {
+    let cases: &[(&[&str], &str, &str)] = &[
+        (
+            &["curve", "--scheme", "chaikin"],
+            "[[1,0,0],[0,0,0]]",
+            "tangent 1 is the zero vector",
+        ),
+        (
+            &["curve", "--scheme", "chaikin"],
+            "[[1,0,0],[0,1",
+            "stdin:1:",
+        ),
+        (
+            &["curve", "--scheme", "chaikin"],
+            "[[1,0,0],[1e999,0,0]]",
+            "stdin:1:",
+        ),
+        (
+            &["curve", "--scheme", "four-point", "--omega", "3"],
+            FIVE,
+            "omega 3 is outside",
+        ),
+        (
+            &["curve", "--scheme", "chaikin", "--depth", "30"],
+            FIVE,
+            "over the cap",
+        ),
+        (
+            &["curve", "--scheme", "qi", "--order", "9"],
+            FIVE,
+            "QI curve order 9",
+        ),
+        (
+            &["curve", "--scheme", "cubic-bspline"],
+            "[[1,0,0]]",
+            "at least 3 tangents",
+        ),
+        (
+            &["surface", "--scheme", "kobbelt"],
+            "[[[1,0,0],[1,0,0]],[[1,0,0]]]",
+            "row 1 has 1 tangents",
+        ),
+        (
+            &["integrate"],
+            r#"{"tangents": [[1,0,0],[0,1,0]], "s": [0,0]}"#,
+            "does not increase",
+        ),
+        (
+            &["integrate"],
+            r#"{"tangents": [[1,0,0],[0,1,0]], "s": [0,1], "bogus": 1}"#,
+            "unknown field",
+        ),
+        (
+            &["integrate"],
+            r#"{"tangents": [[1,0,0],[0,1,0]], "s": [0,1], "anchor": 7}"#,
+            "anchor 7 is out of range",
+        ),
+        (&["curve", "--scheme", "nope"], "[]", "invalid value"),
+    ];
+    for (args, input, needle) in cases {
+        let (code, out, err) = run(args, input);
+        assert_eq!(code, 2, "{args:?} {input}: exit code, stderr {err}");
+        assert!(out.is_empty(), "{args:?}: nothing on stdout");
+        assert!(
+            err.contains(needle),
+            "{args:?}: stderr {err:?} should mention {needle:?}"
+        );
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        if !args.contains(&"nope") {
+            assert_eq!(
+                err.trim_end().lines().count(),
+                1,
+                "{args:?}: one line: {err:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn cli_bench_json_rows() {
+    let (code, out, err) = run(&["bench", "--json", "--millis", "5"], "");
+    assert_eq!(code, 0, "{err}");
+    let names: Vec<String> = out
+        .lines()
+        .map(|l| {
+            let v: serde_json::Value = serde_json::from_str(l).unwrap();
+            assert!(v["median_ns"].as_f64().unwrap() > 0.0 && v["runs"].as_u64().unwrap() > 0);
+            v["name"].as_str().unwrap().to_string()
+        })
+        .collect();
+    for want in [
+        "curve/chaikin/d7",
+        "curve/cubic-bspline/d7",
+        "curve/four-point/d6",
+        "curve/qi-k3/257",
+        "curve/qi-k4/257",
+        "curve/qi-k5/257",
+        "surface/kobbelt/9x6/d3/full",
+        "surface/kobbelt/9x6/d5/full",
+    ] {
+        assert!(
+            names.iter().any(|n| n == want),
+            "bench row {want} in {names:?}"
+        );
+    }
+}
+
+#[test]
+fn cli_help_on_every_subcommand() {
+    for sub in ["curve", "surface", "integrate", "bench"] {
+        let (code, out, _) = run(&[sub, "--help"], "");
+        assert_eq!(code, 0);
+        assert!(out.contains("Usage"), "{sub} --help");
+    }
+}
