@@ -5,6 +5,7 @@
 //! ([`cli`]) and the shared benchmark workloads ([`workloads`]).
 
 pub mod cli;
+pub mod editor;
 pub mod workloads;
 
 pub use streamline_kernel as kernel;

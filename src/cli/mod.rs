@@ -2,6 +2,7 @@
 //! with a one-line message on stderr, never a panic.
 
 mod bench;
+mod editor;
 mod geometry;
 mod input;
 
@@ -16,6 +17,9 @@ pub use input::CliError;
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// With no subcommand: the built-in scene to open (car1, car2, qi-down, qi-side, qi-up, minimal).
+    #[arg(long, default_value = "car1")]
+    pub scene: String,
 }
 
 /// Headless subcommands.
@@ -29,6 +33,8 @@ pub enum Command {
     Integrate(geometry::IntegrateArgs),
     /// Time the built-in benchmark rows on this machine.
     Bench(bench::BenchArgs),
+    /// Open the editor, render, save a PNG of the window and exit.
+    Screenshot(editor::ScreenshotArgs),
 }
 
 /// Runs the binary; returns the process exit code.
@@ -52,12 +58,11 @@ pub fn main() -> i32 {
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
-        None => Err(CliError::Usage(
-            "the editor is not built into this binary yet; use a subcommand (see --help)".into(),
-        )),
+        None => editor::open(&cli.scene),
         Some(Command::Curve(a)) => geometry::curve(a),
         Some(Command::Surface(a)) => geometry::surface(a),
         Some(Command::Integrate(a)) => geometry::integrate(a),
         Some(Command::Bench(a)) => bench::bench(a),
+        Some(Command::Screenshot(a)) => editor::screenshot(a),
     }
 }

@@ -154,10 +154,7 @@ impl CurveScheme {
                     out.push(mid(b, c)); // edge point, Eq. 57
                 }
             }
-            CurveScheme::FourPoint { omega } => {
-                let rule = FourPointRule::new(omega);
-                rule.refine(input, out);
-            }
+            CurveScheme::FourPoint { omega } => FourPointRule::cached(omega).refine(input, out),
         }
     }
 
@@ -189,6 +186,23 @@ impl FourPointRule {
             quarter: FixedBlend::new(0.25),
             minus_quarter: FixedBlend::new(-0.25),
         }
+    }
+
+    /// The rule for `omega`, from a per-thread cache of the last ω used (building
+    /// one costs four 24-term series; a surface step refines hundreds of rows).
+    #[inline]
+    pub fn cached(omega: f64) -> Self {
+        thread_local! {
+            static LAST: std::cell::Cell<Option<(u64, FourPointRule)>> = const { std::cell::Cell::new(None) };
+        }
+        LAST.with(|c| match c.get() {
+            Some((bits, rule)) if bits == omega.to_bits() => rule,
+            _ => {
+                let rule = FourPointRule::new(omega);
+                c.set(Some((omega.to_bits(), rule)));
+                rule
+            }
+        })
     }
 
     /// The tangent inserted between `b` and `c` with outer neighbours `a`, `d` (Eq. 61).
