@@ -76,7 +76,7 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
     let _ = std::fs::remove_file(&a.out);
     let req = ScreenshotRequest {
         path: a.out.clone(),
-        frames: 12,
+        frames: 30,
     };
     editor::run(EditorOptions {
         design,

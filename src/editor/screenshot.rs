@@ -1,5 +1,6 @@
 //! Screenshot mode: render a few frames, save the primary window to a PNG, exit.
 
+use super::state::DesignState;
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured, save_to_disk};
 use std::path::PathBuf;
@@ -9,7 +10,8 @@ use std::path::PathBuf;
 pub struct ScreenshotRequest {
     /// Where the PNG goes.
     pub path: PathBuf,
-    /// Frames rendered before the capture (lets egui lay out and the mesh upload).
+    /// Frames rendered after the first successful build before the capture
+    /// (lets the mesh upload and egui lay out; llvmpipe needs a few).
     pub frames: u32,
 }
 
@@ -32,9 +34,13 @@ impl Plugin for ScreenshotPlugin {
 fn drive(
     mut commands: Commands,
     req: Res<ScreenshotRequest>,
+    state: Res<DesignState>,
     mut p: ResMut<ShotProgress>,
     mut exit: MessageWriter<AppExit>,
 ) {
+    if state.built.is_none() && state.error.is_none() {
+        return;
+    }
     p.frame += 1;
     if !p.requested && p.frame >= req.frames {
         p.requested = true;

@@ -4,7 +4,7 @@
 use super::state::{DesignState, SurfaceEntity};
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
-use streamline_kernel::streamline::point_arclength;
+use streamline_kernel::streamline::point_at;
 
 pub struct SurfaceViewPlugin;
 
@@ -99,16 +99,11 @@ fn draw_gizmos(state: Res<DesignState>, mut gizmos: Gizmos) {
     for r in 0..net.rows() {
         for c in 0..net.cols() {
             let t = net.get(r, c);
-            let at = point_at_arclength(cp.row(r), s.row(r), net.row(r), s.get(r, c));
+            let at = point_at(cp.row(r), net.row(r), s.row(r), s.get(r, c));
             let base = to_view(at);
             gizmos
                 .arrow(base, base + to_view(t) * 0.35, Color::srgb(1.0, 0.85, 0.1))
                 .with_tip_length(0.08);
         }
     }
-}
-
-fn point_at_arclength(points: &[DVec3], s: &[f64], tangents: &[DVec3], sigma: f64) -> DVec3 {
-    let _ = point_arclength;
-    streamline_kernel::streamline::point_at(points, tangents, s, sigma)
 }

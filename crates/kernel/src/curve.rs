@@ -111,7 +111,7 @@ impl CurveScheme {
             return Err(too_big(usize::MAX));
         }
         let mut m = n;
-        for d in 1..=depth {
+        for _ in 0..depth {
             if m < self.min_len() {
                 return Err(KernelError::TooFewTangents {
                     what: self.name(),
@@ -122,7 +122,6 @@ impl CurveScheme {
             m = self.refined_len(m);
             let total = m.saturating_mul(rows);
             if total > cap {
-                let _ = d;
                 return Err(too_big(total));
             }
         }
