@@ -17,13 +17,17 @@ pub enum CliError {
     Usage(String),
     /// Reading stdin or writing stdout failed.
     Io(std::io::Error),
+    /// A scene or script file is invalid (the message names file, line and column).
+    Scene(crate::scene::SceneError),
+    /// A script ran and some expectations failed (exit code 1).
+    Failed(String),
 }
 
 impl CliError {
     /// 2 for bad input, 1 for I/O failures.
     pub fn exit_code(&self) -> i32 {
         match self {
-            CliError::Io(_) => 1,
+            CliError::Io(_) | CliError::Failed(_) => 1,
             _ => 2,
         }
     }
@@ -41,6 +45,8 @@ impl fmt::Display for CliError {
             CliError::Kernel(e) => write!(f, "stdin: {e}"),
             CliError::Usage(m) => write!(f, "{m}"),
             CliError::Io(e) => write!(f, "I/O error: {e}"),
+            CliError::Scene(e) => write!(f, "{e}"),
+            CliError::Failed(m) => write!(f, "{m}"),
         }
     }
 }
@@ -75,4 +81,25 @@ pub fn write_stdout<T: Serialize>(value: &T) -> Result<(), CliError> {
     serde_json::to_writer(&mut out, value).map_err(|e| CliError::Io(e.into()))?;
     writeln!(out)?;
     Ok(())
+}
+
+impl From<crate::scene::SceneError> for CliError {
+    fn from(e: crate::scene::SceneError) -> Self {
+        CliError::Scene(e)
+    }
+}
+
+/// A scene argument: a `.ron` file, or the name of a built-in scene.
+pub fn scene_arg(arg: &str) -> Result<crate::scene::Scene, CliError> {
+    use crate::scene::{builtin, io};
+    let path = std::path::Path::new(arg);
+    if arg.ends_with(".ron") || path.is_file() {
+        return Ok(io::load(path)?);
+    }
+    builtin::scene(arg).map_err(|_| {
+        CliError::Usage(format!(
+            "'{arg}' is neither a .ron scene file nor a built-in scene; built-in scenes: {}",
+            builtin::names()
+        ))
+    })
 }

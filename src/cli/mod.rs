@@ -2,9 +2,11 @@
 //! with a one-line message on stderr, never a panic.
 
 mod bench;
+mod build;
 mod editor;
 mod geometry;
 mod input;
+mod play;
 
 use clap::{Parser, Subcommand};
 pub use input::CliError;
@@ -33,6 +35,10 @@ pub enum Command {
     Integrate(geometry::IntegrateArgs),
     /// Time the built-in benchmark rows on this machine.
     Bench(bench::BenchArgs),
+    /// Run a script of edits and expectations headless; exit 0 only if all hold.
+    Play(play::PlayArgs),
+    /// Build a scene headless and print JSON stats; optionally export OBJ/STL.
+    Build(build::BuildArgs),
     /// Open the editor, render, save a PNG of the window and exit.
     Screenshot(editor::ScreenshotArgs),
 }
@@ -64,5 +70,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Some(Command::Integrate(a)) => geometry::integrate(a),
         Some(Command::Bench(a)) => bench::bench(a),
         Some(Command::Screenshot(a)) => editor::screenshot(a),
+        Some(Command::Play(a)) => play::play(a),
+        Some(Command::Build(a)) => build::build(a),
     }
 }

@@ -157,6 +157,36 @@ impl CurveScheme {
         }
     }
 
+    /// Output `k` of one refinement step of unit tangents, computed with the
+    /// same operations as [`Self::refine_tangents`] (bit-for-bit equal), for
+    /// the windowed rebuild.
+    #[inline]
+    pub fn tangent_at(self, t: &[DVec3], k: usize) -> DVec3 {
+        match self {
+            CurveScheme::Chaikin => {
+                let i = k / 2;
+                let m = mid(t[i], t[i + 1]);
+                if k % 2 == 0 {
+                    mid(t[i], m)
+                } else {
+                    mid(m, t[i + 1])
+                }
+            }
+            CurveScheme::CubicBSpline => {
+                if k == 0 {
+                    mid(t[0], t[1])
+                } else if k % 2 == 1 {
+                    let i = k.div_ceil(2);
+                    let (a, b, c) = (t[i - 1], t[i], t[i + 1]);
+                    mid(mid(mid(a, b), b), mid(b, mid(b, c)))
+                } else {
+                    mid(t[k / 2], t[k / 2 + 1])
+                }
+            }
+            CurveScheme::FourPoint { omega } => FourPointRule::cached(omega).at(t, k),
+        }
+    }
+
     /// One refinement step of planar scalars (the parameter grids: SPEC §4), the
     /// same scheme with the ordinary affine combinations (Eqs. 49–50, 55–56, 60).
     pub fn refine_scalars(self, input: &[f64], out: &mut Vec<f64>) {
@@ -214,6 +244,26 @@ impl FourPointRule {
     #[inline]
     pub fn end(&self, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
         mid(self.quarter.apply(a, b), self.minus_quarter.apply(b, c))
+    }
+
+    /// Output `k` of one step alone (same operations as [`Self::refine`]).
+    #[inline]
+    pub fn at(&self, t: &[DVec3], k: usize) -> DVec3 {
+        let n = t.len();
+        if k % 2 == 0 {
+            return t[k / 2];
+        }
+        if n == 2 {
+            return mid(t[0], t[1]);
+        }
+        if k == 1 {
+            self.end(t[0], t[1], t[2])
+        } else if k == 2 * n - 3 {
+            self.end(t[n - 1], t[n - 2], t[n - 3])
+        } else {
+            let i = (k - 1) / 2;
+            self.interior(t[i - 1], t[i], t[i + 1], t[i + 2])
+        }
     }
 
     /// One step into `out` (appended). `input.len() ≥ 2`.

@@ -42,3 +42,47 @@ pub fn refine(scheme: CurveScheme, p: &[f64], out: &mut Vec<f64>) {
         }
     }
 }
+
+/// Output `k` of one step alone, with the same operations as [`refine`].
+#[inline]
+pub fn at(scheme: CurveScheme, p: &[f64], k: usize) -> f64 {
+    let n = p.len();
+    match scheme {
+        CurveScheme::Chaikin => {
+            let i = k / 2;
+            if k % 2 == 0 {
+                0.75 * p[i] + 0.25 * p[i + 1]
+            } else {
+                0.25 * p[i] + 0.75 * p[i + 1]
+            }
+        }
+        CurveScheme::CubicBSpline => {
+            if k == 0 {
+                0.5 * (p[0] + p[1])
+            } else if k % 2 == 1 {
+                let i = k.div_ceil(2);
+                0.125 * p[i - 1] + 0.75 * p[i] + 0.125 * p[i + 1]
+            } else {
+                0.5 * (p[k / 2] + p[k / 2 + 1])
+            }
+        }
+        CurveScheme::FourPoint { omega } => {
+            if k % 2 == 0 {
+                return p[k / 2];
+            }
+            if n == 2 {
+                return 0.5 * (p[0] + p[1]);
+            }
+            let w = omega / 16.0;
+            let end = |a: f64, b: f64, c: f64| 0.375 * a + 0.75 * b - 0.125 * c;
+            if k == 1 {
+                end(p[0], p[1], p[2])
+            } else if k == 2 * n - 3 {
+                end(p[n - 1], p[n - 2], p[n - 3])
+            } else {
+                let i = (k - 1) / 2;
+                -w * p[i - 1] + (0.5 + w) * (p[i] + p[i + 1]) - w * p[i + 2]
+            }
+        }
+    }
+}

@@ -131,17 +131,27 @@ impl BlendOrder {
 pub trait Refine: Copy + Default {
     /// One step of `scheme` on `input` into `out`.
     fn refine(scheme: CurveScheme, input: &[Self], out: &mut Vec<Self>);
+    /// Output `k` of that step alone, bit-for-bit equal to `refine`'s (for windows).
+    fn refine_at(scheme: CurveScheme, input: &[Self], k: usize) -> Self;
 }
 
 impl Refine for DVec3 {
     fn refine(scheme: CurveScheme, input: &[Self], out: &mut Vec<Self>) {
         scheme.refine_tangents(input, out);
     }
+    #[inline]
+    fn refine_at(scheme: CurveScheme, input: &[Self], k: usize) -> Self {
+        scheme.tangent_at(input, k)
+    }
 }
 
 impl Refine for f64 {
     fn refine(scheme: CurveScheme, input: &[Self], out: &mut Vec<Self>) {
         scheme.refine_scalars(input, out);
+    }
+    #[inline]
+    fn refine_at(scheme: CurveScheme, input: &[Self], k: usize) -> Self {
+        crate::scalar::at(scheme, input, k)
     }
 }
 

@@ -21,9 +21,15 @@ impl Tangent {
     /// Normalises `v`. Works for any finite non-zero input, from subnormal to
     /// `f64::MAX` components: the vector is first divided by its largest
     /// absolute component so that squaring can neither overflow nor underflow.
+    ///
+    /// A vector already unit to within [`Tangent::UNIT_TOLERANCE`] is kept
+    /// bit for bit, so normalising is idempotent (a saved scene loads back identical).
     pub fn new(v: DVec3) -> Result<Self, TangentFault> {
         if !v.is_finite() {
             return Err(TangentFault::NonFinite);
+        }
+        if (v.length_squared() - 1.0).abs() <= Self::UNIT_TOLERANCE {
+            return Ok(Tangent(v));
         }
         let m = v.abs().max_element();
         if m == 0.0 {
@@ -32,6 +38,9 @@ impl Tangent {
         let w = v / m;
         Ok(Tangent(w / w.length()))
     }
+
+    /// `| |v|² − 1 |` below which a vector counts as unit already (4 ulp of 1).
+    pub const UNIT_TOLERANCE: f64 = 4.0 * f64::EPSILON;
 
     /// The unit vector.
     #[inline]

@@ -1,0 +1,325 @@
+//! Subdivision levels kept between edits, updated inside dirty windows
+//! (DESIGN, "Incremental rebuild, exactly"; SPEC §5 for the details).
+//!
+//! A [`LevelState`] holds one level: the intermediate grid of its first blend
+//! direction, the *base* (subdivided, before details), the tangents (with the
+//! details of that level applied) and the parameters. [`LevelState::update`]
+//! recomputes only the entries that read a dirty entry of the previous level,
+//! with the same per-entry rules as the full step, so the result is identical
+//! to a rebuild from scratch ([`reference_levels`]).
+
+use crate::design::{Design, Level};
+use crate::error::KernelError;
+use crate::grid::Grid;
+use crate::initial_curve::InitialCurve;
+use crate::multires::{self, Details};
+use crate::params::ParamGrid;
+use crate::scalar;
+use crate::streamline::place_into;
+use crate::window::{Window, half_shape, refine_grid_window};
+use glam::DVec3;
+
+/// One subdivision level and what is needed to update it in place.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LevelState {
+    /// Depth of this level (0 = the control net).
+    pub level: u32,
+    /// Intermediate grid of the first blend direction (empty at level 0).
+    pub half: Grid<DVec3>,
+    /// The same for the `s` parameters.
+    pub half_s: Grid<f64>,
+    /// Subdivided tangents before this level's details (the control net at level 0).
+    pub base: Grid<DVec3>,
+    /// Tangents with this level's details applied.
+    pub tangents: Grid<DVec3>,
+    /// Parameters of this level.
+    pub params: ParamGrid,
+}
+
+/// What an update recomputed.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct UpdateCount {
+    /// Tangents re-blended (entries of `base` recomputed).
+    pub reblended: usize,
+    /// Details re-applied.
+    pub details: usize,
+}
+
+impl LevelState {
+    /// Level 0: the design's control net and parameters.
+    pub fn root(design: &Design) -> Self {
+        LevelState {
+            level: 0,
+            half: Grid::filled(0, 0, DVec3::ZERO),
+            half_s: Grid::filled(0, 0, 0.0),
+            base: design.net.clone(),
+            tangents: design.net.clone(),
+            params: design.params.clone(),
+        }
+    }
+
+    /// Level `prev.level + 1`, built in full.
+    pub fn child(
+        design: &Design,
+        details: &Details,
+        prev: &LevelState,
+    ) -> Result<Self, KernelError> {
+        let (rows, cols) = (prev.tangents.rows(), prev.tangents.cols());
+        let (nr, nc) = design.scheme.check_depth(rows, cols, 1)?;
+        let (hr, hc) = half_shape(design.scheme, design.order, rows, cols);
+        let mut me = LevelState {
+            level: prev.level + 1,
+            half: Grid::filled(hr, hc, DVec3::ZERO),
+            half_s: Grid::filled(hr, hc, 0.0),
+            base: Grid::filled(nr, nc, DVec3::ZERO),
+            tangents: Grid::filled(nr, nc, DVec3::ZERO),
+            params: ParamGrid {
+                s: Grid::filled(nr, nc, 0.0),
+                t: vec![0.0; nr],
+                sigma: vec![0.0; nr],
+            },
+        };
+        me.update(
+            design,
+            details,
+            prev,
+            Window::all(rows, cols),
+            &mut Buffers::default(),
+        )?;
+        Ok(me)
+    }
+
+    /// Grid shape `(rows, cols)`.
+    pub fn shape(&self) -> (usize, usize) {
+        (self.tangents.rows(), self.tangents.cols())
+    }
+
+    /// Recomputes the entries that read `win` of `prev` (its dirty window),
+    /// then re-applies the details there (widened by one cell where this level
+    /// has details, since a frame reads its neighbours). Returns this level's
+    /// dirty window and the counts. Fails, leaving the window half-written, only
+    /// if `s` stops increasing: callers validate parameter edits beforehand
+    /// ([`check_params`]).
+    pub fn update(
+        &mut self,
+        design: &Design,
+        details: &Details,
+        prev: &LevelState,
+        win: Window,
+        buf: &mut Buffers,
+    ) -> Result<(Window, UpdateCount), KernelError> {
+        let (scheme, order) = (design.scheme, design.order);
+        let out = refine_grid_window(
+            scheme,
+            order,
+            &prev.tangents,
+            &mut self.half,
+            &mut self.base,
+            win,
+            &mut buf.tangents,
+        );
+        refine_grid_window(
+            scheme,
+            order,
+            &prev.params.s,
+            &mut self.half_s,
+            &mut self.params.s,
+            win,
+            &mut buf.scalars,
+        );
+        let c = scheme.curve();
+        for r in out.rows.iter() {
+            self.params.t[r] = scalar::at(c, &prev.params.t, r);
+            self.params.sigma[r] = scalar::at(c, &prev.params.sigma, r);
+        }
+        check_window(&self.params, self.level, out)?;
+        let (rows, cols) = self.shape();
+        let dirty = if multires::has_level(details, self.level) {
+            out.widen(1, rows, cols)
+        } else {
+            out
+        };
+        let applied =
+            multires::apply_window(&self.base, &mut self.tangents, details, self.level, dirty);
+        Ok((
+            dirty,
+            UpdateCount {
+                reblended: out.area(),
+                details: applied,
+            },
+        ))
+    }
+
+    /// Re-applies the details of this level inside `win` (after a detail edit).
+    pub fn reapply_details(&mut self, details: &Details, win: Window) -> Window {
+        let (rows, cols) = self.shape();
+        let win = win.widen(0, rows, cols);
+        multires::apply_window(&self.base, &mut self.tangents, details, self.level, win);
+        win
+    }
+
+    /// This level as a plain [`Level`].
+    pub fn to_level(&self) -> Level {
+        Level {
+            tangents: self.tangents.clone(),
+            params: self.params.clone(),
+        }
+    }
+}
+
+/// Reused scratch space for column gathers.
+#[derive(Debug, Clone, Default)]
+pub struct Buffers {
+    tangents: Vec<DVec3>,
+    scalars: Vec<f64>,
+}
+
+fn check_window(p: &ParamGrid, level: u32, w: Window) -> Result<(), KernelError> {
+    let cols = p.s.cols();
+    let (lo, hi) = (w.cols.lo.saturating_sub(1), (w.cols.hi + 1).min(cols - 1));
+    for r in w.rows.iter() {
+        let row = p.s.row(r);
+        for c in lo..=hi {
+            if !row[c].is_finite() {
+                return Err(KernelError::NonFiniteParameter {
+                    what: "arc-length parameter s",
+                    at: crate::Place::Grid { row: r, col: c },
+                });
+            }
+            if c > 0 && row[c] <= row[c - 1] {
+                return Err(KernelError::ParamsNotIncreasing {
+                    level,
+                    at: crate::Place::Grid { row: r, col: c },
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks that the parameters of `design` stay strictly increasing down to `depth`.
+pub fn check_params(design: &Design, depth: u32) -> Result<(), KernelError> {
+    let mut p = design.params.clone();
+    for d in 1..=depth {
+        p = p.refine(design.scheme, design.order, d)?;
+    }
+    Ok(())
+}
+
+/// Levels `0 ..= depth` built in full with the incremental types.
+pub fn build_levels(
+    design: &Design,
+    details: &Details,
+    depth: u32,
+) -> Result<Vec<LevelState>, KernelError> {
+    design
+        .scheme
+        .check_depth(design.net.rows(), design.net.cols(), depth)?;
+    let mut out = vec![LevelState::root(design)];
+    for _ in 0..depth {
+        let next = LevelState::child(design, details, out.last().expect("root"))?;
+        out.push(next);
+    }
+    Ok(out)
+}
+
+/// An independent full rebuild, used as the reference in tests: each level is
+/// the plain [`Design::refine`] of the previous level's tangents, then every
+/// detail is applied from the frame of the refined (base) grid.
+pub fn reference_levels(
+    design: &Design,
+    details: &Details,
+    depth: u32,
+) -> Result<Vec<Level>, KernelError> {
+    let mut out = vec![design.base()];
+    for d in 1..=depth {
+        let mut next = design.refine(out.last().expect("level 0"), d)?;
+        let base = next.tangents.clone();
+        for (&(l, r, c), &local) in details.range((d, 0, 0)..=(d, usize::MAX, usize::MAX)) {
+            debug_assert_eq!(l, d);
+            if r < base.rows() && c < base.cols() {
+                next.tangents
+                    .set(r, c, multires::from_local(&base, r, c, local));
+            }
+        }
+        out.push(next);
+    }
+    Ok(out)
+}
+
+/// Row `r` of a level placed on the initial curve (Eq. 65 and Eqs. 1–2).
+pub fn place_row(
+    initial: &InitialCurve,
+    tangents: &Grid<DVec3>,
+    params: &ParamGrid,
+    r: usize,
+    out: &mut Vec<DVec3>,
+) {
+    place_into(
+        tangents.row(r),
+        params.s.row(r),
+        params.sigma[r],
+        initial.point(params.t[r]),
+        out,
+    );
+}
+
+/// What [`propagate`] did at each level.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Propagation {
+    /// The dirty window of each level (`None`: untouched).
+    pub dirty: Vec<Option<Window>>,
+    /// Tangents re-blended over all levels.
+    pub reblended: usize,
+    /// Details re-applied over all levels.
+    pub details: usize,
+}
+
+/// Carries edits down the levels. `seeds[l]` is the window edited directly on
+/// level `l` (level 0: control tangents or parameters, already changed in
+/// `design`; deeper: details, already changed in `details`). `levels[0]` is
+/// refreshed from `design` inside its seed, then each level recomputes what
+/// reads a dirty entry of the level above.
+pub fn propagate(
+    design: &Design,
+    details: &Details,
+    levels: &mut [&mut LevelState],
+    seeds: &[Option<Window>],
+    buf: &mut Buffers,
+) -> Result<Propagation, KernelError> {
+    let mut prop = Propagation {
+        dirty: vec![None; levels.len()],
+        ..Default::default()
+    };
+    if let (Some(root), Some(Some(w))) = (levels.first_mut(), seeds.first()) {
+        for r in w.rows.iter() {
+            for c in w.cols.iter() {
+                let v = design.net.get(r, c);
+                root.base.set(r, c, v);
+                root.tangents.set(r, c, v);
+            }
+            root.params.s.row_mut(r)[w.cols.lo..=w.cols.hi]
+                .copy_from_slice(&design.params.s.row(r)[w.cols.lo..=w.cols.hi]);
+            root.params.t[r] = design.params.t[r];
+            root.params.sigma[r] = design.params.sigma[r];
+        }
+        prop.dirty[0] = Some(*w);
+    }
+    for l in 1..levels.len() {
+        let (above, below) = levels.split_at_mut(l);
+        let (prev, me) = (&*above[l - 1], &mut *below[0]);
+        let mut dirty = None;
+        if let Some(w) = prop.dirty[l - 1] {
+            let (d, n) = me.update(design, details, prev, w, buf)?;
+            prop.reblended += n.reblended;
+            prop.details += n.details;
+            dirty = Some(d);
+        }
+        if let Some(Some(seed)) = seeds.get(l) {
+            let w = me.reapply_details(details, *seed);
+            dirty = Some(Window::merge(dirty, w));
+        }
+        prop.dirty[l] = dirty;
+    }
+    Ok(prop)
+}

@@ -1,0 +1,118 @@
+//! `build SCENE.ron [--depth N] [--export OUT]`: a headless build through the
+//! ECS pipeline, with JSON stats on stdout.
+
+use super::input::{CliError, scene_arg, write_stdout};
+use crate::ecs::{self, Edit, EditLog, Stats, SurfaceData, components::StreamlineTangents};
+use clap::Args;
+use serde::Serialize;
+use std::path::PathBuf;
+use streamline_kernel::streamline::polyline_length;
+
+/// Arguments of `build`.
+#[derive(Debug, Args)]
+pub struct BuildArgs {
+    /// The scene: a .ron file or a built-in name.
+    scene: String,
+    /// Display depth (default: the scene's).
+    #[arg(long)]
+    depth: Option<u32>,
+    /// Export the surface to this .obj or .stl file.
+    #[arg(long)]
+    export: Option<PathBuf>,
+}
+
+#[derive(Serialize)]
+struct LengthError {
+    max_abs: f64,
+    max_rel: f64,
+    total_abs: f64,
+    per_streamline: Vec<f64>,
+}
+
+#[derive(Serialize)]
+struct BuildReport {
+    scene: String,
+    depth: u32,
+    scheme: &'static str,
+    blend_order: &'static str,
+    levels: Vec<(usize, usize)>,
+    streamlines: usize,
+    points_per_streamline: usize,
+    triangles: usize,
+    total_length: f64,
+    length_error: LengthError,
+    timings_us: ecs::EditStats,
+    export: Option<PathBuf>,
+}
+
+/// Builds and prints the stats.
+pub fn build(a: BuildArgs) -> Result<(), CliError> {
+    let mut scene = scene_arg(&a.scene)?;
+    if let Some(d) = a.depth {
+        let design = &scene.design;
+        design
+            .scheme
+            .check_depth(
+                design.net.rows(),
+                design.net.cols(),
+                d.max(scene.edit_depth),
+            )
+            .map_err(|e| CliError::Usage(format!("--depth {d}: {e}")))?;
+        streamline_kernel::incremental::check_params(design, d)
+            .map_err(|e| CliError::Usage(format!("--depth {d}: {e}")))?;
+        scene.display_depth = d;
+    }
+    let mut app = ecs::headless_app(scene);
+    let build_stats = app.world().resource::<Stats>().last.clone();
+    if let Some(out) = &a.export {
+        ecs::send(&mut app, Edit::Export(out.clone()));
+        app.update();
+        if let Some(Err(e)) = app.world().resource::<EditLog>().entries.first() {
+            return Err(CliError::Usage(e.clone()));
+        }
+    }
+    let w = app.world_mut();
+    let mut per = Vec::new();
+    let mut total = 0.0;
+    let mut q = w.query::<(
+        &ecs::components::Streamline,
+        &ecs::components::StreamlinePoints,
+        &StreamlineTangents,
+    )>();
+    let mut rows: Vec<_> = q
+        .iter(w)
+        .map(|(l, p, t)| (l.row, polyline_length(&p.0), t.s[t.s.len() - 1] - t.s[0]))
+        .collect();
+    rows.sort_by_key(|r| r.0);
+    let (mut max_abs, mut max_rel) = (0.0f64, 0.0f64);
+    for (_, len, want) in &rows {
+        let e = (len - want).abs();
+        per.push(e);
+        total += len;
+        max_abs = max_abs.max(e);
+        max_rel = max_rel.max(e / want.abs().max(f64::MIN_POSITIVE));
+    }
+    let model = w.resource::<ecs::Model>();
+    let stats = w.resource::<Stats>();
+    let surface = w.resource::<SurfaceData>();
+    let report = BuildReport {
+        scene: model.scene.name.clone(),
+        depth: model.scene.display_depth,
+        scheme: model.scene.design.scheme.name(),
+        blend_order: model.scene.design.order.name(),
+        levels: stats.levels.clone(),
+        streamlines: surface.points.rows(),
+        points_per_streamline: surface.points.cols(),
+        triangles: surface.mesh.triangle_count(),
+        total_length: total,
+        length_error: LengthError {
+            max_abs,
+            max_rel,
+            total_abs: per.iter().sum(),
+            per_streamline: per,
+        },
+        timings_us: build_stats,
+        export: a.export.clone(),
+    };
+    write_stdout(&report)
+}

@@ -1,0 +1,135 @@
+//! The blend stage: collects the cells that edits changed (`Changed<…>` on the
+//! handles) and re-blends only the dirty window of each level
+//! ([`streamline_kernel::incremental::propagate`]); rows of the display depth
+//! whose tangents changed get new [`StreamlineTangents`].
+
+use super::components::*;
+use super::resources::*;
+use bevy::prelude::*;
+use std::time::Instant;
+use streamline_kernel::incremental::{Buffers, LevelState, build_levels, propagate};
+use streamline_kernel::window::{Span, Window};
+
+pub(crate) fn collect_seeds(
+    model: Res<Model>,
+    mut seeds: ResMut<Seeds>,
+    controls: Query<&ControlHandle, Or<(Changed<Direction>, Changed<ArcParam>)>>,
+    details: Query<&DetailHandle, Changed<DetailLocal>>,
+) {
+    if model.full {
+        return;
+    }
+    let mut add = |level: u32, w: Window| {
+        let l = level as usize;
+        if seeds.0.len() <= l {
+            seeds.0.resize(l + 1, None);
+        }
+        seeds.0[l] = Some(Window::merge(seeds.0[l], w));
+    };
+    for h in &controls {
+        add(0, Window::cell(h.row, h.col));
+    }
+    for h in &details {
+        add(h.level, Window::cell(h.row, h.col));
+    }
+}
+
+fn streamline_of(model: &Model, level: &LevelState, row: usize) -> StreamlineTangents {
+    let p = &level.params;
+    StreamlineTangents {
+        tangents: level.tangents.row(row).to_vec(),
+        s: p.s.row(row).to_vec(),
+        sigma: p.sigma[row],
+        origin: model.scene.design.initial.point(p.t[row]),
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn reblend(
+    mut commands: Commands,
+    mut model: ResMut<Model>,
+    mut seeds: ResMut<Seeds>,
+    mut levels: Query<(Entity, &SubdivisionLevel, &mut LevelData)>,
+    mut lines: Query<(Entity, &Streamline, &mut StreamlineTangents)>,
+    mut stats: ResMut<Stats>,
+    mut log: ResMut<EditLog>,
+    mut buf: Local<Buffers>,
+) {
+    let t0 = Instant::now();
+    if model.full {
+        model.full = false;
+        seeds.0.clear();
+        for (e, ..) in &levels {
+            commands.entity(e).despawn();
+        }
+        for (e, ..) in &lines {
+            commands.entity(e).despawn();
+        }
+        let scene = &model.scene;
+        let built = match build_levels(&scene.design, &scene.details, scene.max_depth()) {
+            Ok(b) => b,
+            Err(e) => {
+                log.entries.push(Err(format!("rebuild failed: {e}")));
+                return;
+            }
+        };
+        let display = &built[scene.display_depth as usize];
+        let mut new_lines = Vec::with_capacity(display.shape().0);
+        for row in 0..display.shape().0 {
+            new_lines.push((
+                Streamline { row },
+                streamline_of(&model, display, row),
+                StreamlinePoints::default(),
+            ));
+        }
+        commands.spawn_batch(new_lines);
+        stats.levels = built.iter().map(LevelState::shape).collect();
+        stats.tangents_total = stats.levels.iter().map(|(r, c)| r * c).sum();
+        stats.streamlines = display.shape().0;
+        stats.last.full_rebuild = true;
+        stats.last.tangents_reblended +=
+            stats.levels[1..].iter().map(|(r, c)| r * c).sum::<usize>();
+        for l in built {
+            commands.spawn((SubdivisionLevel(l.level), LevelData(l)));
+        }
+        stats.last.us_blend += t0.elapsed().as_secs_f64() * 1e6;
+        return;
+    }
+    let mut sd = std::mem::take(&mut seeds.0);
+    if sd.iter().all(Option::is_none) {
+        return;
+    }
+    let mut ls: Vec<_> = levels.iter_mut().map(|(_, l, d)| (l.0, d)).collect();
+    ls.sort_by_key(|(l, _)| *l);
+    let mut refs: Vec<&mut LevelState> = ls.iter_mut().map(|(_, d)| &mut d.0).collect();
+    sd.resize(refs.len(), None);
+    let result = propagate(
+        &model.scene.design,
+        &model.scene.details,
+        &mut refs,
+        &sd,
+        &mut buf,
+    );
+    match result {
+        Ok(p) => {
+            stats.last.tangents_reblended += p.reblended;
+            stats.last.details_reapplied += p.details;
+            let display = model.scene.display_depth as usize;
+            if let (Some(Some(w)), Some(level)) = (p.dirty.get(display), refs.get(display)) {
+                let rows: Span = w.rows;
+                for (_, line, mut t) in lines.iter_mut() {
+                    if rows.lo <= line.row && line.row <= rows.hi {
+                        *t = streamline_of(&model, level, line.row);
+                    }
+                }
+            }
+        }
+        Err(e) => {
+            log.entries.push(Err(format!(
+                "incremental update refused ({e}); rebuilding in full"
+            )));
+            model.full = true;
+        }
+    }
+    stats.last.us_blend += t0.elapsed().as_secs_f64() * 1e6;
+}

@@ -1,0 +1,69 @@
+//! Components: tangent handles, subdivision levels and streamlines are entities.
+
+use bevy::prelude::*;
+use streamline_kernel::DVec3;
+use streamline_kernel::incremental::LevelState;
+
+/// A control tangent of level 0 at `(row, col)`.
+#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ControlHandle {
+    /// Row (streamline).
+    pub row: usize,
+    /// Column (along `s`).
+    pub col: usize,
+}
+
+/// The unit direction of a control handle.
+#[derive(Component, Debug, Clone, Copy, PartialEq)]
+pub struct Direction(pub DVec3);
+
+/// The arc-length parameter `s` of a control handle.
+#[derive(Component, Debug, Clone, Copy, PartialEq)]
+pub struct ArcParam(pub f64);
+
+/// A multiresolution detail handle at `(level, row, col)` (SPEC §5).
+#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DetailHandle {
+    /// Level (≥ 1).
+    pub level: u32,
+    /// Row at that level.
+    pub row: usize,
+    /// Column at that level.
+    pub col: usize,
+}
+
+/// The detail in its local frame (unit; `z` = the subdivided tangent).
+#[derive(Component, Debug, Clone, Copy, PartialEq)]
+pub struct DetailLocal(pub DVec3);
+
+/// A subdivision level entity.
+#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SubdivisionLevel(pub u32);
+
+/// The data of a level, updated in place inside dirty windows.
+#[derive(Component, Debug, Clone)]
+pub struct LevelData(pub LevelState);
+
+/// A streamline of the display depth: row `row`.
+#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Streamline {
+    /// Its row at the display depth.
+    pub row: usize,
+}
+
+/// What a streamline is integrated from; written only when its tangents change.
+#[derive(Component, Debug, Clone, PartialEq)]
+pub struct StreamlineTangents {
+    /// Unit tangents along the row.
+    pub tangents: Vec<DVec3>,
+    /// Their arc-length parameters.
+    pub s: Vec<f64>,
+    /// The anchor arc length.
+    pub sigma: f64,
+    /// The initial curve's point at the row's `t`.
+    pub origin: DVec3,
+}
+
+/// The integrated, placed streamline: `n + 2` points (Eq. 65).
+#[derive(Component, Debug, Clone, Default, PartialEq)]
+pub struct StreamlinePoints(pub Vec<DVec3>);

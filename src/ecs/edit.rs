@@ -1,0 +1,457 @@
+//! The edit stage: the only system that changes the model. It applies each
+//! [`EditMessage`] to the handle components (and the scene they mirror),
+//! records undo steps, and marks what the blend stage must redo: handle
+//! components it changes are seen there through `Changed<…>`; edits that
+//! change the shape of the levels ask for a full rebuild.
+
+use super::components::*;
+use super::messages::{Edit, EditMessage};
+use super::resources::*;
+use crate::scene::{Scene, io};
+use bevy::ecs::system::SystemParam;
+use bevy::prelude::*;
+use std::time::Instant;
+use streamline_kernel::incremental::check_params;
+use streamline_kernel::multires;
+use streamline_kernel::window::Window;
+use streamline_kernel::{DQuat, DVec3, Design, Tangent};
+
+/// What the edit system reads and writes.
+#[derive(SystemParam)]
+pub(crate) struct EditCtx<'w, 's> {
+    commands: Commands<'w, 's>,
+    model: ResMut<'w, Model>,
+    history: ResMut<'w, History>,
+    config: Res<'w, ModelConfig>,
+    seeds: ResMut<'w, Seeds>,
+    controls: Query<
+        'w,
+        's,
+        (
+            Entity,
+            &'static ControlHandle,
+            &'static mut Direction,
+            &'static mut ArcParam,
+        ),
+    >,
+    details: Query<'w, 's, (Entity, &'static DetailHandle, &'static mut DetailLocal)>,
+    levels: Query<'w, 's, (&'static SubdivisionLevel, &'static LevelData)>,
+}
+
+pub(crate) fn apply_edits(
+    mut reader: MessageReader<EditMessage>,
+    mut ctx: EditCtx,
+    mut log: ResMut<EditLog>,
+    mut stats: ResMut<Stats>,
+) {
+    let t0 = Instant::now();
+    let mut labels = Vec::new();
+    let mut any = false;
+    for msg in reader.read() {
+        if !any {
+            log.entries.clear();
+            log.frame += 1;
+            any = true;
+        }
+        labels.push(msg.edit.label());
+        if matches!(msg.edit, Edit::Save(_) | Edit::Export(_)) {
+            continue; // the output stage, after the mesh is up to date
+        }
+        let before_undoable = msg.edit.is_undoable();
+        let snapshot = before_undoable.then(|| ctx.model.scene.clone());
+        match apply(&mut ctx, &msg.edit) {
+            Ok(done) => {
+                if let Some(s) = snapshot {
+                    let limit = ctx.config.history_limit;
+                    ctx.history.record(&s, msg.group, limit);
+                    ctx.model.unsaved = true;
+                }
+                log.entries.push(Ok(done));
+            }
+            Err(e) => log.entries.push(Err(e)),
+        }
+    }
+    if ctx.model.respawn {
+        respawn_handles(&mut ctx);
+        ctx.model.respawn = false;
+    }
+    if any {
+        stats.last = EditStats {
+            edit: labels.join("; "),
+            us_edit: t0.elapsed().as_secs_f64() * 1e6,
+            ..Default::default()
+        };
+        stats.collecting = true;
+    }
+}
+
+fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
+    match edit {
+        Edit::SetDirection { row, col, dir } => set_direction(ctx, *row, *col, *dir),
+        Edit::Rotate {
+            row,
+            col,
+            axis,
+            radians,
+        } => {
+            let axis = Tangent::new(*axis)
+                .map_err(|_| {
+                    "the rotation axis is zero or not finite; give a non-zero axis".to_string()
+                })?
+                .get();
+            if !radians.is_finite() {
+                return Err("the rotation angle is not finite; give a number of degrees".into());
+            }
+            let cur = current_direction(ctx, *row, *col)?;
+            let dir = DQuat::from_axis_angle(axis, *radians) * cur;
+            set_direction(ctx, *row, *col, dir)
+        }
+        Edit::SetLength {
+            row,
+            col,
+            coefficient,
+        } => set_length(ctx, *row, *col, *coefficient),
+        Edit::ClearDetail { row, col } => {
+            let level = ctx.model.scene.edit_depth;
+            let key = (level, *row, *col);
+            if ctx.model.scene.details.remove(&key).is_none() {
+                return Err(format!(
+                    "handle ({row}, {col}) at edit depth {level} has no detail to clear"
+                ));
+            }
+            if ctx.model.respawn {
+                return Ok(format!("cleared detail ({row}, {col}) at level {level}"));
+            }
+            if let Some((e, ..)) = ctx
+                .details
+                .iter()
+                .find(|(_, h, _)| (h.level, h.row, h.col) == key)
+            {
+                ctx.commands.entity(e).despawn();
+            }
+            seed(&mut ctx.seeds, level, Window::cell(*row, *col));
+            Ok(format!("cleared detail ({row}, {col}) at level {level}"))
+        }
+        Edit::SetScheme(s) => {
+            let s = s.validate().map_err(|e| e.to_string())?;
+            let mut d = ctx.model.scene.design.clone();
+            d.scheme = s;
+            check_design(&d, ctx.model.scene.max_depth())?;
+            ctx.model.scene.design = d;
+            let dropped = prune_details(&mut ctx.model.scene);
+            full(ctx);
+            Ok(format!("scheme {}{dropped}", s.name()))
+        }
+        Edit::SetBlendOrder(o) => {
+            ctx.model.scene.design.order = *o;
+            full(ctx);
+            Ok(format!("blend order {}", o.name()))
+        }
+        Edit::SetDisplayDepth(n) => {
+            let depth = (*n).max(ctx.model.scene.edit_depth);
+            check_design(&ctx.model.scene.design, depth)?;
+            ctx.model.scene.display_depth = *n;
+            full(ctx);
+            Ok(format!("display depth {n}"))
+        }
+        Edit::SetEditDepth(n) => {
+            let depth = (*n).max(ctx.model.scene.display_depth);
+            check_design(&ctx.model.scene.design, depth)?;
+            ctx.model.scene.edit_depth = *n;
+            full(ctx);
+            Ok(format!("edit depth {n}"))
+        }
+        Edit::Undo => {
+            let prev = ctx.history.undo.pop_back().ok_or("nothing to undo")?;
+            let cur = ctx.model.scene.clone();
+            ctx.history.redo.push(cur);
+            ctx.history.last_group = None;
+            restore(ctx, prev);
+            ctx.model.unsaved = true;
+            Ok("undone".into())
+        }
+        Edit::Redo => {
+            let next = ctx.history.redo.pop().ok_or("nothing to redo")?;
+            let cur = ctx.model.scene.clone();
+            ctx.history.undo.push_back(cur);
+            ctx.history.last_group = None;
+            restore(ctx, next);
+            ctx.model.unsaved = true;
+            Ok("redone".into())
+        }
+        Edit::Load(path) => {
+            let scene = io::load(path).map_err(|e| format!("{e} (the current scene is kept)"))?;
+            replace(ctx, scene);
+            ctx.model.path = Some(path.clone());
+            Ok(format!("loaded {}", path.display()))
+        }
+        Edit::Replace(scene) => {
+            replace(ctx, (**scene).clone());
+            ctx.model.path = None;
+            Ok(format!("opened {}", scene.name))
+        }
+        Edit::Save(_) | Edit::Export(_) => Ok(String::new()),
+    }
+}
+
+fn check_design(d: &Design, depth: u32) -> Result<(), String> {
+    d.scheme
+        .check_depth(d.net.rows(), d.net.cols(), depth)
+        .map_err(|e| e.to_string())?;
+    check_params(d, depth).map_err(|e| e.to_string())
+}
+
+/// Asks for a full rebuild; handles are spawned again from the scene at the
+/// end of the frame's edits (entity operations before that are skipped).
+fn full(ctx: &mut EditCtx) {
+    ctx.model.full = true;
+    ctx.model.respawn = true;
+}
+
+fn seed(seeds: &mut Seeds, level: u32, w: Window) {
+    let l = level as usize;
+    if seeds.0.len() <= l {
+        seeds.0.resize(l + 1, None);
+    }
+    seeds.0[l] = Some(Window::merge(seeds.0[l], w));
+}
+
+/// Drops details that no longer fit their level (after a scheme change).
+fn prune_details(scene: &mut Scene) -> String {
+    let d = &scene.design;
+    let c = d.scheme.curve();
+    let before = scene.details.len();
+    let shape = |level: u32| {
+        let (mut r, mut k) = (d.net.rows(), d.net.cols());
+        for _ in 0..level {
+            r = c.refined_len(r);
+            k = c.refined_len(k);
+        }
+        (r, k)
+    };
+    scene.details.retain(|&(l, r, k), _| {
+        let (rows, cols) = shape(l);
+        r < rows && k < cols
+    });
+    let dropped = before - scene.details.len();
+    if dropped > 0 {
+        format!(" ({dropped} details outside the new levels were dropped)")
+    } else {
+        String::new()
+    }
+}
+
+fn level_data<'a>(ctx: &'a EditCtx, level: u32) -> Result<&'a LevelData, String> {
+    ctx.levels
+        .iter()
+        .find(|(l, _)| l.0 == level)
+        .map(|(_, d)| d)
+        .ok_or_else(|| format!("level {level} is not built yet; try again after the next update"))
+}
+
+fn check_cell(rows: usize, cols: usize, row: usize, col: usize, level: u32) -> Result<(), String> {
+    if row >= rows || col >= cols {
+        return Err(format!(
+            "handle ({row}, {col}) is outside level {level}, which has {rows} rows of {cols} tangents; use row 0..{} and column 0..{}",
+            rows - 1,
+            cols - 1
+        ));
+    }
+    Ok(())
+}
+
+fn current_direction(ctx: &EditCtx, row: usize, col: usize) -> Result<DVec3, String> {
+    let level = ctx.model.scene.edit_depth;
+    if level == 0 {
+        let net = &ctx.model.scene.design.net;
+        check_cell(net.rows(), net.cols(), row, col, 0)?;
+        return Ok(net.get(row, col));
+    }
+    let l = &level_data(ctx, level)?.0;
+    let (rows, cols) = l.shape();
+    check_cell(rows, cols, row, col, level)?;
+    Ok(l.tangents.get(row, col))
+}
+
+fn set_direction(ctx: &mut EditCtx, row: usize, col: usize, dir: DVec3) -> Result<String, String> {
+    let dir = Tangent::new(dir)
+        .map_err(|_| {
+            format!(
+                "direction ({}, {}, {}) is zero or not finite; give a non-zero direction",
+                dir.x, dir.y, dir.z
+            )
+        })?
+        .get();
+    let level = ctx.model.scene.edit_depth;
+    if level == 0 {
+        let net = &ctx.model.scene.design.net;
+        check_cell(net.rows(), net.cols(), row, col, 0)?;
+        ctx.model.scene.design.net.set(row, col, dir);
+        if ctx.model.respawn {
+            return Ok(format!("control ({row}, {col})"));
+        }
+        for (_, h, mut d, _) in ctx.controls.iter_mut() {
+            if h.row == row && h.col == col {
+                d.set_if_neq(Direction(dir));
+            }
+        }
+        return Ok(format!(
+            "control ({row}, {col}) → ({:.4}, {:.4}, {:.4})",
+            dir.x, dir.y, dir.z
+        ));
+    }
+    let l = &level_data(ctx, level)?.0;
+    let (rows, cols) = l.shape();
+    check_cell(rows, cols, row, col, level)?;
+    let local = multires::to_local(&l.base, row, col, dir);
+    let key = (level, row, col);
+    ctx.model.scene.details.insert(key, local);
+    if ctx.model.respawn {
+        return Ok(format!("detail ({row}, {col}) at level {level}"));
+    }
+    let existing = ctx
+        .details
+        .iter_mut()
+        .find(|(_, h, _)| (h.level, h.row, h.col) == key);
+    match existing {
+        Some((_, _, mut d)) => {
+            d.set_if_neq(DetailLocal(local));
+        }
+        None => {
+            let e = ctx
+                .commands
+                .spawn((DetailHandle { level, row, col }, DetailLocal(local)))
+                .id();
+            ctx.model.detail_keys.insert(e, key);
+        }
+    }
+    Ok(format!("detail ({row}, {col}) at level {level}"))
+}
+
+fn set_length(ctx: &mut EditCtx, row: usize, col: usize, k: f64) -> Result<String, String> {
+    if !(k.is_finite() && k > 0.0) {
+        return Err(format!(
+            "length coefficient {k} must be a positive finite number (1 keeps the length)"
+        ));
+    }
+    let net = &ctx.model.scene.design.net;
+    check_cell(net.rows(), net.cols(), row, col, 0)?;
+    let mut d = ctx.model.scene.design.clone();
+    let old = d.params.s.row(row).to_vec();
+    {
+        let s = d.params.s.row_mut(row);
+        for i in 1..s.len() {
+            let f = if i == col || i == col + 1 { k } else { 1.0 };
+            s[i] = s[i - 1] + (old[i] - old[i - 1]) * f;
+        }
+    }
+    d.params.sigma[row] = d.params.s.get(row, d.anchor);
+    if d.params.s.row(row).iter().any(|v| !v.is_finite()) {
+        return Err(format!(
+            "length coefficient {k} makes s overflow; use a smaller one"
+        ));
+    }
+    check_params(&d, ctx.model.scene.max_depth())
+        .map_err(|e| format!("length coefficient {k} at ({row}, {col}) refused: {e}"))?;
+    let new = d.params.s.row(row).to_vec();
+    ctx.model.scene.design = d;
+    if ctx.model.respawn {
+        return Ok(format!("length coefficient {k} at ({row}, {col})"));
+    }
+    for (_, h, _, mut a) in ctx.controls.iter_mut() {
+        if h.row == row {
+            a.set_if_neq(ArcParam(new[h.col]));
+        }
+    }
+    Ok(format!("length coefficient {k} at ({row}, {col})"))
+}
+
+fn replace(ctx: &mut EditCtx, scene: Scene) {
+    ctx.model.scene = scene;
+    ctx.model.unsaved = false;
+    ctx.history.clear();
+    full(ctx);
+}
+
+/// Restores a scene from history: cells that differ are set on their handles
+/// (so only they are rebuilt); a different shape or setting rebuilds everything.
+fn restore(ctx: &mut EditCtx, target: Scene) {
+    let cur = &ctx.model.scene;
+    let (a, b) = (&cur.design, &target.design);
+    let same = a.net.rows() == b.net.rows()
+        && a.net.cols() == b.net.cols()
+        && a.scheme == b.scheme
+        && a.order == b.order
+        && a.anchor == b.anchor
+        && a.params.t == b.params.t
+        && cur.initial == target.initial
+        && cur.display_depth == target.display_depth
+        && cur.edit_depth == target.edit_depth;
+    if !same || ctx.model.respawn {
+        ctx.model.scene = target;
+        full(ctx);
+        return;
+    }
+    for (_, h, mut d, mut s) in ctx.controls.iter_mut() {
+        d.set_if_neq(Direction(b.net.get(h.row, h.col)));
+        s.set_if_neq(ArcParam(b.params.s.get(h.row, h.col)));
+    }
+    let old = cur.details.clone();
+    for (e, h, mut d) in ctx.details.iter_mut() {
+        let key = (h.level, h.row, h.col);
+        match target.details.get(&key) {
+            Some(&v) => {
+                d.set_if_neq(DetailLocal(v));
+            }
+            None => {
+                ctx.commands.entity(e).despawn();
+                seed(&mut ctx.seeds, h.level, Window::cell(h.row, h.col));
+            }
+        }
+    }
+    for (&(level, row, col), &v) in &target.details {
+        if !old.contains_key(&(level, row, col)) {
+            let e = ctx
+                .commands
+                .spawn((DetailHandle { level, row, col }, DetailLocal(v)))
+                .id();
+            ctx.model.detail_keys.insert(e, (level, row, col));
+        }
+    }
+    ctx.model.scene = target;
+}
+
+/// Despawns every handle and spawns them again from the scene.
+fn respawn_handles(ctx: &mut EditCtx) {
+    for (e, ..) in ctx.controls.iter() {
+        ctx.commands.entity(e).despawn();
+    }
+    for (e, ..) in ctx.details.iter() {
+        ctx.commands.entity(e).despawn();
+    }
+    ctx.model.detail_keys.clear();
+    let d = &ctx.model.scene.design;
+    for row in 0..d.net.rows() {
+        for col in 0..d.net.cols() {
+            ctx.commands.spawn((
+                ControlHandle { row, col },
+                Direction(d.net.get(row, col)),
+                ArcParam(d.params.s.get(row, col)),
+            ));
+        }
+    }
+    let details: Vec<_> = ctx
+        .model
+        .scene
+        .details
+        .iter()
+        .map(|(&k, &v)| (k, v))
+        .collect();
+    for ((level, row, col), v) in details {
+        let e = ctx
+            .commands
+            .spawn((DetailHandle { level, row, col }, DetailLocal(v)))
+            .id();
+        ctx.model.detail_keys.insert(e, (level, row, col));
+    }
+}

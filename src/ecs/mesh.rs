@@ -1,0 +1,57 @@
+//! The mesh stage: rows of the surface mesh whose streamline moved are
+//! rewritten, with the normals of their neighbours.
+
+use super::components::*;
+use super::resources::{Stats, SurfaceData};
+use bevy::prelude::*;
+use std::time::Instant;
+use streamline_kernel::window::Span;
+use streamline_kernel::{DVec3, Grid};
+
+pub(crate) fn patch_mesh(
+    changed: Query<(&Streamline, &StreamlinePoints), Changed<StreamlinePoints>>,
+    all: Query<(), With<Streamline>>,
+    mut surface: ResMut<SurfaceData>,
+    mut stats: ResMut<Stats>,
+) {
+    let t0 = Instant::now();
+    let rows = all.iter().count();
+    let mut span: Option<Span> = None;
+    let mut cols = surface.points.cols();
+    for (line, p) in &changed {
+        cols = p.0.len();
+        span = Some(span.map_or(Span::single(line.row), |s| s.union(Span::single(line.row))));
+    }
+    let Some(span) = span else {
+        stats.collecting = false;
+        return;
+    };
+    let s = &mut *surface;
+    let reshaped = s.points.rows() != rows || s.points.cols() != cols;
+    if reshaped {
+        s.points = Grid::filled(rows, cols, DVec3::ZERO);
+    }
+    for (line, p) in &changed {
+        if line.row < rows && p.0.len() == cols {
+            s.points.row_mut(line.row).copy_from_slice(&p.0);
+        }
+    }
+    if reshaped || span.len() == rows {
+        s.mesh.rebuild(&s.points);
+        s.rows_changed = None;
+    } else {
+        for r in span.lo..=span.hi {
+            let base = r * cols;
+            s.mesh.positions[base..base + cols].copy_from_slice(s.points.row(r));
+        }
+        let around = span.widen(1, rows);
+        for r in around.iter() {
+            s.mesh.update_normals_row(&s.points, r);
+        }
+        s.rows_changed = Some(around);
+    }
+    s.generation += 1;
+    stats.last.mesh_rows += span.len();
+    stats.last.us_mesh += t0.elapsed().as_secs_f64() * 1e6;
+    stats.collecting = false;
+}

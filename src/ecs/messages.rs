@@ -1,0 +1,110 @@
+//! Edit messages: the only way the model changes. The editor, scripts and the
+//! command line send the same messages.
+
+use crate::scene::Scene;
+use bevy::prelude::*;
+use std::path::PathBuf;
+use streamline_kernel::{BlendOrder, DVec3, SurfaceScheme};
+
+/// One edit.
+#[derive(Debug, Clone)]
+pub enum Edit {
+    /// Points handle `(row, col)` of the edit depth in `dir` (normalised).
+    SetDirection { row: usize, col: usize, dir: DVec3 },
+    /// Rotates handle `(row, col)` of the edit depth about `axis` by `radians`.
+    Rotate {
+        row: usize,
+        col: usize,
+        axis: DVec3,
+        radians: f64,
+    },
+    /// Scales the `s` intervals on both sides of control tangent `(row, col)`.
+    SetLength {
+        row: usize,
+        col: usize,
+        coefficient: f64,
+    },
+    /// Removes the detail of handle `(row, col)` at the edit depth.
+    ClearDetail { row: usize, col: usize },
+    /// Scheme and ω.
+    SetScheme(SurfaceScheme),
+    /// Blend order.
+    SetBlendOrder(BlendOrder),
+    /// Levels shown.
+    SetDisplayDepth(u32),
+    /// Level of the handles.
+    SetEditDepth(u32),
+    /// Undo the last edit.
+    Undo,
+    /// Redo the last undone edit.
+    Redo,
+    /// Open a scene file; on failure the current scene stays.
+    Load(PathBuf),
+    /// Replace the scene (new, built-in, recovered).
+    Replace(Box<Scene>),
+    /// Save to a file (atomic, verified).
+    Save(PathBuf),
+    /// Export the surface mesh (`.obj` or `.stl`).
+    Export(PathBuf),
+}
+
+impl Edit {
+    /// A short description for logs and stats.
+    pub fn label(&self) -> String {
+        match self {
+            Edit::SetDirection { row, col, .. } => format!("set direction ({row}, {col})"),
+            Edit::Rotate {
+                row, col, radians, ..
+            } => {
+                format!("rotate ({row}, {col}) by {:.3}°", radians.to_degrees())
+            }
+            Edit::SetLength {
+                row,
+                col,
+                coefficient,
+            } => {
+                format!("length coefficient {coefficient} at ({row}, {col})")
+            }
+            Edit::ClearDetail { row, col } => format!("clear detail ({row}, {col})"),
+            Edit::SetScheme(s) => format!("scheme {}", s.name()),
+            Edit::SetBlendOrder(o) => format!("blend order {}", o.name()),
+            Edit::SetDisplayDepth(d) => format!("display depth {d}"),
+            Edit::SetEditDepth(d) => format!("edit depth {d}"),
+            Edit::Undo => "undo".into(),
+            Edit::Redo => "redo".into(),
+            Edit::Load(p) => format!("load {}", p.display()),
+            Edit::Replace(s) => format!("open {}", s.name),
+            Edit::Save(p) => format!("save {}", p.display()),
+            Edit::Export(p) => format!("export {}", p.display()),
+        }
+    }
+
+    /// Whether the edit changes the model (and so gets an undo step).
+    pub fn is_undoable(&self) -> bool {
+        !matches!(
+            self,
+            Edit::Undo
+                | Edit::Redo
+                | Edit::Load(_)
+                | Edit::Replace(_)
+                | Edit::Save(_)
+                | Edit::Export(_)
+        )
+    }
+}
+
+/// An edit, with an optional group: consecutive edits of one group (a drag)
+/// make one undo step.
+#[derive(Message, Debug, Clone)]
+pub struct EditMessage {
+    /// The edit.
+    pub edit: Edit,
+    /// Edits with the same group as the previous one share its undo step.
+    pub group: Option<u64>,
+}
+
+impl From<Edit> for EditMessage {
+    fn from(edit: Edit) -> Self {
+        EditMessage { edit, group: None }
+    }
+}

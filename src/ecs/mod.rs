@@ -1,0 +1,122 @@
+//! The ECS layer (DESIGN, "The shape in one picture"): tangent handles,
+//! subdivision levels and streamlines are entities; edits arrive as
+//! [`EditMessage`]s; systems in named, ordered sets carry a change down
+//! (edit → blend → integrate → mesh → output), recomputing only what an edit
+//! made dirty. Runs headless under `MinimalPlugins` ([`headless_app`]).
+
+mod blend;
+pub mod components;
+mod edit;
+mod integrate;
+mod mesh;
+pub mod messages;
+mod output;
+pub mod playback;
+pub mod resources;
+
+use crate::scene::Scene;
+use bevy::prelude::*;
+pub use messages::{Edit, EditMessage};
+pub use resources::*;
+
+/// The pipeline's phases, run in this order in `Update`.
+#[derive(SystemSet, Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ModelSet {
+    /// Edit messages change handles and settings.
+    Edit,
+    /// Dirty windows of the levels are re-blended.
+    Blend,
+    /// Changed streamlines are re-integrated.
+    Integrate,
+    /// Changed mesh rows are rewritten.
+    Mesh,
+    /// Saving and exporting.
+    Output,
+}
+
+/// The model: scene, pipeline, history and stats.
+pub struct ModelPlugin {
+    /// The scene to start with.
+    pub scene: Scene,
+    /// Settings (history length).
+    pub config: ModelConfig,
+}
+
+impl ModelPlugin {
+    /// With the default settings.
+    pub fn new(scene: Scene) -> Self {
+        ModelPlugin {
+            scene,
+            config: ModelConfig::default(),
+        }
+    }
+}
+
+impl Plugin for ModelPlugin {
+    fn build(&self, app: &mut App) {
+        app.add_message::<EditMessage>()
+            .insert_resource(Model::new(self.scene.clone()))
+            .insert_resource(self.config.clone())
+            .init_resource::<History>()
+            .init_resource::<Stats>()
+            .init_resource::<EditLog>()
+            .init_resource::<SurfaceData>()
+            .init_resource::<resources::Seeds>()
+            .configure_sets(
+                Update,
+                (
+                    ModelSet::Edit,
+                    ModelSet::Blend,
+                    ModelSet::Integrate,
+                    ModelSet::Mesh,
+                    ModelSet::Output,
+                )
+                    .chain(),
+            )
+            .add_systems(Update, edit::apply_edits.in_set(ModelSet::Edit))
+            .add_systems(
+                Update,
+                (blend::collect_seeds, blend::reblend)
+                    .chain()
+                    .in_set(ModelSet::Blend),
+            )
+            .add_systems(Update, integrate::integrate.in_set(ModelSet::Integrate))
+            .add_systems(Update, mesh::patch_mesh.in_set(ModelSet::Mesh))
+            .add_systems(Update, output::write_files.in_set(ModelSet::Output));
+    }
+}
+
+/// A windowless app with the model on `scene`, built once (one update run).
+pub fn headless_app(scene: Scene) -> App {
+    headless_app_with(scene, ModelConfig::default())
+}
+
+/// [`headless_app`] with settings.
+pub fn headless_app_with(scene: Scene, config: ModelConfig) -> App {
+    let mut app = App::new();
+    app.add_plugins(MinimalPlugins)
+        .add_plugins(ModelPlugin { scene, config });
+    app.update();
+    app
+}
+
+/// Sends one edit and runs one update; returns the edit's outcome.
+pub fn apply(app: &mut App, edit: Edit) -> Result<String, String> {
+    send(app, edit);
+    app.update();
+    let log = app.world().resource::<EditLog>();
+    match log.entries.iter().find(|e| e.is_err()) {
+        Some(Err(e)) => Err(e.clone()),
+        _ => Ok(log
+            .entries
+            .iter()
+            .filter_map(|e| e.as_ref().ok().cloned())
+            .collect::<Vec<_>>()
+            .join("; ")),
+    }
+}
+
+/// Sends one edit.
+pub fn send(app: &mut App, edit: Edit) {
+    app.world_mut().write_message(EditMessage::from(edit));
+}

@@ -1,0 +1,360 @@
+//! Scripted playback: each step of a [`Script`] is an edit message sent to a
+//! headless app (one update per step) or an expectation checked against it.
+
+use super::messages::Edit;
+use super::resources::*;
+use super::{headless_app, send};
+use crate::scene::format::{Dir, OrderSpec, SchemeSpec};
+use crate::scene::script::{Script, Step};
+use crate::scene::{Scene, builtin};
+use bevy::prelude::*;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use streamline_kernel::{DVec3, Grid};
+
+/// The outcome of a script.
+#[derive(Debug, Clone, Default)]
+pub struct PlayReport {
+    /// One line per step.
+    pub lines: Vec<String>,
+    /// Steps that failed.
+    pub failures: usize,
+}
+
+impl PlayReport {
+    /// Every step held.
+    pub fn passed(&self) -> bool {
+        self.failures == 0
+    }
+}
+
+/// Runs `script`, whose relative paths are resolved against `dir`, starting
+/// from `scene`.
+pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
+    let mut app = headless_app(scene);
+    let mut report = PlayReport::default();
+    let mut marks: HashMap<String, Grid<DVec3>> = HashMap::new();
+    let mut pending: Option<(usize, String)> = None;
+    for (i, step) in script.steps.iter().enumerate() {
+        let n = i + 1;
+        if let Some((at, err)) = pending.take()
+            && !matches!(step, Step::ExpectError(_))
+        {
+            report.failures += 1;
+            report
+                .lines
+                .push(format!("step {at:>3}: FAIL unexpected error: {err}"));
+        }
+        if step.is_expectation() {
+            let res = check(&app, step, &mut marks, &mut pending);
+            let label = short(step);
+            match res {
+                Ok(m) => report.lines.push(format!("step {n:>3} {label}: ok {m}")),
+                Err(m) => {
+                    report.failures += 1;
+                    report.lines.push(format!("step {n:>3} {label}: FAIL {m}"));
+                }
+            }
+            continue;
+        }
+        let edit = match to_edit(step, dir) {
+            Ok(e) => e,
+            Err(m) => {
+                pending = Some((n, m.clone()));
+                report
+                    .lines
+                    .push(format!("step {n:>3} {}: error {m}", short(step)));
+                continue;
+            }
+        };
+        let label = edit.label();
+        send(&mut app, edit);
+        app.update();
+        let w = app.world();
+        let log = w.resource::<EditLog>();
+        let stats = &w.resource::<Stats>().last;
+        let errors: Vec<&String> = log
+            .entries
+            .iter()
+            .filter_map(|e| e.as_ref().err())
+            .collect();
+        if let Some(e) = errors.first() {
+            pending = Some((n, (*e).clone()));
+            report.lines.push(format!("step {n:>3} {label}: error {e}"));
+        } else {
+            report.lines.push(format!(
+                "step {n:>3} {label}: ok (re-blended {}, re-integrated {}, {:.0} µs{})",
+                stats.tangents_reblended,
+                stats.streamlines_reintegrated,
+                stats.us_total(),
+                if stats.full_rebuild {
+                    ", full rebuild"
+                } else {
+                    ""
+                }
+            ));
+        }
+    }
+    if let Some((at, err)) = pending {
+        report.failures += 1;
+        report
+            .lines
+            .push(format!("step {at:>3}: FAIL unexpected error: {err}"));
+    }
+    report
+}
+
+fn short(step: &Step) -> String {
+    let s = format!("{step:?}");
+    let head: String = s.chars().take(60).collect();
+    if s.chars().count() > 60 {
+        head + "…"
+    } else {
+        head
+    }
+}
+
+fn resolve(dir: &Path, p: &str) -> PathBuf {
+    dir.join(p)
+}
+
+fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
+    let v = |d: &Dir| d.vec();
+    Ok(match step {
+        Step::Load(p) => match p.strip_prefix("builtin:") {
+            Some(name) => Edit::Replace(Box::new(builtin::scene(name).map_err(|e| e.to_string())?)),
+            None => Edit::Load(resolve(dir, p)),
+        },
+        Step::Save(p) => Edit::Save(resolve(dir, p)),
+        Step::Export(p) => Edit::Export(resolve(dir, p)),
+        Step::SetDirection { row, col, dir } => Edit::SetDirection {
+            row: *row,
+            col: *col,
+            dir: v(dir),
+        },
+        Step::Rotate {
+            row,
+            col,
+            axis,
+            degrees,
+        } => Edit::Rotate {
+            row: *row,
+            col: *col,
+            axis: v(axis),
+            radians: degrees.0.to_radians(),
+        },
+        Step::SetLength {
+            row,
+            col,
+            coefficient,
+        } => Edit::SetLength {
+            row: *row,
+            col: *col,
+            coefficient: coefficient.0,
+        },
+        Step::ClearDetail { row, col } => Edit::ClearDetail {
+            row: *row,
+            col: *col,
+        },
+        Step::SetScheme(s) => Edit::SetScheme(s.to_kernel()),
+        Step::SetBlendOrder(o) => Edit::SetBlendOrder(o.to_kernel()),
+        Step::SetDisplayDepth(d) => Edit::SetDisplayDepth(*d),
+        Step::SetEditDepth(d) => Edit::SetEditDepth(*d),
+        Step::Undo => Edit::Undo,
+        Step::Redo => Edit::Redo,
+        _ => return Err("not an edit".into()),
+    })
+}
+
+fn max_diff(a: &Grid<DVec3>, b: &Grid<DVec3>) -> Option<f64> {
+    if (a.rows(), a.cols()) != (b.rows(), b.cols()) {
+        return None;
+    }
+    Some(
+        a.data()
+            .iter()
+            .zip(b.data())
+            .map(|(x, y)| (*x - *y).length())
+            .fold(0.0, f64::max),
+    )
+}
+
+fn check(
+    app: &App,
+    step: &Step,
+    marks: &mut HashMap<String, Grid<DVec3>>,
+    pending: &mut Option<(usize, String)>,
+) -> Result<String, String> {
+    let w = app.world();
+    let surface = w.resource::<SurfaceData>();
+    let model = w.resource::<Model>();
+    let stats = w.resource::<Stats>();
+    let history = w.resource::<History>();
+    match step {
+        Step::ExpectPoint {
+            row,
+            index,
+            near,
+            tolerance,
+        } => {
+            let p = &surface.points;
+            if *row >= p.rows() || *index >= p.cols() {
+                return Err(format!(
+                    "no point ({row}, {index}): the surface has {} streamlines of {} points",
+                    p.rows(),
+                    p.cols()
+                ));
+            }
+            let got = p.get(*row, *index);
+            let d = (got - near.vec()).length();
+            if d <= tolerance.0 {
+                Ok(format!("(distance {d:.2e})"))
+            } else {
+                Err(format!(
+                    "point ({row}, {index}) is ({:.6}, {:.6}, {:.6}), {d:.3e} from the expected point (tolerance {})",
+                    got.x, got.y, got.z, tolerance.0
+                ))
+            }
+        }
+        Step::ExpectStats {
+            max_reblended,
+            max_reintegrated,
+            min_reintegrated,
+            full_rebuild,
+        } => {
+            let l = &stats.last;
+            let mut bad = Vec::new();
+            if let Some(m) = max_reblended
+                && l.tangents_reblended > *m
+            {
+                bad.push(format!("re-blended {} > {m}", l.tangents_reblended));
+            }
+            if let Some(m) = max_reintegrated
+                && l.streamlines_reintegrated > *m
+            {
+                bad.push(format!(
+                    "re-integrated {} > {m}",
+                    l.streamlines_reintegrated
+                ));
+            }
+            if let Some(m) = min_reintegrated
+                && l.streamlines_reintegrated < *m
+            {
+                bad.push(format!(
+                    "re-integrated {} < {m}",
+                    l.streamlines_reintegrated
+                ));
+            }
+            if let Some(f) = full_rebuild
+                && l.full_rebuild != *f
+            {
+                bad.push(format!("full rebuild was {}", l.full_rebuild));
+            }
+            if bad.is_empty() {
+                Ok(format!(
+                    "(re-blended {}, re-integrated {})",
+                    l.tangents_reblended, l.streamlines_reintegrated
+                ))
+            } else {
+                Err(bad.join(", "))
+            }
+        }
+        Step::ExpectScene {
+            display_depth,
+            edit_depth,
+            scheme,
+            blend_order,
+            streamlines,
+            details,
+            can_undo,
+            can_redo,
+        } => {
+            let s = &model.scene;
+            let mut bad = Vec::new();
+            let mut cmp = |what: &str, want: Option<String>, got: String| {
+                if let Some(w) = want
+                    && w != got
+                {
+                    bad.push(format!("{what} is {got}, expected {w}"));
+                }
+            };
+            cmp(
+                "display depth",
+                display_depth.map(|d| d.to_string()),
+                s.display_depth.to_string(),
+            );
+            cmp(
+                "edit depth",
+                edit_depth.map(|d| d.to_string()),
+                s.edit_depth.to_string(),
+            );
+            cmp(
+                "scheme",
+                scheme.map(|x| format!("{x:?}")),
+                format!("{:?}", SchemeSpec::from_kernel(s.design.scheme)),
+            );
+            cmp(
+                "blend order",
+                blend_order.map(|x| format!("{x:?}")),
+                format!("{:?}", OrderSpec::from_kernel(s.design.order)),
+            );
+            cmp(
+                "streamlines",
+                streamlines.map(|x| x.to_string()),
+                surface.points.rows().to_string(),
+            );
+            cmp(
+                "details",
+                details.map(|x| x.to_string()),
+                s.details.len().to_string(),
+            );
+            cmp(
+                "can undo",
+                can_undo.map(|x| x.to_string()),
+                (history.undo_len() > 0).to_string(),
+            );
+            cmp(
+                "can redo",
+                can_redo.map(|x| x.to_string()),
+                (history.redo_len() > 0).to_string(),
+            );
+            if bad.is_empty() {
+                Ok(String::new())
+            } else {
+                Err(bad.join(", "))
+            }
+        }
+        Step::ExpectError(text) => match pending.take() {
+            Some((_, e)) if e.contains(text.as_str()) => Ok(format!("({e})")),
+            Some((_, e)) => Err(format!(
+                "the error was `{e}`, which does not contain `{text}`"
+            )),
+            None => Err("the previous step succeeded, but an error was expected".into()),
+        },
+        Step::Mark(name) => {
+            marks.insert(name.clone(), surface.points.clone());
+            Ok(format!("({} points)", surface.points.data().len()))
+        }
+        Step::ExpectSame { mark, tolerance } | Step::ExpectChanged { mark, tolerance } => {
+            let m = marks
+                .get(mark)
+                .ok_or_else(|| format!("no mark `{mark}`; add a Mark(\"{mark}\") step first"))?;
+            let same = matches!(step, Step::ExpectSame { .. });
+            match max_diff(m, &surface.points) {
+                None => {
+                    if same {
+                        Err(format!("the surface's shape differs from mark `{mark}`"))
+                    } else {
+                        Ok("(shape changed)".into())
+                    }
+                }
+                Some(d) if (d <= tolerance.0) == same => Ok(format!("(max difference {d:.2e})")),
+                Some(d) => Err(format!(
+                    "max difference from `{mark}` is {d:.3e} (tolerance {})",
+                    tolerance.0
+                )),
+            }
+        }
+        _ => Err("not an expectation".into()),
+    }
+}

@@ -1,0 +1,184 @@
+//! Resources: the scene being edited, history, the surface mesh, stats, the edit log.
+
+use crate::scene::Scene;
+use bevy::prelude::*;
+use std::collections::{HashMap, VecDeque};
+use std::path::PathBuf;
+use streamline_kernel::mesh::SurfaceMesh;
+use streamline_kernel::multires::Details;
+use streamline_kernel::window::{Span, Window};
+use streamline_kernel::{DVec3, Grid};
+
+/// The scene being edited (kept equal to the handle components by the edit
+/// system) and what the pipeline must redo.
+#[derive(Resource, Debug)]
+pub struct Model {
+    /// The current scene.
+    pub scene: Scene,
+    /// The file it was loaded from or saved to.
+    pub path: Option<PathBuf>,
+    /// Changed since the last save or load.
+    pub unsaved: bool,
+    /// Set by edits that change the shape of the levels: rebuild everything.
+    pub(crate) full: bool,
+    /// Handles must be spawned again from the scene (end of the edit stage).
+    pub(crate) respawn: bool,
+    /// Details of removed detail handles, by entity, to mark their cell dirty.
+    pub(crate) detail_keys: HashMap<Entity, (u32, usize, usize)>,
+}
+
+impl Model {
+    /// A model that builds in full on the first update.
+    pub fn new(scene: Scene) -> Self {
+        Model {
+            scene,
+            path: None,
+            unsaved: false,
+            full: true,
+            respawn: true,
+            detail_keys: HashMap::new(),
+        }
+    }
+
+    /// The details.
+    pub fn details(&self) -> &Details {
+        &self.scene.details
+    }
+}
+
+/// Settings of the model layer.
+#[derive(Resource, Debug, Clone)]
+pub struct ModelConfig {
+    /// Undo steps kept.
+    pub history_limit: usize,
+}
+
+impl Default for ModelConfig {
+    fn default() -> Self {
+        ModelConfig { history_limit: 200 }
+    }
+}
+
+/// Undo and redo stacks of whole scenes (a 9×6 scene is a few kB).
+#[derive(Resource, Debug, Default)]
+pub struct History {
+    pub(crate) undo: VecDeque<Scene>,
+    pub(crate) redo: Vec<Scene>,
+    pub(crate) last_group: Option<u64>,
+}
+
+impl History {
+    /// Steps that can be undone.
+    pub fn undo_len(&self) -> usize {
+        self.undo.len()
+    }
+
+    /// Steps that can be redone.
+    pub fn redo_len(&self) -> usize {
+        self.redo.len()
+    }
+
+    /// Records `before` as an undo step unless `group` continues the last one.
+    pub(crate) fn record(&mut self, before: &Scene, group: Option<u64>, limit: usize) {
+        if group.is_some() && group == self.last_group {
+            return;
+        }
+        self.last_group = group;
+        self.undo.push_back(before.clone());
+        while self.undo.len() > limit.max(1) {
+            self.undo.pop_front();
+        }
+        self.redo.clear();
+    }
+
+    /// Forgets everything (after a load).
+    pub(crate) fn clear(&mut self) {
+        self.undo.clear();
+        self.redo.clear();
+        self.last_group = None;
+    }
+}
+
+/// What one edit cost, stage by stage.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct EditStats {
+    /// The edit (or edits) of the frame.
+    pub edit: String,
+    /// Everything was rebuilt.
+    pub full_rebuild: bool,
+    /// Tangents re-blended over all levels.
+    pub tangents_reblended: usize,
+    /// Details re-applied.
+    pub details_reapplied: usize,
+    /// Streamlines re-integrated.
+    pub streamlines_reintegrated: usize,
+    /// Mesh rows rewritten.
+    pub mesh_rows: usize,
+    /// Microseconds in each stage.
+    pub us_edit: f64,
+    /// Blend stage.
+    pub us_blend: f64,
+    /// Integrate stage.
+    pub us_integrate: f64,
+    /// Mesh stage.
+    pub us_mesh: f64,
+}
+
+impl EditStats {
+    /// Microseconds over all stages.
+    pub fn us_total(&self) -> f64 {
+        self.us_edit + self.us_blend + self.us_integrate + self.us_mesh
+    }
+}
+
+/// Stats of the model.
+#[derive(Resource, Debug, Clone, Default)]
+pub struct Stats {
+    /// The last frame that had an edit.
+    pub last: EditStats,
+    /// Tangents in all levels.
+    pub tangents_total: usize,
+    /// Streamlines at the display depth.
+    pub streamlines: usize,
+    /// `(rows, cols)` of each level.
+    pub levels: Vec<(usize, usize)>,
+    /// Whether the current frame is collecting an edit's stats.
+    pub(crate) collecting: bool,
+}
+
+/// The outcome of each edit of the last frame that had edits.
+#[derive(Resource, Debug, Clone, Default)]
+pub struct EditLog {
+    /// `Ok(what was done)` or `Err(message)`, in order.
+    pub entries: Vec<Result<String, String>>,
+    /// Increases with each frame that had edits.
+    pub frame: u64,
+}
+
+/// The surface at the display depth: points (rows × (cols + 1)) and mesh.
+#[derive(Resource, Debug, Clone)]
+pub struct SurfaceData {
+    /// Streamline points, one row per streamline.
+    pub points: Grid<DVec3>,
+    /// Positions, normals and indices.
+    pub mesh: SurfaceMesh,
+    /// Increases whenever the mesh changes.
+    pub generation: u64,
+    /// Rows rewritten by the last change (`None`: all).
+    pub rows_changed: Option<Span>,
+}
+
+impl Default for SurfaceData {
+    fn default() -> Self {
+        SurfaceData {
+            points: Grid::filled(0, 0, DVec3::ZERO),
+            mesh: SurfaceMesh::default(),
+            generation: 0,
+            rows_changed: None,
+        }
+    }
+}
+
+/// Dirty windows seeded by edits, per level, for the blend stage.
+#[derive(Resource, Debug, Default)]
+pub(crate) struct Seeds(pub Vec<Option<Window>>);

@@ -1,0 +1,111 @@
+//! Loading and atomic, verified saving of scene files.
+//!
+//! Saving writes a temporary file in the same directory, flushes it to disk,
+//! reads it back and validates it, then renames it over the target (atomic on
+//! POSIX file systems) and syncs the directory: a crash at any point leaves
+//! either the old file or the new one, never a broken one.
+
+use super::error::SceneError;
+use super::model::Scene;
+use std::fs;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// The largest scene file read (bytes); larger files are refused before reading.
+pub const MAX_SCENE_BYTES: u64 = 64 << 20;
+
+/// Reads and validates a scene file.
+pub fn load(path: &Path) -> Result<Scene, SceneError> {
+    let text = read_text(path, MAX_SCENE_BYTES)?;
+    Scene::parse(&text, path)
+}
+
+/// Reads a text file, refusing one over `cap` bytes or not UTF-8.
+pub fn read_text(path: &Path, cap: u64) -> Result<String, SceneError> {
+    let meta = fs::metadata(path)
+        .map_err(|e| SceneError::file(path, format!("cannot open: {e}; check the path")))?;
+    if meta.len() > cap {
+        return Err(SceneError::file(
+            path,
+            format!(
+                "the file is {} bytes, over the limit of {cap}; this is not a scene or script file",
+                meta.len()
+            ),
+        ));
+    }
+    let bytes = fs::read(path)
+        .map_err(|e| SceneError::file(path, format!("cannot read: {e}; check the permissions")))?;
+    String::from_utf8(bytes).map_err(|e| {
+        SceneError::file(
+            path,
+            format!(
+                "byte {} is not UTF-8 text; scene files are RON text",
+                e.utf8_error().valid_up_to()
+            ),
+        )
+    })
+}
+
+/// Saves `scene` to `path` atomically and verifies what was written.
+pub fn save(scene: &Scene, path: &Path) -> Result<(), SceneError> {
+    let text = scene.to_ron();
+    write_atomic(path, text.as_bytes(), |written| {
+        let back = std::str::from_utf8(written)
+            .map_err(|_| "read-back is not UTF-8".to_string())
+            .and_then(|t| Scene::parse(t, path).map_err(|e| e.to_string()))?;
+        if back.to_file() != scene.to_file() {
+            return Err("read-back differs from the scene".into());
+        }
+        Ok(())
+    })
+}
+
+/// Writes `bytes` to `path` through a verified temporary file and a rename.
+pub fn write_atomic(
+    path: &Path,
+    bytes: &[u8],
+    verify: impl FnOnce(&[u8]) -> Result<(), String>,
+) -> Result<(), SceneError> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = path.file_name().ok_or_else(|| {
+        SceneError::file(path, "not a file name; give a path ending in a file name")
+    })?;
+    let tmp = dir.join(format!(
+        ".{}.tmp-{}",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
+    let fail = |what: &str, e: std::io::Error| {
+        let _ = fs::remove_file(&tmp);
+        SceneError::file(path, format!("{what}: {e}; the previous file is unchanged"))
+    };
+    {
+        let mut f =
+            fs::File::create(&tmp).map_err(|e| fail("cannot create a temporary file", e))?;
+        f.write_all(bytes).map_err(|e| fail("cannot write", e))?;
+        f.sync_all().map_err(|e| fail("cannot flush to disk", e))?;
+    }
+    let back = fs::read(&tmp).map_err(|e| fail("cannot read back", e))?;
+    if back != bytes {
+        let _ = fs::remove_file(&tmp);
+        return Err(SceneError::file(
+            path,
+            "the written file differs from what was meant; the previous file is unchanged",
+        ));
+    }
+    if let Err(m) = verify(&back) {
+        let _ = fs::remove_file(&tmp);
+        return Err(SceneError::file(
+            path,
+            format!("verification failed ({m}); the previous file is unchanged"),
+        ));
+    }
+    fs::rename(&tmp, path).map_err(|e| fail("cannot replace the file", e))?;
+    if let Ok(d) = fs::File::open(&dir) {
+        let _ = d.sync_all();
+    }
+    Ok(())
+}

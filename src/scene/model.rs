@@ -1,0 +1,310 @@
+//! A scene in memory: the kernel's [`Design`], its details, depths and view,
+//! converted from and to a [`SceneFile`] with validation across fields.
+
+use super::error::SceneError;
+use super::format::*;
+use std::path::Path;
+use streamline_kernel::incremental::check_params;
+use streamline_kernel::initial_curve::InitialCurve;
+use streamline_kernel::multires::Details;
+use streamline_kernel::{BlendOrder, DVec3, Design, Grid, KernelError, SurfaceScheme};
+
+/// A validated scene.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// Display name.
+    pub name: String,
+    /// Control net, parameters, scheme, blend order, anchor, initial curve.
+    pub design: Design,
+    /// The initial curve as written in the file.
+    pub initial: InitialSpec,
+    /// Multiresolution details.
+    pub details: Details,
+    /// Levels shown.
+    pub display_depth: u32,
+    /// Level of the handles.
+    pub edit_depth: u32,
+    /// The camera.
+    pub view: ViewSpec,
+}
+
+impl SchemeSpec {
+    /// The kernel's scheme.
+    pub fn to_kernel(self) -> SurfaceScheme {
+        match self {
+            SchemeSpec::Kobbelt { omega } => SurfaceScheme::Kobbelt { omega: omega.0 },
+            SchemeSpec::CatmullClark => SurfaceScheme::CatmullClark,
+            SchemeSpec::DooSabin => SurfaceScheme::DooSabin,
+        }
+    }
+
+    /// From the kernel's scheme.
+    pub fn from_kernel(s: SurfaceScheme) -> Self {
+        match s {
+            SurfaceScheme::Kobbelt { omega } => SchemeSpec::Kobbelt {
+                omega: Omega(omega),
+            },
+            SurfaceScheme::CatmullClark => SchemeSpec::CatmullClark,
+            SurfaceScheme::DooSabin => SchemeSpec::DooSabin,
+        }
+    }
+}
+
+impl OrderSpec {
+    /// The kernel's blend order.
+    pub fn to_kernel(self) -> BlendOrder {
+        match self {
+            OrderSpec::SFirst => BlendOrder::SFirst,
+            OrderSpec::TFirst => BlendOrder::TFirst,
+        }
+    }
+
+    /// From the kernel's.
+    pub fn from_kernel(o: BlendOrder) -> Self {
+        match o {
+            BlendOrder::SFirst => OrderSpec::SFirst,
+            BlendOrder::TFirst => OrderSpec::TFirst,
+        }
+    }
+}
+
+impl InitialSpec {
+    /// The kernel's initial curve.
+    pub fn to_kernel(&self) -> Result<InitialCurve, KernelError> {
+        let ts: Vec<DVec3> = self.tangents.iter().map(|d| d.vec()).collect();
+        InitialCurve::new(&ts, self.order, self.length.0, self.origin.vec())
+    }
+
+    /// The description of a kernel initial curve.
+    pub fn from_kernel(c: &InitialCurve) -> Self {
+        InitialSpec {
+            tangents: c
+                .qi()
+                .tangents()
+                .iter()
+                .map(|&v| Dir::from_vec(v))
+                .collect(),
+            order: c.qi().order(),
+            length: Finite(c.length()),
+            origin: Point::from_vec(c.origin()),
+        }
+    }
+}
+
+impl Scene {
+    /// A scene around a design, with default depths and view.
+    pub fn from_design(name: &str, design: Design, display_depth: u32) -> Self {
+        let initial = InitialSpec::from_kernel(&design.initial);
+        Scene {
+            name: name.to_string(),
+            design,
+            initial,
+            details: Details::new(),
+            display_depth,
+            edit_depth: 0,
+            view: ViewSpec::default(),
+        }
+    }
+
+    /// The deepest level the scene needs.
+    pub fn max_depth(&self) -> u32 {
+        self.display_depth.max(self.edit_depth)
+    }
+
+    /// Checks what crosses fields: depth cap, parameter increase at every
+    /// level, details inside their level. `file`/`text` locate the errors.
+    pub fn validate(&self, file: &Path, text: &str) -> Result<(), SceneError> {
+        let d = &self.design;
+        let at = |key: &str, e: String| SceneError::locate(file, text, key, e);
+        let depth = self.max_depth();
+        if let Err(e) = d.scheme.check_depth(d.net.rows(), d.net.cols(), depth) {
+            let key = if self.display_depth >= self.edit_depth {
+                "display_depth"
+            } else {
+                "edit_depth"
+            };
+            return Err(at(key, e.to_string()));
+        }
+        check_params(d, depth).map_err(|e| at("s", e.to_string()))?;
+        let mut shape = (d.net.rows(), d.net.cols());
+        let c = d.scheme.curve();
+        let mut shapes = vec![shape];
+        for _ in 0..depth.max(self.details.keys().map(|k| k.0).max().unwrap_or(0)) {
+            shape = (c.refined_len(shape.0), c.refined_len(shape.1));
+            shapes.push(shape);
+        }
+        for &(level, row, col) in self.details.keys() {
+            let ok = level >= 1
+                && level <= depth.max(1)
+                && shapes
+                    .get(level as usize)
+                    .is_some_and(|&(r, k)| row < r && col < k);
+            if !ok {
+                return Err(at(
+                    "details",
+                    format!(
+                        "detail at level {level}, row {row}, column {col} is outside the levels 1..={} of this scene; remove it or raise the edit depth",
+                        depth
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// From a file's contents, with every error located.
+    pub fn from_file(f: SceneFile, file: &Path, text: &str) -> Result<Self, SceneError> {
+        let at = |key: &str, e: String| SceneError::locate(file, text, key, e);
+        let rows = f.tangents.len();
+        if rows < 2 {
+            return Err(at(
+                "tangents",
+                format!(
+                    "the control net has {rows} rows; a surface needs at least 2 rows of at least 2 tangents"
+                ),
+            ));
+        }
+        let cols = f.tangents[0].len();
+        for (r, row) in f.tangents.iter().enumerate() {
+            if row.len() != cols || cols < 2 {
+                return Err(at(
+                    "tangents",
+                    format!(
+                        "row {r} of tangents has {} entries but row 0 has {cols}; every row needs the same number, at least 2",
+                        row.len()
+                    ),
+                ));
+            }
+        }
+        if f.s.len() != rows || f.s.iter().any(|r| r.0.len() != cols) {
+            let bad =
+                f.s.iter()
+                    .position(|r| r.0.len() != cols)
+                    .unwrap_or(f.s.len());
+            return Err(at(
+                "s",
+                format!(
+                    "s must have the shape of tangents ({rows} rows of {cols}); row {bad} differs or is missing"
+                ),
+            ));
+        }
+        if f.t.len() != rows {
+            return Err(at(
+                "t",
+                format!(
+                    "t has {} entries but there are {rows} rows; give one t per row",
+                    f.t.len()
+                ),
+            ));
+        }
+        if f.anchor >= cols {
+            return Err(at(
+                "anchor",
+                format!(
+                    "anchor column {} is out of range; use 0 to {}",
+                    f.anchor,
+                    cols - 1
+                ),
+            ));
+        }
+        let initial = f
+            .initial
+            .to_kernel()
+            .map_err(|e| at("initial", format!("initial curve: {e}")))?;
+        let net = Grid::new(
+            rows,
+            cols,
+            f.tangents.iter().flatten().map(|d| d.vec()).collect(),
+        )
+        .map_err(|e| at("tangents", e.to_string()))?;
+        let s = Grid::new(
+            rows,
+            cols,
+            f.s.iter().flat_map(|r| r.0.iter().copied()).collect(),
+        )
+        .map_err(|e| at("s", e.to_string()))?;
+        let design = Design::new(
+            &net,
+            s,
+            f.t.iter().map(|t| t.0).collect(),
+            f.anchor,
+            f.scheme.to_kernel(),
+            f.blend_order.to_kernel(),
+            initial,
+        )
+        .map_err(|e| at("tangents", e.to_string()))?;
+        let mut details = Details::new();
+        for d in &f.details {
+            let v = d.local.vec().normalize();
+            if details.insert((d.level, d.row, d.col), v).is_some() {
+                return Err(at(
+                    "details",
+                    format!(
+                        "two details at level {}, row {}, column {}; keep one",
+                        d.level, d.row, d.col
+                    ),
+                ));
+            }
+        }
+        let scene = Scene {
+            name: f.name,
+            design,
+            initial: f.initial,
+            details,
+            display_depth: f.display_depth,
+            edit_depth: f.edit_depth,
+            view: f.view,
+        };
+        scene.validate(file, text)?;
+        Ok(scene)
+    }
+
+    /// The file form.
+    pub fn to_file(&self) -> SceneFile {
+        let d = &self.design;
+        SceneFile {
+            version: Version(VERSION),
+            name: self.name.clone(),
+            tangents: (0..d.net.rows())
+                .map(|r| d.net.row(r).iter().map(|&v| Dir::from_vec(v)).collect())
+                .collect(),
+            s: (0..d.params.s.rows())
+                .map(|r| SRow(d.params.s.row(r).to_vec()))
+                .collect(),
+            t: d.params.t.iter().map(|&t| Finite(t)).collect(),
+            anchor: d.anchor,
+            initial: self.initial.clone(),
+            scheme: SchemeSpec::from_kernel(d.scheme),
+            blend_order: OrderSpec::from_kernel(d.order),
+            display_depth: self.display_depth,
+            edit_depth: self.edit_depth,
+            details: self
+                .details
+                .iter()
+                .map(|(&(level, row, col), &v)| DetailSpec {
+                    level,
+                    row,
+                    col,
+                    local: Dir::from_vec(v),
+                })
+                .collect(),
+            view: self.view,
+        }
+    }
+
+    /// Parses RON text.
+    pub fn parse(text: &str, file: &Path) -> Result<Self, SceneError> {
+        let f: SceneFile = ron::Options::default()
+            .from_str(text)
+            .map_err(|e| SceneError::ron(file, &e))?;
+        Scene::from_file(f, file, text)
+    }
+
+    /// RON text of this scene.
+    pub fn to_ron(&self) -> String {
+        let cfg = ron::ser::PrettyConfig::new()
+            .depth_limit(2)
+            .indentor("    ".to_string());
+        ron::ser::to_string_pretty(&self.to_file(), cfg).expect("scene serialises")
+    }
+}
