@@ -370,3 +370,72 @@ fn grouped_edits_are_one_undo_step() {
     ecs::apply(&mut app, Edit::Undo).unwrap();
     assert_eq!(max_diff(&points(&app), &start), 0.0);
 }
+
+/// Edits with unusable values are refused with a message and change nothing.
+#[test]
+fn bad_edits_are_refused() {
+    let mut app = car_app(0, 2);
+    let start = points(&app);
+    for (edit, text) in [
+        (
+            Edit::SetDirection {
+                row: 0,
+                col: 0,
+                dir: DVec3::ZERO,
+            },
+            "zero or not finite",
+        ),
+        (
+            Edit::SetDirection {
+                row: 0,
+                col: 0,
+                dir: DVec3::new(f64::NAN, 1.0, 0.0),
+            },
+            "zero or not finite",
+        ),
+        (
+            Edit::Rotate {
+                row: 0,
+                col: 0,
+                axis: DVec3::ZERO,
+                radians: 1.0,
+            },
+            "rotation axis",
+        ),
+        (
+            Edit::Rotate {
+                row: 0,
+                col: 0,
+                axis: DVec3::X,
+                radians: f64::INFINITY,
+            },
+            "not finite",
+        ),
+        (
+            Edit::SetLength {
+                row: 0,
+                col: 1,
+                coefficient: f64::NAN,
+            },
+            "positive finite",
+        ),
+        (
+            Edit::SetScheme(SurfaceScheme::Kobbelt { omega: 3.0 }),
+            "omega",
+        ),
+        (Edit::SetEditDepth(14), "choose a smaller depth"),
+        (
+            Edit::Load("/nonexistent/x.ron".into()),
+            "the current scene is kept",
+        ),
+    ] {
+        let e = ecs::apply(&mut app, edit.clone()).expect_err(&format!("{edit:?} must be refused"));
+        assert!(e.contains(text), "{edit:?}: {e}");
+        assert_eq!(
+            max_diff(&points(&app), &start),
+            0.0,
+            "{edit:?} changed the surface"
+        );
+    }
+    assert_eq!(app.world().resource::<ecs::History>().undo_len(), 0);
+}

@@ -31,3 +31,211 @@ fn shipped_scenes_match_presets() {
     }
     assert_eq!(builtin::default_scene().name, "car1");
 }
+
+fn tmpdir(tag: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("ss-scenes-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn random_scene() -> impl Strategy<Value = Scene> {
+    use streamline_kernel::{BlendOrder, DVec3, Design, Grid, SurfaceScheme};
+    (
+        2usize..6,
+        2usize..7,
+        any::<u64>(),
+        0u32..3,
+        0u32..3,
+        0usize..3,
+        0u8..3,
+        any::<bool>(),
+    )
+        .prop_filter_map(
+            "a valid random scene",
+            |(rows, cols, seed, display, edit, ndetails, sch, tfirst)| {
+                let mut x = seed | 1;
+                let mut rnd = move || {
+                    x ^= x << 13;
+                    x ^= x >> 7;
+                    x ^= x << 17;
+                    (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+                };
+                let net: Vec<DVec3> = (0..rows * cols)
+                    .map(|_| {
+                        // Nasty magnitudes: tiny, huge, and ordinary.
+                        let scale = [1e-300, 1.0, 1e250][(rnd().abs() * 2.99) as usize];
+                        DVec3::new(rnd() + 1.1, rnd(), rnd()) * scale
+                    })
+                    .collect();
+                let mut s = Vec::new();
+                for _ in 0..rows {
+                    let mut acc = rnd() * 10.0;
+                    for _ in 0..cols {
+                        s.push(acc);
+                        acc += 0.5 + 0.2 * rnd().abs();
+                    }
+                }
+                let scheme = [
+                    SurfaceScheme::Kobbelt {
+                        omega: 1.0 + 0.5 * rnd(),
+                    },
+                    SurfaceScheme::CatmullClark,
+                    SurfaceScheme::DooSabin,
+                ][sch as usize];
+                let order = if tfirst {
+                    BlendOrder::TFirst
+                } else {
+                    BlendOrder::SFirst
+                };
+                let t = (0..rows).map(|r| r as f64 * 0.3).collect();
+                let design = Design::new(
+                    &Grid::new(rows, cols, net).ok()?,
+                    Grid::new(rows, cols, s).ok()?,
+                    t,
+                    cols - 1,
+                    scheme,
+                    order,
+                    streamline_kernel::presets::car1().initial.clone(),
+                )
+                .ok()?;
+                let mut scene = Scene::from_design("random", design, display);
+                scene.edit_depth = edit;
+                for _ in 0..ndetails {
+                    let level = edit.max(1);
+                    let c = scheme.curve();
+                    let (mut r, mut k) = (rows, cols);
+                    for _ in 0..level {
+                        r = c.refined_len(r);
+                        k = c.refined_len(k);
+                    }
+                    let key = (
+                        level,
+                        (rnd().abs() * r as f64) as usize % r,
+                        (rnd().abs() * k as f64) as usize % k,
+                    );
+                    scene
+                        .details
+                        .insert(key, DVec3::new(rnd(), rnd(), 1.0).normalize());
+                }
+                scene.view.yaw = streamline_studio::scene::format::Finite(rnd() * 180.0);
+                scene.validate(Path::new("<random>"), "").ok()?;
+                Some(scene)
+            },
+        )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Save → load is the identity (through the file, atomic save included).
+    #[test]
+    fn save_load_is_identity(scene in random_scene()) {
+        let dir = tmpdir("prop");
+        let path = dir.join("s.ron");
+        io::save(&scene, &path).unwrap();
+        let back = io::load(&path).unwrap();
+        prop_assert_eq!(back.to_file(), scene.to_file());
+        // And a second save writes the same bytes.
+        let text1 = std::fs::read_to_string(&path).unwrap();
+        io::save(&back, &path).unwrap();
+        prop_assert_eq!(std::fs::read_to_string(&path).unwrap(), text1);
+    }
+}
+
+/// Bad files: each error names the file, the line and column, and the fix.
+#[test]
+fn bad_scenes_have_located_errors() {
+    let good = builtin::SCENES[5].1; // minimal.ron
+    let dir = tmpdir("bad");
+    let cases: [(&str, String, &str); 9] = [
+        (
+            "unknown field",
+            good.replace("anchor: 0,", "anchor: 0,\n    colour: 3,"),
+            ":17:5: unknown field `colour`",
+        ),
+        (
+            "zero tangent",
+            good.replacen(
+                "[(1.0, 0.0, 0.0), (1.0, 0.0, 0.0)],",
+                "[(1.0, 0.0, 0.0), (0.0, 0.0, 0.0)],",
+                1,
+            ),
+            ":5:",
+        ),
+        (
+            "nan tangent",
+            good.replacen("(1.0, 0.0, 0.0)]", "(NaN, 0.0, 0.0)]", 1),
+            "NaN or infinite",
+        ),
+        (
+            "non-increasing s",
+            good.replacen("[0.0, 1.0],", "[1.0, 1.0],", 1),
+            "increase strictly",
+        ),
+        (
+            "ragged rows",
+            good.replacen(
+                "[(1.0, 0.0, 0.0), (1.0, 0.0, 0.0)],",
+                "[(1.0, 0.0, 0.0)],",
+                1,
+            ),
+            ":4:5: row 0 of tangents has 1",
+        ),
+        (
+            "depth past the cap",
+            good.replace("display_depth: 2,", "display_depth: 15,"),
+            ":27:5: depth 15 would produce",
+        ),
+        (
+            "wrong version",
+            good.replace("version: 1,", "version: 2,"),
+            "version 2 is not supported",
+        ),
+        ("truncated", good[..good.len() / 2].to_string(), "truncated"),
+        (
+            "omega",
+            good.replace("omega: 1.0", "omega: 7.0"),
+            "omega 7 is outside",
+        ),
+    ];
+    for (what, text, want) in cases {
+        let path = dir.join("bad.ron");
+        std::fs::write(&path, &text).unwrap();
+        let e = io::load(&path).expect_err(what).to_string();
+        assert!(
+            e.starts_with(&path.display().to_string()),
+            "{what}: names the file: {e}"
+        );
+        assert!(e.contains(want), "{what}: `{e}` lacks `{want}`");
+        let parts: Vec<&str> = e.splitn(4, ':').collect();
+        assert!(
+            parts.len() == 4
+                && parts[1].parse::<usize>().is_ok()
+                && parts[2].parse::<usize>().is_ok(),
+            "{what}: line and column: {e}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A save that fails verification leaves the old file as it was.
+#[test]
+fn failed_save_keeps_the_old_file() {
+    let dir = tmpdir("atomic");
+    let path = dir.join("scene.ron");
+    let scene = builtin::scene("car1").unwrap();
+    io::save(&scene, &path).unwrap();
+    let before = std::fs::read(&path).unwrap();
+    let e = io::write_atomic(&path, b"garbage", |_| Err("refused by test".into())).unwrap_err();
+    assert!(e.to_string().contains("previous file is unchanged"), "{e}");
+    assert_eq!(std::fs::read(&path).unwrap(), before);
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .collect();
+    assert_eq!(leftovers.len(), 1, "no temporary file is left behind");
+    // Saving into a folder that does not exist fails with a message and writes nothing.
+    let e = io::save(&scene, &dir.join("missing/x.ron")).unwrap_err();
+    assert!(e.to_string().contains("cannot create"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -37,8 +37,8 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
     let mut pending: Option<(usize, String)> = None;
     for (i, step) in script.steps.iter().enumerate() {
         let n = i + 1;
-        if let Some((at, err)) = pending.take()
-            && !matches!(step, Step::ExpectError(_))
+        if !matches!(step, Step::ExpectError(_))
+            && let Some((at, err)) = pending.take()
         {
             report.failures += 1;
             report
@@ -118,6 +118,15 @@ fn resolve(dir: &Path, p: &str) -> PathBuf {
     dir.join(p)
 }
 
+/// An output path of a script, its folder created (scripts write next to themselves).
+fn output(dir: &Path, p: &str) -> PathBuf {
+    let path = resolve(dir, p);
+    if let Some(parent) = path.parent() {
+        let _ = std::fs::create_dir_all(parent);
+    }
+    path
+}
+
 fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
     let v = |d: &Dir| d.vec();
     Ok(match step {
@@ -125,8 +134,8 @@ fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
             Some(name) => Edit::Replace(Box::new(builtin::scene(name).map_err(|e| e.to_string())?)),
             None => Edit::Load(resolve(dir, p)),
         },
-        Step::Save(p) => Edit::Save(resolve(dir, p)),
-        Step::Export(p) => Edit::Export(resolve(dir, p)),
+        Step::Save(p) => Edit::Save(output(dir, p)),
+        Step::Export(p) => Edit::Export(output(dir, p)),
         Step::SetDirection { row, col, dir } => Edit::SetDirection {
             row: *row,
             col: *col,

@@ -33,10 +33,21 @@ impl SceneError {
         Self::at(file, 0, 0, message)
     }
 
-    /// From a RON parse error: keeps its position.
-    pub fn ron(file: &Path, e: &ron::error::SpannedError) -> Self {
-        let msg = explain(&e.code);
-        Self::at(file, e.span.start.line, e.span.start.col, msg)
+    /// From a RON parse error of `text`: keeps its position; an error at the
+    /// very end of the text is reported as a truncated file.
+    pub fn ron(file: &Path, text: &str, e: &ron::error::SpannedError) -> Self {
+        let mut msg = explain(&e.code);
+        let (line, col) = (e.span.start.line, e.span.start.col);
+        let trimmed = text.trim_end();
+        let last_line = trimmed.lines().count().max(1);
+        let last_col = trimmed.lines().last().map_or(0, |l| l.chars().count());
+        let at_end = line > last_line || (line == last_line && col >= last_col);
+        if at_end && !matches!(e.code, ron::Error::Eof) {
+            msg = format!(
+                "the file ends too early ({msg}); it looks truncated — check that every bracket is closed"
+            );
+        }
+        Self::at(file, line, col, msg)
     }
 
     /// The place of the first `key:` in `text` (for errors that span fields).

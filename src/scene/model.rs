@@ -235,7 +235,14 @@ impl Scene {
         .map_err(|e| at("tangents", e.to_string()))?;
         let mut details = Details::new();
         for d in &f.details {
-            let v = d.local.vec().normalize();
+            let v = streamline_kernel::Tangent::new(d.local.vec())
+                .map_err(|_| {
+                    at(
+                        "details",
+                        "a detail's local direction is zero; remove the detail".into(),
+                    )
+                })?
+                .get();
             if details.insert((d.level, d.row, d.col), v).is_some() {
                 return Err(at(
                     "details",
@@ -296,7 +303,7 @@ impl Scene {
     pub fn parse(text: &str, file: &Path) -> Result<Self, SceneError> {
         let f: SceneFile = ron::Options::default()
             .from_str(text)
-            .map_err(|e| SceneError::ron(file, &e))?;
+            .map_err(|e| SceneError::ron(file, text, &e))?;
         Scene::from_file(f, file, text)
     }
 

@@ -133,7 +133,7 @@ impl Script {
     pub fn parse(text: &str, file: &Path) -> Result<Self, SceneError> {
         let s: Script = ron::Options::default()
             .from_str(text)
-            .map_err(|e| SceneError::ron(file, &e))?;
+            .map_err(|e| SceneError::ron(file, text, &e))?;
         if s.steps.len() > MAX_STEPS {
             return Err(SceneError::locate(
                 file,

@@ -1,0 +1,108 @@
+//! Runs every script in tests/scripts through the ECS (headless), and checks
+//! the `play` subcommand's exit codes.
+
+use std::path::Path;
+use std::process::Command;
+use streamline_studio::ecs::playback;
+use streamline_studio::scene::{builtin, script::Script};
+
+#[test]
+fn every_script_passes() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scripts");
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    names.sort();
+    assert!(
+        names.len() >= 10,
+        "at least 10 scripts, found {}",
+        names.len()
+    );
+    let mut failed = Vec::new();
+    for path in &names {
+        let script = Script::load(path).unwrap_or_else(|e| panic!("{e}"));
+        let report = playback::play(&script, &dir, builtin::default_scene());
+        println!("== {}", path.display());
+        for l in &report.lines {
+            println!("{l}");
+        }
+        if !report.passed() {
+            failed.push(path.display().to_string());
+        }
+    }
+    assert!(failed.is_empty(), "scripts failed: {failed:?}");
+    // Script 08 exported the surface: parse the OBJ back and check the STL size.
+    let obj = std::fs::read_to_string(dir.join("out/08-car.obj")).unwrap();
+    let v = obj.lines().filter(|l| l.starts_with("v ")).count();
+    let vn = obj.lines().filter(|l| l.starts_with("vn ")).count();
+    let mut faces = 0;
+    for l in obj.lines().filter(|l| l.starts_with("f ")) {
+        faces += 1;
+        for corner in l[2..].split_whitespace() {
+            let (a, b) = corner.split_once("//").expect("v//vn corners");
+            let (a, b): (usize, usize) = (a.parse().unwrap(), b.parse().unwrap());
+            assert!(
+                a >= 1 && a <= v && b >= 1 && b <= vn,
+                "index out of range in `{l}`"
+            );
+        }
+    }
+    for l in obj
+        .lines()
+        .filter(|l| l.starts_with("v ") || l.starts_with("vn "))
+    {
+        assert!(
+            l.split_whitespace()
+                .skip(1)
+                .all(|x| x.parse::<f64>().is_ok_and(f64::is_finite))
+        );
+    }
+    assert_eq!(v, 41 * 66, "41 streamlines of 66 points at depth 3");
+    assert_eq!(v, vn);
+    assert_eq!(faces, 2 * 40 * 65);
+    let stl = std::fs::read(dir.join("out/08-car.stl")).unwrap();
+    let tris = u32::from_le_bytes(stl[80..84].try_into().unwrap()) as usize;
+    assert_eq!(tris, faces);
+    assert_eq!(stl.len(), 84 + 50 * tris);
+}
+
+#[test]
+fn play_exit_codes() {
+    let bin = env!("CARGO_BIN_EXE_streamline-studio");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let ok = Command::new(bin)
+        .args(["play"])
+        .arg(dir.join("scripts/11-minimal-flat.ron"))
+        .output()
+        .unwrap();
+    assert_eq!(
+        ok.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
+    let out = String::from_utf8_lossy(&ok.stdout);
+    assert!(out.lines().count() >= 8, "one line per step:\n{out}");
+    // An expectation that fails: exit 1.
+    let tmp = std::env::temp_dir().join(format!("ss-fail-{}.ron", std::process::id()));
+    std::fs::write(
+        &tmp,
+        "(steps: [Load(\"builtin:minimal\"), ExpectScene(streamlines: Some(3))])",
+    )
+    .unwrap();
+    let fail = Command::new(bin).arg("play").arg(&tmp).output().unwrap();
+    assert_eq!(fail.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&fail.stdout).contains("FAIL streamlines is 5, expected 3"));
+    // A broken script: exit 2 with file:line:col.
+    std::fs::write(&tmp, "(steps: [\n  Jump,\n])").unwrap();
+    let bad = Command::new(bin).arg("play").arg(&tmp).output().unwrap();
+    assert_eq!(bad.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert!(
+        err.contains(&format!("{}:2:", tmp.display())) && err.contains("unknown variant `Jump`"),
+        "{err}"
+    );
+    let _ = std::fs::remove_file(&tmp);
+}
