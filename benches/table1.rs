@@ -1,6 +1,7 @@
 //! The paper's Table 1 side by side (subdivision vs QI curves, 5 control tangents)
 //! and full builds of the 9×6 car surface at depths 0–5. The workloads are the
-//! ones `streamline-studio bench` runs (`src/workloads.rs`).
+//! ones `streamline-studio bench` runs (`src/workloads.rs`); the `incremental`
+//! group times one edit through the ECS against a full rebuild (issue 3).
 //!
 //! Run: `cargo bench --bench table1`. Figures and ratios: docs/benchmarks.md.
 
@@ -31,5 +32,16 @@ fn surface(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, table1, surface);
+fn incremental(c: &mut Criterion) {
+    let mut g = c.benchmark_group("incremental");
+    g.warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3))
+        .sample_size(10);
+    for mut w in workloads::incremental() {
+        g.bench_function(&w.name, |b| b.iter(|| black_box((w.run)())));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, table1, surface, incremental);
 criterion_main!(benches);

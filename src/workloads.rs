@@ -93,5 +93,54 @@ pub fn car_surface(depths: impl IntoIterator<Item = u32>) -> Vec<Workload> {
 pub fn all() -> Vec<Workload> {
     let mut rows = table1();
     rows.extend(car_surface([3, 5]));
+    rows.extend(incremental());
     rows
+}
+
+/// One edit through the ECS pipeline (message → blend → integrate → mesh) vs a
+/// full rebuild, on the car and on a 20×20 net, at depths 3 and 5 (issue 3).
+/// Rows: `ecs/<net>/d<depth>/<edit-interior|edit-corner|full>`.
+pub fn incremental() -> Vec<Workload> {
+    use crate::ecs::{self, Edit, SurfaceData};
+    use crate::scene::Scene;
+    let mut out = Vec::new();
+    for (net, design, interior) in [
+        ("car", presets::car1(), (2usize, 4usize)),
+        ("grid20", presets::wavy(20, 20), (10, 9)),
+    ] {
+        for depth in [3u32, 5] {
+            let cases = [
+                ("edit-interior", Some(interior)),
+                ("edit-corner", Some((0, 0))),
+                ("full", None),
+            ];
+            for (what, cell) in cases {
+                let scene = Scene::from_design(net, design.clone(), depth);
+                let mut app = ecs::headless_app(scene);
+                let mut sign = 1.0;
+                let order = design.order;
+                out.push(Workload {
+                    name: format!("ecs/{net}/d{depth}/{what}"),
+                    run: Box::new(move || {
+                        let edit = match cell {
+                            Some((row, col)) => {
+                                sign = -sign;
+                                Edit::Rotate {
+                                    row,
+                                    col,
+                                    axis: DVec3::Y,
+                                    radians: 0.01 * sign,
+                                }
+                            }
+                            None => Edit::SetBlendOrder(order),
+                        };
+                        ecs::send(&mut app, edit);
+                        app.update();
+                        app.world().resource::<SurfaceData>().mesh.positions[0].x
+                    }),
+                });
+            }
+        }
+    }
+    out
 }

@@ -196,3 +196,53 @@ fn cli_help_on_every_subcommand() {
         assert!(out.contains("Usage"), "{sub} --help");
     }
 }
+
+#[test]
+fn cli_build_prints_stats_and_exports() {
+    let dir = std::env::temp_dir().join(format!("ss-build-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/car1.ron");
+    let stl = dir.join("car.stl");
+    let (code, out, err) = run(
+        &[
+            "build",
+            scene,
+            "--depth",
+            "3",
+            "--export",
+            stl.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["streamlines"], 41);
+    assert_eq!(v["points_per_streamline"], 66);
+    assert_eq!(v["levels"][3], serde_json::json!([41, 65]));
+    // Eq. 65: each streamline's length is exactly s_n − s_0 (to rounding).
+    assert!(
+        v["length_error"]["max_abs"].as_f64().unwrap() < 1e-12,
+        "{out}"
+    );
+    assert_eq!(
+        v["length_error"]["per_streamline"]
+            .as_array()
+            .unwrap()
+            .len(),
+        41
+    );
+    assert!(v["timings_us"]["us_blend"].as_f64().unwrap() > 0.0);
+    let bytes = std::fs::read(&stl).unwrap();
+    assert_eq!(bytes.len(), 84 + 50 * 2 * 40 * 65);
+    // Bad scene file: exit 2, file:line:col.
+    let bad = dir.join("bad.ron");
+    std::fs::write(&bad, "(version: 1, tangents: [[(0,0,0)]])").unwrap();
+    let (code, _, err) = run(&["build", bad.to_str().unwrap()], "");
+    assert_eq!(code, 2);
+    assert!(err.contains(&format!("{}:1:", bad.display())), "{err}");
+    assert_eq!(err.trim().lines().count(), 1, "one line: {err}");
+    // Depth past the cap: exit 2.
+    let (code, _, err) = run(&["build", "car1", "--depth", "13"], "");
+    assert_eq!(code, 2, "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

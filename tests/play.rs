@@ -62,6 +62,14 @@ fn every_script_passes() {
     assert_eq!(v, 41 * 66, "41 streamlines of 66 points at depth 3");
     assert_eq!(v, vn);
     assert_eq!(faces, 2 * 40 * 65);
+    // An independent OBJ reader (tobj) agrees.
+    let (models, _) =
+        tobj::load_obj(dir.join("out/08-car.obj"), &tobj::LoadOptions::default()).unwrap();
+    let m = &models[0].mesh;
+    assert_eq!(m.positions.len(), 3 * v);
+    assert_eq!(m.normals.len(), 3 * vn);
+    assert_eq!(m.indices.len(), 3 * faces);
+    assert!(m.positions.iter().all(|x| x.is_finite()));
     let stl = std::fs::read(dir.join("out/08-car.stl")).unwrap();
     let tris = u32::from_le_bytes(stl[80..84].try_into().unwrap()) as usize;
     assert_eq!(tris, faces);

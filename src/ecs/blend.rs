@@ -10,10 +10,14 @@ use std::time::Instant;
 use streamline_kernel::incremental::{Buffers, LevelState, build_levels, propagate};
 use streamline_kernel::window::{Span, Window};
 
+/// Control handles whose direction or parameter changed.
+type ChangedControls<'w, 's> =
+    Query<'w, 's, &'static ControlHandle, Or<(Changed<Direction>, Changed<ArcParam>)>>;
+
 pub(crate) fn collect_seeds(
     model: Res<Model>,
     mut seeds: ResMut<Seeds>,
-    controls: Query<&ControlHandle, Or<(Changed<Direction>, Changed<ArcParam>)>>,
+    controls: ChangedControls,
     details: Query<&DetailHandle, Changed<DetailLocal>>,
 ) {
     if model.full {

@@ -166,7 +166,7 @@ impl CurveScheme {
             CurveScheme::Chaikin => {
                 let i = k / 2;
                 let m = mid(t[i], t[i + 1]);
-                if k % 2 == 0 {
+                if k.is_multiple_of(2) {
                     mid(t[i], m)
                 } else {
                     mid(m, t[i + 1])
@@ -250,7 +250,7 @@ impl FourPointRule {
     #[inline]
     pub fn at(&self, t: &[DVec3], k: usize) -> DVec3 {
         let n = t.len();
-        if k % 2 == 0 {
+        if k.is_multiple_of(2) {
             return t[k / 2];
         }
         if n == 2 {

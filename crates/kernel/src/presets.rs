@@ -128,6 +128,36 @@ pub fn minimal() -> Design {
     .expect("valid")
 }
 
+/// A gently wavy `rows × cols` Kobbelt net with unit intervals, for tests and
+/// benchmarks of larger nets (the 20×20 net of the incremental-rebuild figures).
+pub fn wavy(rows: usize, cols: usize) -> Design {
+    let net = (0..rows * cols)
+        .map(|i| {
+            let (r, c) = ((i / cols) as f64, (i % cols) as f64);
+            DVec3::new(1.0, 0.25 * (0.7 * r).sin(), 0.35 * (0.9 * c).cos()).normalize()
+        })
+        .collect();
+    let s = (0..rows * cols).map(|i| (i % cols) as f64 * 0.5).collect();
+    let t = (0..rows).map(|r| r as f64 * 0.3).collect();
+    let initial = InitialCurve::new(
+        &[DVec3::Y, DVec3::Y],
+        2,
+        0.3 * (rows - 1).max(1) as f64,
+        DVec3::ZERO,
+    )
+    .expect("line");
+    Design::new(
+        &Grid::new(rows, cols, net).expect("sizes"),
+        Grid::new(rows, cols, s).expect("sizes"),
+        t,
+        0,
+        SurfaceScheme::default(),
+        BlendOrder::SFirst,
+        initial,
+    )
+    .expect("valid wavy design")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -50,7 +50,7 @@ pub fn at(scheme: CurveScheme, p: &[f64], k: usize) -> f64 {
     match scheme {
         CurveScheme::Chaikin => {
             let i = k / 2;
-            if k % 2 == 0 {
+            if k.is_multiple_of(2) {
                 0.75 * p[i] + 0.25 * p[i + 1]
             } else {
                 0.25 * p[i] + 0.75 * p[i + 1]
@@ -67,7 +67,7 @@ pub fn at(scheme: CurveScheme, p: &[f64], k: usize) -> f64 {
             }
         }
         CurveScheme::FourPoint { omega } => {
-            if k % 2 == 0 {
+            if k.is_multiple_of(2) {
                 return p[k / 2];
             }
             if n == 2 {
