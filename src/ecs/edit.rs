@@ -161,23 +161,17 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             full(ctx);
             Ok(format!("edit depth {n}"))
         }
-        Edit::Undo => {
-            let prev = ctx.history.undo.pop_back().ok_or("nothing to undo")?;
+        Edit::Undo | Edit::Redo => {
+            let undo = matches!(edit, Edit::Undo);
             let cur = ctx.model.scene.clone();
-            ctx.history.redo.push(cur);
-            ctx.history.last_group = None;
-            restore(ctx, prev);
+            let target = ctx.history.step(undo, cur).ok_or(if undo {
+                "nothing to undo"
+            } else {
+                "nothing to redo"
+            })?;
+            restore(ctx, target);
             ctx.model.unsaved = true;
-            Ok("undone".into())
-        }
-        Edit::Redo => {
-            let next = ctx.history.redo.pop().ok_or("nothing to redo")?;
-            let cur = ctx.model.scene.clone();
-            ctx.history.undo.push_back(cur);
-            ctx.history.last_group = None;
-            restore(ctx, next);
-            ctx.model.unsaved = true;
-            Ok("redone".into())
+            Ok(if undo { "undone" } else { "redone" }.into())
         }
         Edit::Load(path) => {
             let scene = io::load(path).map_err(|e| format!("{e} (the current scene is kept)"))?;
@@ -317,13 +311,7 @@ fn set_direction(ctx: &mut EditCtx, row: usize, col: usize, dir: DVec3) -> Resul
         Some((_, _, mut d)) => {
             d.set_if_neq(DetailLocal(local));
         }
-        None => {
-            let e = ctx
-                .commands
-                .spawn((DetailHandle { level, row, col }, DetailLocal(local)))
-                .id();
-            ctx.model.detail_keys.insert(e, key);
-        }
+        None => spawn_detail(&mut ctx.commands, key, local),
     }
     Ok(format!("detail ({row}, {col}) at level {level}"))
 }
@@ -411,11 +399,7 @@ fn restore(ctx: &mut EditCtx, target: Scene) {
     }
     for (&(level, row, col), &v) in &target.details {
         if !old.contains_key(&(level, row, col)) {
-            let e = ctx
-                .commands
-                .spawn((DetailHandle { level, row, col }, DetailLocal(v)))
-                .id();
-            ctx.model.detail_keys.insert(e, (level, row, col));
+            spawn_detail(&mut ctx.commands, (level, row, col), v);
         }
     }
     ctx.model.scene = target;
@@ -429,7 +413,6 @@ fn respawn_handles(ctx: &mut EditCtx) {
     for (e, ..) in ctx.details.iter() {
         ctx.commands.entity(e).despawn();
     }
-    ctx.model.detail_keys.clear();
     let d = &ctx.model.scene.design;
     for row in 0..d.net.rows() {
         for col in 0..d.net.cols() {
@@ -447,11 +430,11 @@ fn respawn_handles(ctx: &mut EditCtx) {
         .iter()
         .map(|(&k, &v)| (k, v))
         .collect();
-    for ((level, row, col), v) in details {
-        let e = ctx
-            .commands
-            .spawn((DetailHandle { level, row, col }, DetailLocal(v)))
-            .id();
-        ctx.model.detail_keys.insert(e, (level, row, col));
+    for (key, v) in details {
+        spawn_detail(&mut ctx.commands, key, v);
     }
+}
+
+fn spawn_detail(commands: &mut Commands, (level, row, col): (u32, usize, usize), local: DVec3) {
+    commands.spawn((DetailHandle { level, row, col }, DetailLocal(local)));
 }

@@ -2,7 +2,7 @@
 
 use crate::scene::Scene;
 use bevy::prelude::*;
-use std::collections::{HashMap, VecDeque};
+use std::collections::VecDeque;
 use std::path::PathBuf;
 use streamline_kernel::mesh::SurfaceMesh;
 use streamline_kernel::multires::Details;
@@ -23,8 +23,6 @@ pub struct Model {
     pub(crate) full: bool,
     /// Handles must be spawned again from the scene (end of the edit stage).
     pub(crate) respawn: bool,
-    /// Details of removed detail handles, by entity, to mark their cell dirty.
-    pub(crate) detail_keys: HashMap<Entity, (u32, usize, usize)>,
 }
 
 impl Model {
@@ -36,7 +34,6 @@ impl Model {
             unsaved: false,
             full: true,
             respawn: true,
-            detail_keys: HashMap::new(),
         }
     }
 
@@ -89,6 +86,23 @@ impl History {
             self.undo.pop_front();
         }
         self.redo.clear();
+    }
+
+    /// Undo (`undo`) or redo one step from `current`: returns the scene to
+    /// restore and moves `current` onto the other stack.
+    pub(crate) fn step(&mut self, undo: bool, current: Scene) -> Option<Scene> {
+        let target = if undo {
+            self.undo.pop_back()
+        } else {
+            self.redo.pop()
+        }?;
+        if undo {
+            self.redo.push(current);
+        } else {
+            self.undo.push_back(current);
+        }
+        self.last_group = None;
+        Some(target)
     }
 
     /// Forgets everything (after a load).
