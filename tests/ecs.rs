@@ -371,6 +371,47 @@ fn grouped_edits_are_one_undo_step() {
     assert_eq!(max_diff(&points(&app), &start), 0.0);
 }
 
+/// Esc during a drag: `CancelGroup` restores the scene from before the drag and
+/// leaves the history as it was (the earlier step is still undoable, redo is kept).
+#[test]
+fn cancelled_drag_restores_and_leaves_history() {
+    let mut app = car_app(0, 3);
+    ecs::apply(
+        &mut app,
+        Edit::Rotate {
+            row: 1,
+            col: 1,
+            axis: DVec3::Z,
+            radians: 0.3,
+        },
+    )
+    .unwrap();
+    let before = points(&app);
+    for k in 1..6 {
+        app.world_mut().write_message(ecs::EditMessage {
+            edit: Edit::Rotate {
+                row: 4,
+                col: 2,
+                axis: DVec3::X,
+                radians: 0.05 * k as f64,
+            },
+            group: Some(11),
+        });
+        app.update();
+    }
+    assert!(max_diff(&points(&app), &before) > 1e-3);
+    assert_eq!(app.world().resource::<ecs::History>().undo_len(), 2);
+    ecs::apply(&mut app, Edit::CancelGroup(11)).unwrap();
+    assert_eq!(max_diff(&points(&app), &before), 0.0);
+    assert!(max_diff(&points(&app), &reference_points(&scene(&app))) < 1e-12);
+    assert_eq!(app.world().resource::<ecs::History>().undo_len(), 1);
+    assert_eq!(app.world().resource::<ecs::History>().redo_len(), 0);
+    // a second cancel, or one of another group, is refused
+    assert!(ecs::apply(&mut app, Edit::CancelGroup(11)).is_err());
+    ecs::apply(&mut app, Edit::Undo).unwrap();
+    assert_eq!(app.world().resource::<ecs::History>().undo_len(), 0);
+}
+
 /// Edits with unusable values are refused with a message and change nothing.
 #[test]
 fn bad_edits_are_refused() {

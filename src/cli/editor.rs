@@ -1,37 +1,27 @@
 //! Opening the editor from the command line, and `screenshot`.
 
-use super::input::CliError;
-use crate::editor::{self, EditorOptions, ScreenshotRequest};
+use super::input::{CliError, scene_arg};
+use crate::editor::{self, EditorDirs, EditorOptions, PanelName, ScreenshotRequest, SurfaceMode};
 use clap::Args;
 use std::path::PathBuf;
-use streamline_kernel::{Design, presets};
 
-/// The built-in scenes by name.
-pub fn builtin(name: &str) -> Result<Design, CliError> {
-    Ok(match name {
-        "car1" => presets::car1(),
-        "car2" => presets::car2(),
-        "qi-down" => presets::qi_demo(0),
-        "qi-side" => presets::qi_demo(1),
-        "qi-up" => presets::qi_demo(2),
-        "minimal" => presets::minimal(),
-        other => {
-            return Err(CliError::Usage(format!(
-                "unknown built-in scene '{other}'; choose car1, car2, qi-down, qi-side, qi-up or minimal"
-            )));
-        }
-    })
+/// A scene argument: a `.ron` file (with its path) or a built-in scene's name.
+fn open_scene(arg: &str) -> Result<(crate::scene::Scene, Option<PathBuf>), CliError> {
+    let scene = scene_arg(arg)?;
+    let p = PathBuf::from(arg);
+    let path = (arg.ends_with(".ron") || p.is_file()).then_some(p);
+    Ok((scene, path))
 }
 
-/// Opens the editor on a built-in scene.
+/// Opens the editor on a scene file or a built-in scene.
 pub fn open(scene: &str) -> Result<(), CliError> {
-    let design = builtin(scene)?;
+    let (scene, path) = open_scene(scene)?;
     editor::run(EditorOptions {
-        design,
-        name: scene.to_string(),
-        depth: 3,
+        scene,
+        path,
         size: (1280, 800),
         screenshot: None,
+        dirs: EditorDirs::from_env(),
     })
     .map_err(|e| CliError::Usage(e.to_string()))
 }
@@ -39,23 +29,36 @@ pub fn open(scene: &str) -> Result<(), CliError> {
 /// Arguments of `screenshot`.
 #[derive(Debug, Args)]
 pub struct ScreenshotArgs {
-    /// The built-in scene to show.
-    #[arg(long, default_value = "car1")]
+    /// A scene file (.ron) or a built-in scene's name.
+    #[arg(default_value = "car1")]
     scene: String,
+    /// The same, as an option (kept for older scripts).
+    #[arg(long = "scene", hide = true)]
+    scene_opt: Option<String>,
     /// Where to write the PNG.
     #[arg(long)]
     out: PathBuf,
     /// Window size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x800")]
     size: String,
-    /// Display depth.
-    #[arg(long, default_value_t = 3)]
-    depth: u32,
+    /// Open only this panel section: file, subdivision, selection, display, analysis, stats.
+    #[arg(long)]
+    panel: Option<String>,
+    /// Surface display: shaded, gaussian, mean, zebra.
+    #[arg(long)]
+    analysis: Option<String>,
+    /// Draw curvature combs.
+    #[arg(long)]
+    comb: bool,
+    /// Select handle ROW,COL of the edit depth.
+    #[arg(long)]
+    select: Option<String>,
 }
 
 /// `screenshot`.
 pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
-    let design = builtin(&a.scene)?;
+    let arg = a.scene_opt.clone().unwrap_or(a.scene.clone());
+    let (scene, path) = open_scene(&arg)?;
     let size = a
         .size
         .split_once('x')
@@ -73,19 +76,52 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
             a.out.display()
         )));
     }
-    let _ = std::fs::remove_file(&a.out);
-    let req = ScreenshotRequest {
-        path: a.out.clone(),
-        frames: 30,
+    let panel = match &a.panel {
+        None => None,
+        Some(p) => Some(PanelName::parse(p).ok_or_else(|| {
+            CliError::Usage(format!(
+                "--panel '{p}': choose file, subdivision, selection, display, analysis or stats"
+            ))
+        })?),
     };
-    editor::run(EditorOptions {
-        design,
-        name: a.scene.clone(),
-        depth: a.depth,
+    let analysis = match &a.analysis {
+        None => None,
+        Some(m) => Some(SurfaceMode::parse(m).ok_or_else(|| {
+            CliError::Usage(format!(
+                "--analysis '{m}': choose shaded, gaussian, mean or zebra"
+            ))
+        })?),
+    };
+    let select = match &a.select {
+        None => None,
+        Some(s) => Some(
+            s.split_once(',')
+                .and_then(|(r, c)| Some((r.trim().parse().ok()?, c.trim().parse().ok()?)))
+                .ok_or_else(|| {
+                    CliError::Usage(format!("--select '{s}': give ROW,COL, e.g. 3,4"))
+                })?,
+        ),
+    };
+    let _ = std::fs::remove_file(&a.out);
+    let mut req = ScreenshotRequest::new(a.out.clone());
+    req.panel = panel;
+    req.analysis = analysis;
+    req.comb = a.comb;
+    req.select = select;
+    // a screenshot never touches the user's recent files or recovery
+    let dirs = EditorDirs {
+        home: std::env::temp_dir().join(format!("streamline-shot-{}", std::process::id())),
+    };
+    let home = dirs.home.clone();
+    let r = editor::run(EditorOptions {
+        scene,
+        path,
         size,
         screenshot: Some(req),
-    })
-    .map_err(|e| CliError::Usage(e.to_string()))?;
+        dirs,
+    });
+    let _ = std::fs::remove_dir_all(home);
+    r.map_err(|e| CliError::Usage(e.to_string()))?;
     if !a.out.is_file() {
         return Err(CliError::Usage(format!(
             "no screenshot was written to {}; see the log above",

@@ -19,9 +19,13 @@ pub use input::CliError;
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
-    /// With no subcommand: the built-in scene to open (car1, car2, qi-down, qi-side, qi-up, minimal).
-    #[arg(long, default_value = "car1")]
-    pub scene: String,
+    /// With no subcommand: the scene to open, a .ron file or a built-in scene
+    /// (car1, car2, qi-down, qi-side, qi-up, minimal).
+    #[arg(value_name = "SCENE")]
+    pub file: Option<String>,
+    /// The same as SCENE, as an option.
+    #[arg(long)]
+    pub scene: Option<String>,
 }
 
 /// Headless subcommands.
@@ -64,7 +68,12 @@ pub fn main() -> i32 {
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
-        None => editor::open(&cli.scene),
+        None => editor::open(
+            cli.file
+                .as_deref()
+                .or(cli.scene.as_deref())
+                .unwrap_or(crate::scene::builtin::DEFAULT),
+        ),
         Some(Command::Curve(a)) => geometry::curve(a),
         Some(Command::Surface(a)) => geometry::surface(a),
         Some(Command::Integrate(a)) => geometry::integrate(a),

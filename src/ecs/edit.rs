@@ -173,6 +173,14 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             ctx.model.unsaved = true;
             Ok(if undo { "undone" } else { "redone" }.into())
         }
+        Edit::CancelGroup(g) => {
+            let target = ctx
+                .history
+                .cancel(*g)
+                .ok_or_else(|| format!("drag {g} is not the last edit; nothing to cancel"))?;
+            restore(ctx, target);
+            Ok("drag cancelled".into())
+        }
         Edit::Load(path) => {
             let scene = io::load(path).map_err(|e| format!("{e} (the current scene is kept)"))?;
             replace(ctx, scene);
@@ -183,6 +191,12 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             replace(ctx, (**scene).clone());
             ctx.model.path = None;
             Ok(format!("opened {}", scene.name))
+        }
+        Edit::Recover { scene, origin } => {
+            replace(ctx, (**scene).clone());
+            ctx.model.path = origin.clone();
+            ctx.model.unsaved = true;
+            Ok(format!("recovered {}", scene.name))
         }
         Edit::Save(_) | Edit::Export(_) => Ok(String::new()),
     }
@@ -290,7 +304,7 @@ fn set_direction(ctx: &mut EditCtx, row: usize, col: usize, dir: DVec3) -> Resul
             }
         }
         return Ok(format!(
-            "control ({row}, {col}) → ({:.4}, {:.4}, {:.4})",
+            "control ({row}, {col}) set to ({:.4}, {:.4}, {:.4})",
             dir.x, dir.y, dir.z
         ));
     }

@@ -34,6 +34,9 @@ pub enum Edit {
     SetDisplayDepth(u32),
     /// Level of the handles.
     SetEditDepth(u32),
+    /// Cancel a drag: restore the scene from before the first edit of `group`
+    /// and forget that undo step (no redo). Esc during a drag sends it.
+    CancelGroup(u64),
     /// Undo the last edit.
     Undo,
     /// Redo the last undone edit.
@@ -42,6 +45,14 @@ pub enum Edit {
     Load(PathBuf),
     /// Replace the scene (new, built-in, recovered).
     Replace(Box<Scene>),
+    /// Reopen autosaved work: replace the scene, remember the file it belongs
+    /// to, and keep it marked unsaved.
+    Recover {
+        /// The autosaved scene.
+        scene: Box<Scene>,
+        /// The file it was edited from.
+        origin: Option<PathBuf>,
+    },
     /// Save to a file (atomic, verified).
     Save(PathBuf),
     /// Export the surface mesh (`.obj` or `.stl`).
@@ -70,10 +81,12 @@ impl Edit {
             Edit::SetBlendOrder(o) => format!("blend order {}", o.name()),
             Edit::SetDisplayDepth(d) => format!("display depth {d}"),
             Edit::SetEditDepth(d) => format!("edit depth {d}"),
+            Edit::CancelGroup(g) => format!("cancel drag {g}"),
             Edit::Undo => "undo".into(),
             Edit::Redo => "redo".into(),
             Edit::Load(p) => format!("load {}", p.display()),
             Edit::Replace(s) => format!("open {}", s.name),
+            Edit::Recover { scene, .. } => format!("recover {}", scene.name),
             Edit::Save(p) => format!("save {}", p.display()),
             Edit::Export(p) => format!("export {}", p.display()),
         }
@@ -84,9 +97,11 @@ impl Edit {
         !matches!(
             self,
             Edit::Undo
+                | Edit::CancelGroup(_)
                 | Edit::Redo
                 | Edit::Load(_)
                 | Edit::Replace(_)
+                | Edit::Recover { .. }
                 | Edit::Save(_)
                 | Edit::Export(_)
         )

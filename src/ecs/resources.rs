@@ -105,6 +105,16 @@ impl History {
         Some(target)
     }
 
+    /// Cancels the open group `group`: returns the scene from before its first
+    /// edit and drops that undo step, leaving redo as it was before the group.
+    pub(crate) fn cancel(&mut self, group: u64) -> Option<Scene> {
+        if self.last_group != Some(group) {
+            return None;
+        }
+        self.last_group = None;
+        self.undo.pop_back()
+    }
+
     /// Forgets everything (after a load).
     pub(crate) fn clear(&mut self) {
         self.undo.clear();

@@ -1,80 +1,277 @@
-//! An orbit camera: right drag orbits, middle drag pans, the wheel zooms, `F` frames all.
-//! Viewport input is ignored while the pointer is over an egui panel.
+//! The main 3D camera: an orbit camera over the area the panels leave free.
+//! Right drag orbits, middle drag pans, the wheel zooms; `A` (or Home) frames
+//! everything, `F` frames the selected handle. Viewport input is ignored while
+//! the pointer is over an egui panel.
 
+use super::coords::to_view;
+use crate::ecs::{Model, ModelSet, SurfaceData};
+use crate::scene::format::ViewSpec;
+use bevy::camera::Viewport;
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
 use bevy::prelude::*;
-use bevy_egui::input::egui_wants_any_pointer_input;
+use bevy::window::PrimaryWindow;
+use bevy_egui::input::{egui_wants_any_keyboard_input, egui_wants_any_pointer_input};
+use streamline_kernel::DVec3;
 
-/// The orbit camera's state: a focus point, a distance and two angles.
+/// Marks the main 3D camera.
 #[derive(Component)]
+pub struct MainCamera;
+
+/// The orbit camera's state, in kernel coordinates (z up): the target, the
+/// distance, the angle about the vertical axis and the angle above the horizon.
+#[derive(Component, Debug, Clone, Copy)]
 pub struct OrbitCamera {
-    pub focus: Vec3,
-    pub distance: f32,
-    pub yaw: f32,
-    pub pitch: f32,
+    /// The point looked at.
+    pub target: DVec3,
+    /// Distance from the target.
+    pub distance: f64,
+    /// Radians about the vertical axis.
+    pub yaw: f64,
+    /// Radians above the horizon.
+    pub pitch: f64,
 }
 
 impl OrbitCamera {
-    fn transform(&self) -> Transform {
-        let rot = Quat::from_euler(EulerRot::YXZ, self.yaw, self.pitch, 0.0);
-        Transform::from_translation(self.focus + rot * Vec3::Z * self.distance)
-            .looking_at(self.focus, Vec3::Y)
+    /// The eye's direction from the target (unit, kernel coordinates).
+    pub fn eye_dir(&self) -> DVec3 {
+        let (sy, cy) = self.yaw.sin_cos();
+        let (sp, cp) = self.pitch.sin_cos();
+        DVec3::new(cp * cy, cp * sy, sp)
+    }
+
+    /// The camera transform (view coordinates).
+    pub fn transform(&self) -> Transform {
+        let eye = to_view(self.target + self.eye_dir() * self.distance);
+        Transform::from_translation(eye).looking_at(to_view(self.target), Vec3::Y)
+    }
+
+    /// From a scene's view.
+    pub fn from_view(v: &ViewSpec) -> Self {
+        OrbitCamera {
+            target: v.target.vec(),
+            distance: v.distance.0.abs().max(1e-3),
+            yaw: v.yaw.0.to_radians(),
+            pitch: v.pitch.0.to_radians().clamp(-1.55, 1.55),
+        }
+    }
+
+    /// Looks at a ball of radius `radius` about `center`, keeping the angles.
+    pub fn frame(&mut self, center: DVec3, radius: f64) {
+        self.target = center;
+        // vertical field of view π/4; a margin for the viewport's narrow side
+        self.distance = (radius.max(1e-3) / (std::f64::consts::FRAC_PI_8).sin()) * 1.15;
     }
 }
+
+/// The surface's bounding box (kernel coordinates).
+#[derive(Resource, Debug, Clone, Copy)]
+pub struct SceneBounds {
+    /// Smallest corner.
+    pub min: DVec3,
+    /// Largest corner.
+    pub max: DVec3,
+    generation: u64,
+}
+
+impl Default for SceneBounds {
+    fn default() -> Self {
+        SceneBounds {
+            min: DVec3::splat(-1.0),
+            max: DVec3::splat(1.0),
+            generation: u64::MAX,
+        }
+    }
+}
+
+impl SceneBounds {
+    /// The box's centre.
+    pub fn center(&self) -> DVec3 {
+        0.5 * (self.min + self.max)
+    }
+
+    /// The box's diagonal.
+    pub fn size(&self) -> f64 {
+        (self.max - self.min).length()
+    }
+}
+
+/// The area of the window left to the 3D view by the panels (logical pixels),
+/// set by the panel system each frame.
+#[derive(Resource, Debug, Clone, Copy, Default)]
+pub struct ViewArea(pub Option<Rect>);
+
+/// A request to frame something, from the panels or keys.
+#[derive(Resource, Debug, Default)]
+pub struct FrameRequest(pub Option<(DVec3, f64)>);
 
 pub struct OrbitCameraPlugin;
 
 impl Plugin for OrbitCameraPlugin {
     fn build(&self, app: &mut App) {
-        app.add_systems(Startup, spawn)
-            .add_systems(Update, orbit.run_if(not(egui_wants_any_pointer_input)));
+        app.init_resource::<SceneBounds>()
+            .init_resource::<ViewArea>()
+            .init_resource::<FrameRequest>()
+            .add_systems(Startup, spawn)
+            .add_systems(
+                Update,
+                (
+                    bounds.after(ModelSet::Output),
+                    follow_scene_view,
+                    orbit.run_if(not(egui_wants_any_pointer_input)),
+                    keys.run_if(not(egui_wants_any_keyboard_input)),
+                    apply_frame_and_view,
+                )
+                    .chain(),
+            )
+            .add_systems(PostUpdate, set_viewport);
     }
 }
 
-fn spawn(mut commands: Commands) {
-    let cam = OrbitCamera {
-        focus: Vec3::new(2.1, 0.4, 0.0),
-        distance: 6.5,
-        yaw: 0.65,
-        pitch: -0.42,
-    };
-    commands.spawn((Camera3d::default(), cam.transform(), cam));
+fn spawn(mut commands: Commands, model: Res<Model>) {
+    let cam = OrbitCamera::from_view(&model.scene.view);
+    commands.spawn((
+        Camera3d::default(),
+        Camera {
+            order: 0,
+            ..default()
+        },
+        cam.transform(),
+        cam,
+        MainCamera,
+    ));
+}
+
+fn bounds(data: Res<SurfaceData>, mut b: ResMut<SceneBounds>) {
+    if data.generation == b.generation || data.points.data().is_empty() {
+        return;
+    }
+    let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+    for p in data.points.data() {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
+    }
+    b.min = lo;
+    b.max = hi;
+    b.generation = data.generation;
+}
+
+/// A newly opened scene brings its own view (edits never change the view).
+fn follow_scene_view(
+    model: Res<Model>,
+    mut shown: Local<Option<ViewSpec>>,
+    mut q: Query<&mut OrbitCamera, With<MainCamera>>,
+) {
+    let v = model.scene.view;
+    if *shown == Some(v) {
+        return;
+    }
+    let first = shown.is_none();
+    *shown = Some(v);
+    if !first {
+        for mut cam in &mut q {
+            *cam = OrbitCamera::from_view(&v);
+        }
+    }
 }
 
 fn orbit(
     buttons: Res<ButtonInput<MouseButton>>,
-    keys: Res<ButtonInput<KeyCode>>,
     motion: Res<AccumulatedMouseMotion>,
     scroll: Res<AccumulatedMouseScroll>,
-    mut q: Query<(&mut OrbitCamera, &mut Transform)>,
+    area: Res<ViewArea>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    mut q: Query<&mut OrbitCamera, With<MainCamera>>,
+) {
+    let Ok(mut cam) = q.single_mut() else {
+        return;
+    };
+    // the wheel zooms only over the 3D view
+    let over_view = match (window.cursor_position(), area.0) {
+        (Some(p), Some(r)) => r.contains(p),
+        (Some(_), None) => true,
+        _ => false,
+    };
+    let d = motion.delta.as_dvec2();
+    if buttons.pressed(MouseButton::Right) && d != bevy::math::DVec2::ZERO {
+        cam.yaw -= d.x * 0.008;
+        cam.pitch = (cam.pitch + d.y * 0.008).clamp(-1.55, 1.55);
+    }
+    if buttons.pressed(MouseButton::Middle) && d != bevy::math::DVec2::ZERO {
+        let e = cam.eye_dir();
+        let right = DVec3::Z.cross(e).try_normalize().unwrap_or(DVec3::X);
+        let up = e.cross(right);
+        let k = cam.distance * 0.0015;
+        cam.target += (-right * d.x + up * d.y) * k;
+    }
+    if over_view && scroll.delta.y != 0.0 {
+        let f = (1.0 - scroll.delta.y as f64 * 0.1).clamp(0.5, 1.5);
+        cam.distance = (cam.distance * f).clamp(1e-3, 1e5);
+    }
+}
+
+fn keys(
+    keys: Res<ButtonInput<KeyCode>>,
+    bounds: Res<SceneBounds>,
+    handles: Res<super::handles::HandleArrows>,
+    selection: Res<super::picking::Selection>,
+    mut req: ResMut<FrameRequest>,
+) {
+    if keys.just_pressed(KeyCode::KeyA) || keys.just_pressed(KeyCode::Home) {
+        req.0 = Some((bounds.center(), 0.5 * bounds.size()));
+    }
+    if keys.just_pressed(KeyCode::KeyF) {
+        req.0 = Some(match selection.handle.and_then(|h| handles.find(h)) {
+            Some(a) => (a.base, (a.length * 4.0).max(0.05 * bounds.size())),
+            None => (bounds.center(), 0.5 * bounds.size()),
+        });
+    }
+}
+
+fn apply_frame_and_view(
+    mut req: ResMut<FrameRequest>,
+    mut q: Query<(&mut OrbitCamera, &mut Transform), With<MainCamera>>,
 ) {
     let Ok((mut cam, mut tf)) = q.single_mut() else {
         return;
     };
-    let d = motion.delta;
-    let mut changed = false;
-    if buttons.pressed(MouseButton::Right) && d != Vec2::ZERO {
-        cam.yaw -= d.x * 0.008;
-        cam.pitch = (cam.pitch - d.y * 0.008).clamp(-1.5, 1.5);
-        changed = true;
+    if let Some((c, r)) = req.0.take() {
+        cam.frame(c, r);
     }
-    if buttons.pressed(MouseButton::Middle) && d != Vec2::ZERO {
-        let right = tf.right();
-        let up = tf.up();
-        let k = cam.distance * 0.0015;
-        cam.focus += (-right * d.x + up * d.y) * k;
-        changed = true;
+    let t = cam.transform();
+    if *tf != t {
+        *tf = t;
     }
-    if scroll.delta.y != 0.0 {
-        cam.distance = (cam.distance * (1.0 - scroll.delta.y * 0.1)).clamp(0.3, 200.0);
-        changed = true;
-    }
-    if keys.just_pressed(KeyCode::KeyF) {
-        cam.focus = Vec3::new(2.1, 0.4, 0.0);
-        cam.distance = 6.5;
-        changed = true;
-    }
-    if changed {
-        *tf = cam.transform();
+}
+
+/// Fits the main camera's viewport to the area the panels leave free.
+fn set_viewport(
+    area: Res<ViewArea>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    mut q: Query<&mut Camera, With<MainCamera>>,
+) {
+    let Ok(mut camera) = q.single_mut() else {
+        return;
+    };
+    let viewport = area.0.and_then(|r| {
+        let s = window.scale_factor();
+        let (w, h) = (window.physical_width(), window.physical_height());
+        let min = (r.min * s).as_uvec2().min(UVec2::new(w, h));
+        let max = (r.max * s).as_uvec2().min(UVec2::new(w, h));
+        let size = max.saturating_sub(min);
+        (size.x >= 16 && size.y >= 16).then_some(Viewport {
+            physical_position: min,
+            physical_size: size,
+            ..default()
+        })
+    });
+    let same = match (&camera.viewport, &viewport) {
+        (Some(a), Some(b)) => {
+            a.physical_position == b.physical_position && a.physical_size == b.physical_size
+        }
+        (None, None) => true,
+        _ => false,
+    };
+    if !same {
+        camera.viewport = viewport;
     }
 }

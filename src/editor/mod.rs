@@ -1,42 +1,62 @@
-//! The interactive editor: a Bevy window with an egui panel over the 3D view.
-//! The top-level [`EditorPlugin`] only composes one plugin per feature.
+//! The interactive editor: a Bevy window with egui panels over the 3D view,
+//! built on the ECS layer ([`crate::ecs::ModelPlugin`]): every change it makes
+//! is an [`crate::ecs::EditMessage`], the same that scripts send. The
+//! top-level [`EditorPlugin`] only composes one plugin per feature.
 
+mod analysis;
+mod autosave;
 mod camera;
-mod panel;
+mod coords;
+mod files;
+mod handles;
+mod overlay;
+mod panels;
+mod picking;
 mod screenshot;
-mod state;
-mod view;
+mod sphere_view;
+mod surface;
 
+use crate::ecs::{Model, ModelPlugin};
+use crate::scene::Scene;
+pub use analysis::{AnalysisSettings, SurfaceMode};
 use bevy::prelude::*;
 use bevy::window::WindowResolution;
+pub use files::EditorDirs;
+pub use panels::{PanelName, UiState};
+pub use picking::Selection;
 pub use screenshot::ScreenshotRequest;
-pub use state::DesignState;
-use streamline_kernel::Design;
+use std::path::PathBuf;
 
 /// How to open the editor.
 pub struct EditorOptions {
-    /// The design to open.
-    pub design: Design,
-    /// The design's name, shown in the title.
-    pub name: String,
-    /// Display depth to start at.
-    pub depth: u32,
+    /// The scene to open.
+    pub scene: Scene,
+    /// The file it came from (`None`: a built-in scene).
+    pub path: Option<PathBuf>,
     /// Window size in logical pixels.
     pub size: (u32, u32),
     /// Take a screenshot and exit instead of staying open.
     pub screenshot: Option<ScreenshotRequest>,
+    /// Where recent files and the recovery file live.
+    pub dirs: EditorDirs,
 }
 
-/// Composes the editor's feature plugins.
+/// Composes the editor's feature plugins (the model plugin comes separately).
 pub struct EditorPlugin;
 
 impl Plugin for EditorPlugin {
     fn build(&self, app: &mut App) {
         app.add_plugins((
-            state::DesignStatePlugin,
-            view::SurfaceViewPlugin,
+            surface::SurfacePlugin,
+            overlay::OverlayPlugin,
+            handles::HandlesPlugin,
+            picking::PickingPlugin,
+            sphere_view::SphereViewPlugin,
             camera::OrbitCameraPlugin,
-            panel::PanelPlugin,
+            analysis::AnalysisPlugin,
+            panels::PanelPlugin,
+            files::FilesPlugin,
+            autosave::AutosavePlugin,
             screenshot::ScreenshotPlugin,
         ));
     }
@@ -57,6 +77,32 @@ impl std::fmt::Display for NoDisplay {
     }
 }
 
+/// The message for a machine where the renderer finds no graphics adapter.
+pub const NO_ADAPTER: &str = "no usable graphics adapter (Vulkan or OpenGL) was found: install a \
+    driver, or Mesa's software Vulkan (Debian: `apt-get install mesa-vulkan-drivers`, which \
+    scripts/setup.sh does) and run under `xvfb-run`; the headless subcommands need no graphics \
+    (see --help)";
+
+/// Turns the renderer's panic on a machine without a graphics adapter into
+/// [`NO_ADAPTER`] and exit code 2; other panics keep the default report.
+fn install_adapter_hook() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let msg = info
+            .payload()
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| info.payload().downcast_ref::<String>().cloned())
+            .unwrap_or_default();
+        let lower = msg.to_lowercase();
+        if lower.contains("adapter") || lower.contains("unable to find a gpu") {
+            eprintln!("streamline-studio: {NO_ADAPTER} (renderer: {msg})");
+            std::process::exit(2);
+        }
+        default(info);
+    }));
+}
+
 /// Opens the editor window and runs until it is closed.
 pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
     let has_display = std::env::var_os("DISPLAY").is_some_and(|d| !d.is_empty())
@@ -64,7 +110,8 @@ pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
     if !has_display {
         return Err(NoDisplay);
     }
-    let title = format!("Streamline Studio — {}", opts.name);
+    install_adapter_hook();
+    let title = format!("Streamline Studio — {}", opts.scene.name);
     let mut app = App::new();
     app.add_plugins(DefaultPlugins.set(WindowPlugin {
         primary_window: Some(Window {
@@ -72,12 +119,16 @@ pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
             resolution: WindowResolution::new(opts.size.0, opts.size.1),
             ..default()
         }),
+        // closing asks about unsaved changes first (files.rs)
+        close_when_requested: false,
         ..default()
     }))
     .add_plugins(bevy_egui::EguiPlugin::default())
     .insert_resource(ClearColor(Color::srgb(0.16, 0.17, 0.19)))
-    .insert_resource(DesignState::new(opts.design, opts.name, opts.depth))
+    .add_plugins(ModelPlugin::new(opts.scene))
+    .insert_resource(opts.dirs)
     .add_plugins(EditorPlugin);
+    app.world_mut().resource_mut::<Model>().path = opts.path;
     if let Some(req) = opts.screenshot {
         app.insert_resource(req);
     }

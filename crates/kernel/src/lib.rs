@@ -14,6 +14,7 @@
 //! degenerate geometry is a documented branch, never a NaN; invalid input is a
 //! [`KernelError`] that names the place and the fix. This crate never imports Bevy.
 
+pub mod analysis;
 pub mod curve;
 pub mod design;
 pub mod error;

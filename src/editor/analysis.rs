@@ -1,0 +1,335 @@
+//! Curvature displays: the curvature comb along streamlines, Gaussian and mean
+//! curvature colour maps with a legend, and zebra stripes. The numbers come from
+//! the kernel ([`streamline_kernel::analysis`]); the GPU only looks a value up
+//! in a texture through the vertex's `u` coordinate, so stripes and colour bands
+//! stay crisp inside large triangles.
+
+use super::camera::{MainCamera, OrbitCamera, SceneBounds};
+use super::coords::to_view;
+use super::surface::{ShadedMaterial, ShownSurface, SurfaceEntity};
+use crate::ecs::components::{Streamline, StreamlinePoints, StreamlineTangents};
+use crate::ecs::{ModelSet, SurfaceData};
+use bevy::asset::RenderAssetUsages;
+use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
+use bevy::prelude::*;
+use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
+use streamline_kernel::DVec3;
+use streamline_kernel::analysis::{SurfaceCurvature, comb, surface_curvature, zebra_coordinate};
+
+/// What the surface shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SurfaceMode {
+    /// Lit, one colour.
+    #[default]
+    Shaded,
+    /// Gaussian curvature `K`, blue (negative) – white – red (positive).
+    Gaussian,
+    /// Mean curvature `H`.
+    Mean,
+    /// Reflection lines of horizontal light stripes.
+    Zebra,
+}
+
+impl SurfaceMode {
+    /// All modes, for the panel.
+    pub const ALL: [SurfaceMode; 4] = [
+        SurfaceMode::Shaded,
+        SurfaceMode::Gaussian,
+        SurfaceMode::Mean,
+        SurfaceMode::Zebra,
+    ];
+
+    /// Its name in the panel and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            SurfaceMode::Shaded => "shaded",
+            SurfaceMode::Gaussian => "gaussian",
+            SurfaceMode::Mean => "mean",
+            SurfaceMode::Zebra => "zebra",
+        }
+    }
+
+    /// From its name.
+    pub fn parse(s: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == s)
+    }
+}
+
+/// Analysis settings (the Analysis panel edits them).
+#[derive(Resource, Debug, Clone, PartialEq)]
+pub struct AnalysisSettings {
+    /// Surface display.
+    pub mode: SurfaceMode,
+    /// Draw curvature combs.
+    pub comb: bool,
+    /// Comb length factor (1: the largest tooth is a tenth of the scene).
+    pub comb_scale: f64,
+    /// At most this many streamlines get a comb.
+    pub comb_lines: usize,
+    /// Colour-map range from the data (98th percentile of |value|).
+    pub auto_range: bool,
+    /// The colour map's limit when not automatic: values in `[−limit, limit]`.
+    pub limit: f64,
+    /// Zebra stripes over the half circle of reflected directions.
+    pub stripes: f64,
+}
+
+impl Default for AnalysisSettings {
+    fn default() -> Self {
+        AnalysisSettings {
+            mode: SurfaceMode::Shaded,
+            comb: false,
+            comb_scale: 1.0,
+            comb_lines: 12,
+            auto_range: true,
+            limit: 1.0,
+            stripes: 16.0,
+        }
+    }
+}
+
+/// The curvature of the shown surface and the colour map's range in use.
+#[derive(Resource, Debug, Default)]
+pub struct CurvatureField {
+    /// `K` and `H` per vertex (`None` until a map is shown).
+    pub values: Option<SurfaceCurvature>,
+    /// `(min, max)` of `K`.
+    pub gaussian_range: (f64, f64),
+    /// `(min, max)` of `H`.
+    pub mean_range: (f64, f64),
+    /// The limit the colour map uses now.
+    pub limit: f64,
+    /// Microseconds the last curvature computation took.
+    pub us: f64,
+    generation: u64,
+}
+
+#[derive(Resource)]
+struct AnalysisMaterials {
+    colormap: Handle<StandardMaterial>,
+    zebra: Handle<StandardMaterial>,
+}
+
+pub struct AnalysisPlugin;
+
+impl Plugin for AnalysisPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<AnalysisSettings>()
+            .init_resource::<CurvatureField>()
+            .add_systems(Startup, setup)
+            .add_systems(
+                Update,
+                (apply_mode, draw_combs)
+                    .after(ModelSet::Output)
+                    .after(super::surface::sync_mesh),
+            );
+    }
+}
+
+/// The colour map: blue (negative) – white (zero) – red (positive), 256 texels.
+pub fn diverging(u: f64) -> [u8; 3] {
+    let u = u.clamp(0.0, 1.0);
+    let (lo, mid, hi) = ([0.15, 0.3, 0.85], [0.97, 0.97, 0.97], [0.85, 0.15, 0.15]);
+    let (a, b, t) = if u < 0.5 {
+        (lo, mid, u * 2.0)
+    } else {
+        (mid, hi, (u - 0.5) * 2.0)
+    };
+    let c = |i: usize| ((a[i] + (b[i] - a[i]) * t) * 255.0).round() as u8;
+    [c(0), c(1), c(2)]
+}
+
+fn texture(pixels: Vec<[u8; 3]>, repeat: bool) -> Image {
+    let w = pixels.len() as u32;
+    let data: Vec<u8> = pixels
+        .iter()
+        .flat_map(|p| [p[0], p[1], p[2], 255])
+        .collect();
+    let mut image = Image::new(
+        Extent3d {
+            width: w,
+            height: 1,
+            depth_or_array_layers: 1,
+        },
+        TextureDimension::D2,
+        data,
+        TextureFormat::Rgba8UnormSrgb,
+        RenderAssetUsages::default(),
+    );
+    let mode = if repeat {
+        ImageAddressMode::Repeat
+    } else {
+        ImageAddressMode::ClampToEdge
+    };
+    image.sampler = ImageSampler::Descriptor(ImageSamplerDescriptor {
+        address_mode_u: mode,
+        address_mode_v: ImageAddressMode::ClampToEdge,
+        mag_filter: ImageFilterMode::Linear,
+        min_filter: ImageFilterMode::Linear,
+        ..default()
+    });
+    image
+}
+
+fn setup(
+    mut commands: Commands,
+    mut images: ResMut<Assets<Image>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+) {
+    let ramp = texture(
+        (0..256).map(|i| diverging(i as f64 / 255.0)).collect(),
+        false,
+    );
+    let stripes = texture(
+        (0..64)
+            .map(|i| {
+                if i < 32 {
+                    [20, 20, 24]
+                } else {
+                    [245, 245, 245]
+                }
+            })
+            .collect(),
+        true,
+    );
+    let material = |tex: Handle<Image>| StandardMaterial {
+        base_color_texture: Some(tex),
+        unlit: true,
+        double_sided: true,
+        cull_mode: None,
+        ..default()
+    };
+    commands.insert_resource(AnalysisMaterials {
+        colormap: materials.add(material(images.add(ramp))),
+        zebra: materials.add(material(images.add(stripes))),
+    });
+}
+
+#[allow(clippy::too_many_arguments)]
+fn apply_mode(
+    settings: Res<AnalysisSettings>,
+    data: Res<SurfaceData>,
+    shown: Res<ShownSurface>,
+    shaded: Res<ShadedMaterial>,
+    mats: Res<AnalysisMaterials>,
+    mut field: ResMut<CurvatureField>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    surface: Single<(&Mesh3d, &mut MeshMaterial3d<StandardMaterial>), With<SurfaceEntity>>,
+    camera: Query<&OrbitCamera, With<MainCamera>>,
+    mut last: Local<Option<(AnalysisSettings, u64, Option<DVec3>)>>,
+) {
+    let (mesh, mut material) = surface.into_inner();
+    let want = match settings.mode {
+        SurfaceMode::Shaded => &shaded.0,
+        SurfaceMode::Gaussian | SurfaceMode::Mean => &mats.colormap,
+        SurfaceMode::Zebra => &mats.zebra,
+    };
+    if material.0 != *want {
+        material.0 = want.clone();
+    }
+    let eye = camera
+        .single()
+        .map(|c| c.target + c.eye_dir() * c.distance)
+        .unwrap_or(DVec3::new(10.0, -10.0, 10.0));
+    let zebra = settings.mode == SurfaceMode::Zebra;
+    // zebra stripes are reflections: they move with the eye
+    let key = (settings.clone(), shown.generation, zebra.then_some(eye));
+    let unchanged = last.as_ref() == Some(&key);
+    *last = Some(key);
+    if settings.mode == SurfaceMode::Shaded || unchanged {
+        return;
+    }
+    let uv: Vec<[f32; 2]> = match settings.mode {
+        SurfaceMode::Gaussian | SurfaceMode::Mean => {
+            if field.generation != data.generation || field.values.is_none() {
+                let t0 = std::time::Instant::now();
+                let c = surface_curvature(&data.points);
+                field.gaussian_range = SurfaceCurvature::range(&c.gaussian);
+                field.mean_range = SurfaceCurvature::range(&c.mean);
+                field.values = Some(c);
+                field.generation = data.generation;
+                field.us = t0.elapsed().as_secs_f64() * 1e6;
+            }
+            let Some(c) = field.values.as_ref() else {
+                return;
+            };
+            let v = if settings.mode == SurfaceMode::Gaussian {
+                &c.gaussian
+            } else {
+                &c.mean
+            };
+            let limit = if settings.auto_range {
+                SurfaceCurvature::robust_limit(v, 0.98)
+            } else {
+                settings.limit.abs().max(1e-12)
+            };
+            let uv = v
+                .iter()
+                .map(|&x| [(0.5 + 0.5 * (x / limit).clamp(-1.0, 1.0)) as f32, 0.5])
+                .collect();
+            field.limit = limit;
+            uv
+        }
+        SurfaceMode::Zebra => zebra_uv(&data, &settings, eye),
+        SurfaceMode::Shaded => return,
+    };
+    if let Some(mut m) = meshes.get_mut(&mesh.0)
+        && m.count_vertices() == uv.len()
+    {
+        m.insert_attribute(Mesh::ATTRIBUTE_UV_0, uv);
+    }
+}
+
+/// Zebra `u` coordinates for an eye point (kernel coordinates).
+fn zebra_uv(data: &SurfaceData, settings: &AnalysisSettings, eye: DVec3) -> Vec<[f32; 2]> {
+    data.mesh
+        .positions
+        .iter()
+        .zip(&data.mesh.normals)
+        .map(|(&p, &n)| {
+            let view = (p - eye).normalize_or(DVec3::NEG_Z);
+            let z = zebra_coordinate(n, view, DVec3::Z, settings.stripes);
+            [(z * 0.5) as f32, 0.5]
+        })
+        .collect()
+}
+
+/// Combs on up to `comb_lines` streamlines, spread evenly over the surface.
+fn draw_combs(
+    settings: Res<AnalysisSettings>,
+    bounds: Res<SceneBounds>,
+    lines: Query<(&Streamline, &StreamlineTangents, &StreamlinePoints)>,
+    mut gizmos: Gizmos,
+) {
+    if !settings.comb {
+        return;
+    }
+    let rows = lines.iter().count();
+    if rows == 0 {
+        return;
+    }
+    let step = rows.div_ceil(settings.comb_lines.max(1)).max(1);
+    let chosen = |r: usize| r.is_multiple_of(step) || r + 1 == rows;
+    // one scale for all combs: the largest tooth is a tenth of the scene, times the factor
+    let kmax = lines
+        .iter()
+        .filter(|(l, ..)| chosen(l.row))
+        .flat_map(|(_, t, _)| streamline_kernel::analysis::streamline_curvature(&t.tangents, &t.s))
+        .fold(0.0f64, f64::max);
+    if kmax <= 0.0 {
+        return;
+    }
+    let scale = settings.comb_scale * 0.1 * bounds.size() / kmax;
+    let tooth = Color::srgba(0.95, 0.35, 0.85, 0.8);
+    let hull = Color::srgb(0.95, 0.35, 0.85);
+    for (l, t, p) in &lines {
+        if !chosen(l.row) {
+            continue;
+        }
+        let teeth = comb(&p.0, &t.tangents, &t.s, scale);
+        for c in &teeth {
+            gizmos.line(to_view(c.base), to_view(c.tip), tooth);
+        }
+        gizmos.linestrip(teeth.iter().map(|c| to_view(c.tip)), hull);
+    }
+}

@@ -1,0 +1,170 @@
+//! Autosave and recovery: unsaved work is written to a recovery file every
+//! couple of minutes and on quit (atomically, verified, like any save); on
+//! start the editor offers to recover it when it is newer than the scene's
+//! file. A save removes it; so does discarding changes on quit.
+
+use super::files::{Dialog, EditorDirs, FileUi};
+use super::screenshot::ScreenshotRequest;
+use crate::ecs::{Edit, EditMessage, Model};
+use crate::scene::io;
+use bevy::prelude::*;
+use std::path::PathBuf;
+use std::time::{Duration, Instant, SystemTime};
+
+/// How often unsaved work is written to the recovery file.
+#[derive(Resource, Debug, Clone)]
+pub struct AutosaveConfig {
+    /// The interval.
+    pub interval: Duration,
+}
+
+impl Default for AutosaveConfig {
+    fn default() -> Self {
+        let secs = std::env::var("STREAMLINE_STUDIO_AUTOSAVE_SECS")
+            .ok()
+            .and_then(|s| s.parse::<u64>().ok())
+            .filter(|&s| s > 0)
+            .unwrap_or(120);
+        AutosaveConfig {
+            interval: Duration::from_secs(secs),
+        }
+    }
+}
+
+#[derive(Resource)]
+struct AutosaveState {
+    last: Instant,
+    dirty: bool,
+    was_unsaved: bool,
+}
+
+/// Where the recovery file came from.
+#[derive(Debug, serde::Serialize, serde::Deserialize)]
+struct RecoveryMeta {
+    origin: Option<PathBuf>,
+}
+
+pub struct AutosavePlugin;
+
+impl Plugin for AutosavePlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<AutosaveConfig>()
+            .insert_resource(AutosaveState {
+                last: Instant::now(),
+                dirty: false,
+                was_unsaved: false,
+            })
+            .add_systems(Startup, offer_recovery)
+            .add_systems(Update, tick)
+            .add_systems(Last, on_exit);
+    }
+}
+
+/// Writes the recovery file (and where the scene came from).
+pub fn write_recovery(dirs: &EditorDirs, model: &Model) -> Result<(), String> {
+    std::fs::create_dir_all(&dirs.home).map_err(|e| format!("{}: {e}", dirs.home.display()))?;
+    io::save(&model.scene, &dirs.recovery_file()).map_err(|e| e.to_string())?;
+    let meta = RecoveryMeta {
+        origin: model
+            .path
+            .as_ref()
+            .map(|p| std::path::absolute(p).unwrap_or(p.clone())),
+    };
+    let text = serde_json::to_string(&meta).map_err(|e| e.to_string())?;
+    io::write_atomic(&dirs.recovery_meta(), text.as_bytes(), |_| Ok(())).map_err(|e| e.to_string())
+}
+
+fn remove_recovery(dirs: &EditorDirs) {
+    let _ = std::fs::remove_file(dirs.recovery_file());
+    let _ = std::fs::remove_file(dirs.recovery_meta());
+}
+
+fn offer_recovery(
+    dirs: Res<EditorDirs>,
+    model: Res<Model>,
+    shot: Option<Res<ScreenshotRequest>>,
+    mut ui: ResMut<FileUi>,
+) {
+    if shot.is_some() {
+        return;
+    }
+    let modified = |p: &std::path::Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
+    let Some(saved) = modified(&dirs.recovery_file()) else {
+        return;
+    };
+    let origin = std::fs::read_to_string(dirs.recovery_meta())
+        .ok()
+        .and_then(|t| serde_json::from_str::<RecoveryMeta>(&t).ok())
+        .and_then(|m| m.origin);
+    let scene_time = model.path.as_deref().and_then(modified);
+    if scene_time.is_some_and(|t| t >= saved) {
+        return; // the scene was saved after the autosave
+    }
+    let age = SystemTime::now().duration_since(saved).unwrap_or_default();
+    ui.dialog = Some(Dialog::Recover {
+        when: format!("{} min ago", age.as_secs() / 60),
+        origin,
+    });
+}
+
+/// Opens the recovery file as the current (unsaved) scene.
+pub fn recover(
+    dirs: &EditorDirs,
+    origin: Option<PathBuf>,
+    edits: &mut MessageWriter<EditMessage>,
+    ui: &mut FileUi,
+) {
+    match io::load(&dirs.recovery_file()) {
+        Ok(scene) => {
+            edits.write(EditMessage::from(Edit::Recover {
+                scene: Box::new(scene),
+                origin,
+            }));
+        }
+        Err(e) => ui
+            .errors
+            .push(format!("the autosave cannot be recovered: {e}")),
+    }
+}
+
+fn tick(
+    dirs: Res<EditorDirs>,
+    config: Res<AutosaveConfig>,
+    model: Res<Model>,
+    mut state: ResMut<AutosaveState>,
+    mut ui: ResMut<FileUi>,
+) {
+    if model.is_changed() && model.unsaved {
+        state.dirty = true;
+    }
+    // saved since: the recovery file is stale
+    if state.was_unsaved && !model.unsaved {
+        remove_recovery(&dirs);
+        state.dirty = false;
+    }
+    state.was_unsaved = model.unsaved;
+    if state.dirty && state.last.elapsed() >= config.interval {
+        state.last = Instant::now();
+        state.dirty = false;
+        if let Err(e) = write_recovery(&dirs, &model) {
+            ui.errors.push(format!("autosave failed: {e}"));
+        }
+    }
+}
+
+fn on_exit(
+    mut exits: MessageReader<AppExit>,
+    dirs: Res<EditorDirs>,
+    model: Res<Model>,
+    ui: Res<FileUi>,
+) {
+    if exits.read().count() == 0 {
+        return;
+    }
+    if model.unsaved
+        && !ui.discarded
+        && let Err(e) = write_recovery(&dirs, &model)
+    {
+        error!("autosave on quit failed: {e}");
+    }
+}

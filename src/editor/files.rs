@@ -1,0 +1,544 @@
+//! Files: new, open, save, save as, export OBJ/STL, recent files, the
+//! unsaved-changes prompt (before new, open and quit), and a dialog for edits
+//! that failed (a failed open keeps the current scene: the model refuses it).
+//! Paths are typed or picked from the scene files found nearby (no native file
+//! dialog: that would need GTK or a desktop portal on Linux).
+
+use crate::ecs::{Edit, EditLog, EditMessage, Model};
+use crate::scene::builtin;
+use bevy::prelude::*;
+use bevy::window::WindowCloseRequested;
+use bevy_egui::input::egui_wants_any_keyboard_input;
+use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
+use std::path::{Path, PathBuf};
+
+/// Where the editor keeps its own files: `recent.json` and the recovery file.
+#[derive(Resource, Debug, Clone)]
+pub struct EditorDirs {
+    /// The folder.
+    pub home: PathBuf,
+}
+
+impl EditorDirs {
+    /// `$STREAMLINE_STUDIO_HOME`, else `$XDG_STATE_HOME/streamline-studio`,
+    /// else `~/.local/state/streamline-studio`, else a folder in the temp dir.
+    pub fn from_env() -> Self {
+        let env = |k: &str| {
+            std::env::var_os(k)
+                .filter(|v| !v.is_empty())
+                .map(PathBuf::from)
+        };
+        let home = env("STREAMLINE_STUDIO_HOME")
+            .or_else(|| env("XDG_STATE_HOME").map(|p| p.join("streamline-studio")))
+            .or_else(|| env("HOME").map(|p| p.join(".local/state/streamline-studio")))
+            .unwrap_or_else(|| std::env::temp_dir().join("streamline-studio"));
+        EditorDirs { home }
+    }
+
+    /// The recent-files list.
+    pub fn recent_file(&self) -> PathBuf {
+        self.home.join("recent.json")
+    }
+
+    /// The recovery scene written by autosave.
+    pub fn recovery_file(&self) -> PathBuf {
+        self.home.join("recovery.ron")
+    }
+
+    /// Where the recovery scene came from (its path, if it had one).
+    pub fn recovery_meta(&self) -> PathBuf {
+        self.home.join("recovery.json")
+    }
+}
+
+/// What waits for the unsaved-changes answer.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Pending {
+    /// Replace the scene with a built-in one.
+    New(String),
+    /// Open a file.
+    Open(PathBuf),
+    /// Quit the editor.
+    Quit,
+}
+
+/// What a path prompt is for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PathAction {
+    /// Open a scene.
+    Open,
+    /// Save the scene under a new name.
+    SaveAs,
+    /// Export the mesh as OBJ.
+    ExportObj,
+    /// Export the mesh as STL.
+    ExportStl,
+}
+
+impl PathAction {
+    fn title(self) -> &'static str {
+        match self {
+            PathAction::Open => "Open scene",
+            PathAction::SaveAs => "Save scene as",
+            PathAction::ExportObj => "Export OBJ",
+            PathAction::ExportStl => "Export STL",
+        }
+    }
+
+    fn extension(self) -> &'static str {
+        match self {
+            PathAction::Open | PathAction::SaveAs => "ron",
+            PathAction::ExportObj => "obj",
+            PathAction::ExportStl => "stl",
+        }
+    }
+}
+
+/// A dialog on screen.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Dialog {
+    /// Type or pick a path.
+    Path {
+        /// What for.
+        action: PathAction,
+        /// The path typed so far.
+        text: String,
+        /// What to do after a save-as (from the unsaved prompt).
+        then: Option<Pending>,
+    },
+    /// Unsaved changes: save, discard or cancel before `then`.
+    Unsaved(Pending),
+    /// Offer to recover autosaved work.
+    Recover {
+        /// When it was written.
+        when: String,
+        /// Where it came from.
+        origin: Option<PathBuf>,
+    },
+}
+
+/// The File feature's state.
+#[derive(Resource, Debug, Default)]
+pub struct FileUi {
+    /// The dialog shown.
+    pub dialog: Option<Dialog>,
+    /// Error messages to show (failed open, save, export, refused edits).
+    pub errors: Vec<String>,
+    /// Recently opened or saved files, newest first.
+    pub recent: Vec<PathBuf>,
+    /// To do once the save in flight has succeeded.
+    after_save: Option<Pending>,
+    /// The user chose to discard changes on quit (no recovery file then).
+    pub discarded: bool,
+    /// The last edit-log frame looked at.
+    log_frame: u64,
+    /// The model path last seen (for the recent list).
+    seen_path: Option<PathBuf>,
+}
+
+/// The most recent files kept.
+pub const RECENT_MAX: usize = 8;
+
+pub struct FilesPlugin;
+
+impl Plugin for FilesPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<FileUi>()
+            .add_systems(Startup, load_recent)
+            .add_systems(
+                Update,
+                (
+                    shortcuts.run_if(not(egui_wants_any_keyboard_input)),
+                    close_requested,
+                    watch_outcomes,
+                    continue_after_save,
+                ),
+            )
+            .add_systems(EguiPrimaryContextPass, dialogs);
+    }
+}
+
+fn load_recent(dirs: Res<EditorDirs>, mut ui: ResMut<FileUi>) {
+    ui.recent = std::fs::read_to_string(dirs.recent_file())
+        .ok()
+        .and_then(|t| serde_json::from_str::<Vec<PathBuf>>(&t).ok())
+        .unwrap_or_default();
+    ui.recent.truncate(RECENT_MAX);
+}
+
+fn save_recent(dirs: &EditorDirs, recent: &[PathBuf]) {
+    let _ = std::fs::create_dir_all(&dirs.home);
+    if let Ok(text) = serde_json::to_string_pretty(recent) {
+        // a lost recent list is no loss of work; still written atomically
+        let _ = crate::scene::io::write_atomic(&dirs.recent_file(), text.as_bytes(), |_| Ok(()));
+    }
+}
+
+/// Starts `p`, or asks about unsaved changes first.
+pub fn request(
+    p: Pending,
+    model: &Model,
+    ui: &mut FileUi,
+    edits: &mut MessageWriter<EditMessage>,
+    exit: &mut MessageWriter<AppExit>,
+) {
+    if model.unsaved {
+        ui.dialog = Some(Dialog::Unsaved(p));
+    } else {
+        run_pending(p, ui, edits, exit);
+    }
+}
+
+fn run_pending(
+    p: Pending,
+    ui: &mut FileUi,
+    edits: &mut MessageWriter<EditMessage>,
+    exit: &mut MessageWriter<AppExit>,
+) {
+    match p {
+        Pending::New(name) => match builtin::scene(&name) {
+            Ok(s) => {
+                edits.write(EditMessage::from(Edit::Replace(Box::new(s))));
+            }
+            Err(e) => ui.errors.push(e.to_string()),
+        },
+        Pending::Open(path) => {
+            edits.write(EditMessage::from(Edit::Load(path)));
+        }
+        Pending::Quit => {
+            exit.write(AppExit::Success);
+        }
+    }
+}
+
+/// Saves to the scene's file, or asks for one.
+pub fn save(model: &Model, ui: &mut FileUi, edits: &mut MessageWriter<EditMessage>) {
+    match &model.path {
+        Some(p) => {
+            edits.write(EditMessage::from(Edit::Save(p.clone())));
+        }
+        None => {
+            ui.dialog = Some(Dialog::Path {
+                action: PathAction::SaveAs,
+                text: suggested(model, "ron"),
+                then: None,
+            })
+        }
+    }
+}
+
+/// A path for a new file: next to the scene, named after it.
+pub fn suggested(model: &Model, ext: &str) -> String {
+    let dir = model
+        .path
+        .as_ref()
+        .and_then(|p| p.parent())
+        .map(Path::to_path_buf)
+        .or_else(|| std::env::current_dir().ok())
+        .unwrap_or_default();
+    let stem: String = model
+        .scene
+        .name
+        .chars()
+        .map(|c| {
+            if c.is_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    dir.join(format!("{stem}.{ext}")).display().to_string()
+}
+
+fn shortcuts(
+    keys: Res<ButtonInput<KeyCode>>,
+    model: Res<Model>,
+    mut ui: ResMut<FileUi>,
+    mut edits: MessageWriter<EditMessage>,
+) {
+    let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
+    let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
+    if !ctrl || ui.dialog.is_some() {
+        return;
+    }
+    if keys.just_pressed(KeyCode::KeyZ) {
+        edits.write(EditMessage::from(if shift {
+            Edit::Redo
+        } else {
+            Edit::Undo
+        }));
+    } else if keys.just_pressed(KeyCode::KeyY) {
+        edits.write(EditMessage::from(Edit::Redo));
+    } else if keys.just_pressed(KeyCode::KeyS) {
+        if shift {
+            ui.dialog = Some(Dialog::Path {
+                action: PathAction::SaveAs,
+                text: suggested(&model, "ron"),
+                then: None,
+            });
+        } else {
+            save(&model, &mut ui, &mut edits);
+        }
+    } else if keys.just_pressed(KeyCode::KeyO) {
+        ui.dialog = Some(Dialog::Path {
+            action: PathAction::Open,
+            text: String::new(),
+            then: None,
+        });
+    }
+}
+
+fn close_requested(
+    mut closes: MessageReader<WindowCloseRequested>,
+    model: Res<Model>,
+    mut ui: ResMut<FileUi>,
+    mut edits: MessageWriter<EditMessage>,
+    mut exit: MessageWriter<AppExit>,
+) {
+    if closes.read().count() > 0 {
+        request(Pending::Quit, &model, &mut ui, &mut edits, &mut exit);
+    }
+}
+
+/// Errors of the last edits go to the error dialog; opened and saved files to
+/// the recent list.
+fn watch_outcomes(
+    log: Res<EditLog>,
+    model: Res<Model>,
+    dirs: Res<EditorDirs>,
+    mut ui: ResMut<FileUi>,
+) {
+    if log.frame != ui.log_frame {
+        ui.log_frame = log.frame;
+        for e in log.entries.iter().filter_map(|e| e.as_ref().err()) {
+            ui.errors.push(e.clone());
+            ui.after_save = None; // a failed save stops what waited on it
+        }
+        if ui.errors.len() > 5 {
+            let n = ui.errors.len() - 5;
+            ui.errors.drain(..n);
+        }
+    }
+    if model.path != ui.seen_path {
+        ui.seen_path = model.path.clone();
+        if let Some(p) = &model.path {
+            let p = std::path::absolute(p).unwrap_or(p.clone());
+            ui.recent.retain(|q| q != &p);
+            ui.recent.insert(0, p);
+            ui.recent.truncate(RECENT_MAX);
+            save_recent(&dirs, &ui.recent);
+        }
+    }
+}
+
+fn continue_after_save(
+    model: Res<Model>,
+    mut ui: ResMut<FileUi>,
+    mut edits: MessageWriter<EditMessage>,
+    mut exit: MessageWriter<AppExit>,
+) {
+    if !model.unsaved
+        && let Some(p) = ui.after_save.take()
+    {
+        run_pending(p, &mut ui, &mut edits, &mut exit);
+    }
+}
+
+/// `.ron` files in the scene's folder, `./scenes` and the working folder.
+fn nearby_scenes(model: &Model) -> Vec<PathBuf> {
+    let mut dirs: Vec<PathBuf> = Vec::new();
+    if let Some(d) = model.path.as_ref().and_then(|p| p.parent()) {
+        dirs.push(d.to_path_buf());
+    }
+    dirs.push(PathBuf::from("scenes"));
+    dirs.push(PathBuf::from("."));
+    let mut out = Vec::new();
+    for d in dirs {
+        let Ok(rd) = std::fs::read_dir(&d) else {
+            continue;
+        };
+        let mut files: Vec<PathBuf> = rd
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+            .collect();
+        files.sort();
+        for f in files {
+            if !out.contains(&f) && out.len() < 40 {
+                out.push(f);
+            }
+        }
+    }
+    out
+}
+
+fn dialogs(
+    mut contexts: EguiContexts,
+    model: Res<Model>,
+    dirs: Res<EditorDirs>,
+    mut ui: ResMut<FileUi>,
+    mut edits: MessageWriter<EditMessage>,
+    mut exit: MessageWriter<AppExit>,
+) -> Result {
+    let ctx = contexts.ctx_mut()?.clone();
+    if !ui.errors.is_empty() {
+        let mut open = true;
+        egui::Window::new("Something went wrong")
+            .collapsible(false)
+            .anchor(egui::Align2::CENTER_TOP, egui::vec2(0.0, 40.0))
+            .open(&mut open)
+            .show(&ctx, |w| {
+                for e in &ui.errors {
+                    w.colored_label(egui::Color32::from_rgb(255, 170, 160), e);
+                }
+                w.label(egui::RichText::new("The current scene is unchanged.").weak());
+                if w.button("OK").on_hover_text("Close this message").clicked() {
+                    ui.errors.clear();
+                }
+            });
+        if !open {
+            ui.errors.clear();
+        }
+    }
+    let Some(dialog) = ui.dialog.clone() else {
+        return Ok(());
+    };
+    let mut close = false;
+    let modal =
+        egui::Modal::new(egui::Id::new("file_dialog")).show(&ctx, |m| match dialog.clone() {
+            Dialog::Path {
+                action,
+                mut text,
+                then,
+            } => {
+                m.heading(action.title());
+                let field = m
+                    .add(egui::TextEdit::singleline(&mut text).desired_width(420.0))
+                    .on_hover_text(format!("A file path ending in .{}", action.extension()));
+                let enter = field.lost_focus() && m.input(|i| i.key_pressed(egui::Key::Enter));
+                if action == PathAction::Open {
+                    m.label(egui::RichText::new("Scene files nearby:").weak());
+                    egui::ScrollArea::vertical().max_height(180.0).show(m, |s| {
+                        for p in nearby_scenes(&model) {
+                            if s.selectable_label(false, p.display().to_string())
+                                .on_hover_text("Pick this file")
+                                .clicked()
+                            {
+                                text = p.display().to_string();
+                            }
+                        }
+                    });
+                }
+                let mut go = enter;
+                m.horizontal(|h| {
+                    go |= h
+                        .button(if action == PathAction::Open {
+                            "Open"
+                        } else {
+                            "Save"
+                        })
+                        .on_hover_text("Go ahead with this path")
+                        .clicked();
+                    if h.button("Cancel")
+                        .on_hover_text("Close without doing anything")
+                        .clicked()
+                    {
+                        close = true;
+                    }
+                });
+                if go && !text.trim().is_empty() {
+                    let path = PathBuf::from(text.trim());
+                    close = true;
+                    match action {
+                        PathAction::Open => {
+                            request(Pending::Open(path), &model, &mut ui, &mut edits, &mut exit)
+                        }
+                        PathAction::SaveAs => {
+                            edits.write(EditMessage::from(Edit::Save(path)));
+                            ui.after_save = then.clone();
+                        }
+                        PathAction::ExportObj | PathAction::ExportStl => {
+                            edits.write(EditMessage::from(Edit::Export(path)));
+                        }
+                    }
+                } else if !close {
+                    ui.dialog = Some(Dialog::Path { action, text, then });
+                }
+            }
+            Dialog::Unsaved(p) => {
+                m.heading("Unsaved changes");
+                m.label(format!(
+                    "“{}” has changes that are not saved. Save them first?",
+                    model.scene.name
+                ));
+                m.horizontal(|h| {
+                    if h.button("Save").on_hover_text("Save, then go on").clicked() {
+                        match &model.path {
+                            Some(path) => {
+                                edits.write(EditMessage::from(Edit::Save(path.clone())));
+                                ui.after_save = Some(p.clone());
+                                close = true;
+                            }
+                            None => {
+                                ui.dialog = Some(Dialog::Path {
+                                    action: PathAction::SaveAs,
+                                    text: suggested(&model, "ron"),
+                                    then: Some(p.clone()),
+                                });
+                            }
+                        }
+                    }
+                    if h.button("Discard")
+                        .on_hover_text("Lose the changes and go on")
+                        .clicked()
+                    {
+                        close = true;
+                        if p == Pending::Quit {
+                            ui.discarded = true;
+                            let _ = std::fs::remove_file(dirs.recovery_file());
+                        }
+                        run_pending(p.clone(), &mut ui, &mut edits, &mut exit);
+                    }
+                    if h.button("Cancel").on_hover_text("Keep editing").clicked() {
+                        close = true;
+                    }
+                });
+            }
+            Dialog::Recover { when, origin } => {
+                m.heading("Recover unsaved work?");
+                m.label(format!(
+                    "An autosave from {when} of {} is newer than the scene.",
+                    origin
+                        .as_ref()
+                        .map(|p| p.display().to_string())
+                        .unwrap_or_else(|| "an unsaved scene".into())
+                ));
+                m.horizontal(|h| {
+                    if h.button("Recover")
+                        .on_hover_text("Open the autosaved scene")
+                        .clicked()
+                    {
+                        super::autosave::recover(&dirs, origin.clone(), &mut edits, &mut ui);
+                        close = true;
+                    }
+                    if h.button("Discard")
+                        .on_hover_text("Delete the autosave and keep the scene")
+                        .clicked()
+                    {
+                        let _ = std::fs::remove_file(dirs.recovery_file());
+                        let _ = std::fs::remove_file(dirs.recovery_meta());
+                        close = true;
+                    }
+                });
+            }
+        });
+    // a branch that moved on to another dialog keeps that one
+    if close {
+        if ui.dialog.as_ref() == Some(&dialog) {
+            ui.dialog = None;
+        }
+    } else if modal.should_close() {
+        ui.dialog = None;
+    }
+    Ok(())
+}

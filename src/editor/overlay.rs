@@ -1,0 +1,100 @@
+//! Lines over the 3D view: streamlines, red x and green y axes, a ground grid.
+
+use super::camera::SceneBounds;
+use super::coords::to_view;
+use crate::ecs::{ModelSet, SurfaceData};
+use bevy::prelude::*;
+use streamline_kernel::DVec3;
+
+/// What the overlay draws.
+#[derive(Resource, Debug, Clone)]
+pub struct OverlaySettings {
+    /// Draw the streamlines.
+    pub streamlines: bool,
+    /// At most this many streamlines are drawn (evenly spread).
+    pub max_streamlines: usize,
+    /// Axes and ground grid.
+    pub axes_and_grid: bool,
+}
+
+impl Default for OverlaySettings {
+    fn default() -> Self {
+        OverlaySettings {
+            streamlines: true,
+            max_streamlines: 48,
+            axes_and_grid: true,
+        }
+    }
+}
+
+pub struct OverlayPlugin;
+
+impl Plugin for OverlayPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<OverlaySettings>()
+            .add_systems(Update, draw.after(ModelSet::Output));
+    }
+}
+
+fn draw(
+    settings: Res<OverlaySettings>,
+    data: Res<SurfaceData>,
+    bounds: Res<SceneBounds>,
+    mut gizmos: Gizmos,
+) {
+    if settings.axes_and_grid {
+        let size = bounds.size().max(1.0) as f32;
+        gizmos.line(
+            Vec3::ZERO,
+            to_view(DVec3::X) * 0.5 * size,
+            Color::srgb(0.9, 0.2, 0.2),
+        );
+        gizmos.line(
+            Vec3::ZERO,
+            to_view(DVec3::Y) * 0.5 * size,
+            Color::srgb(0.2, 0.85, 0.3),
+        );
+        let c = bounds.center();
+        let floor = DVec3::new(c.x, c.y, bounds.min.z - 0.05 * bounds.size());
+        let cell = nice_step(bounds.size() / 8.0) as f32;
+        let n = ((bounds.size() as f32 * 1.6 / cell).ceil() as u32).clamp(4, 64);
+        gizmos.grid(
+            Isometry3d::new(
+                to_view(floor),
+                Quat::from_rotation_x(std::f32::consts::FRAC_PI_2),
+            ),
+            UVec2::splat(n),
+            Vec2::splat(cell),
+            Color::srgba(0.5, 0.5, 0.55, 0.35),
+        );
+    }
+    if !settings.streamlines {
+        return;
+    }
+    let pts = &data.points;
+    if pts.rows() == 0 {
+        return;
+    }
+    let step = pts.rows().div_ceil(settings.max_streamlines.max(1)).max(1);
+    let mut rows: Vec<usize> = (0..pts.rows()).step_by(step).collect();
+    if rows.last() != Some(&(pts.rows() - 1)) {
+        rows.push(pts.rows() - 1);
+    }
+    for r in rows {
+        gizmos.linestrip(
+            pts.row(r).iter().map(|&p| to_view(p)),
+            Color::srgb(0.15, 0.3, 0.75),
+        );
+    }
+}
+
+/// 1, 2 or 5 times a power of ten, at least `x`.
+fn nice_step(x: f64) -> f64 {
+    let x = x.max(1e-6);
+    let p = 10f64.powf(x.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|k| k * p)
+        .find(|&v| v >= x)
+        .unwrap_or(10.0 * p)
+}

@@ -1,0 +1,98 @@
+//! Analysis: curvature comb, Gaussian and mean curvature maps (with legend and
+//! range), zebra stripes.
+
+use super::PanelCtx;
+use crate::editor::analysis::{SurfaceMode, diverging};
+use bevy_egui::egui;
+
+pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
+    let a = &mut *p.analysis;
+    ui.horizontal_wrapped(|ui| {
+        for (m, tip) in [
+            (SurfaceMode::Shaded, "Lit surface"),
+            (SurfaceMode::Gaussian, "Gaussian curvature K = κ₁κ₂ as colours: blue < 0 (saddle), white 0, red > 0 (dome)"),
+            (SurfaceMode::Mean, "Mean curvature H = (κ₁+κ₂)/2 as colours, signed about the surface normal"),
+            (SurfaceMode::Zebra, "Reflection lines of horizontal light stripes: smooth stripes mean a fair surface"),
+        ] {
+            ui.radio_value(&mut a.mode, m, m.name()).on_hover_text(tip);
+        }
+    });
+    match a.mode {
+        SurfaceMode::Gaussian | SurfaceMode::Mean => {
+            ui.checkbox(&mut a.auto_range, "automatic range")
+                .on_hover_text("Colour range from the data: the 98th percentile of |value|, so border spikes do not wash it out");
+            if a.auto_range {
+                a.limit = p.field.limit;
+            } else {
+                ui.add(
+                    egui::Slider::new(&mut a.limit, 1e-4..=1e3)
+                        .logarithmic(true)
+                        .text("limit"),
+                )
+                .on_hover_text("Values beyond ±limit get the end colours");
+            }
+            legend(ui, p.field.limit);
+            let (lo, hi) = if a.mode == SurfaceMode::Gaussian {
+                p.field.gaussian_range
+            } else {
+                p.field.mean_range
+            };
+            ui.label(format!("data range: {lo:.4e} … {hi:.4e}"))
+                .on_hover_text("The smallest and largest value over the surface");
+            ui.label(egui::RichText::new(format!("computed in {:.0} µs", p.field.us)).weak())
+                .on_hover_text("Kernel time for K and H at every vertex");
+        }
+        SurfaceMode::Zebra => {
+            ui.add(egui::Slider::new(&mut a.stripes, 4.0..=64.0).text("stripes"))
+                .on_hover_text("Number of light stripes over the half circle of directions");
+        }
+        SurfaceMode::Shaded => {}
+    }
+    ui.separator();
+    ui.checkbox(&mut a.comb, "curvature comb").on_hover_text(
+        "Teeth along streamlines, normal to them, as long as the curvature κ = |dT/ds|",
+    );
+    ui.add_enabled(
+        a.comb,
+        egui::Slider::new(&mut a.comb_scale, 0.1..=10.0)
+            .logarithmic(true)
+            .text("comb scale"),
+    )
+    .on_hover_text("Tooth length factor: at 1 the longest tooth is a tenth of the scene");
+    ui.add_enabled(
+        a.comb,
+        egui::Slider::new(&mut a.comb_lines, 1..=64).text("combed streamlines"),
+    )
+    .on_hover_text("Streamlines that get a comb, spread evenly");
+}
+
+/// The colour map from −limit to +limit.
+fn legend(ui: &mut egui::Ui, limit: f64) {
+    let (rect, _) = ui.allocate_exact_size(
+        egui::vec2(ui.available_width().min(240.0), 14.0),
+        egui::Sense::hover(),
+    );
+    let painter = ui.painter_at(rect);
+    let n = 64;
+    for i in 0..n {
+        let u = i as f64 / (n - 1) as f64;
+        let [r, g, b] = diverging(u);
+        let x0 = rect.left() + rect.width() * i as f32 / n as f32;
+        let x1 = rect.left() + rect.width() * (i + 1) as f32 / n as f32;
+        painter.rect_filled(
+            egui::Rect::from_min_max(
+                egui::pos2(x0, rect.top()),
+                egui::pos2(x1 + 0.5, rect.bottom()),
+            ),
+            0.0,
+            egui::Color32::from_rgb(r, g, b),
+        );
+    }
+    ui.horizontal(|ui| {
+        ui.label(egui::RichText::new(format!("−{limit:.3e}")).small());
+        ui.label(egui::RichText::new("0").small());
+        ui.label(egui::RichText::new(format!("+{limit:.3e}")).small());
+    })
+    .response
+    .on_hover_text("The colour map: blue −limit, white 0, red +limit");
+}

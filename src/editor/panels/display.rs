@@ -1,0 +1,38 @@
+//! Display: which arrows, labels, lines and views are drawn.
+
+use super::PanelCtx;
+use bevy_egui::egui;
+
+pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
+    let h = &mut *p.handle_settings;
+    ui.checkbox(&mut h.controls, "control arrows (yellow)")
+        .on_hover_text("The level-0 control tangents at their streamline points");
+    ui.checkbox(&mut h.refined, "refined arrows (red)")
+        .on_hover_text("The tangents of the edit depth, when it is above 0");
+    ui.checkbox(&mut h.every_other, "every other refined arrow")
+        .on_hover_text("Thin the red arrows out: every other one in both directions");
+    ui.checkbox(&mut h.labels, "index labels").on_hover_text(
+        "Column numbers at the control arrows (head shapes cycle cone, ball, cross, ring)",
+    );
+    let o = &mut *p.overlay;
+    ui.checkbox(&mut o.streamlines, "streamlines")
+        .on_hover_text("Draw the streamlines of the display depth as lines");
+    ui.add_enabled(
+        o.streamlines,
+        egui::Slider::new(&mut o.max_streamlines, 2..=400)
+            .text("at most")
+            .logarithmic(true),
+    )
+    .on_hover_text("Streamlines drawn, spread evenly");
+    ui.checkbox(&mut o.axes_and_grid, "axes and ground grid")
+        .on_hover_text("Red x and green y axes, and a grid under the surface");
+    let s = &mut *p.sphere;
+    ui.checkbox(&mut s.show, "Gaussian sphere view")
+        .on_hover_text(
+            "The inset with the tangents as points on the unit sphere; drag a point to edit it",
+        );
+    ui.checkbox(&mut s.subdivided, "subdivided tangents on the sphere")
+        .on_hover_text("The tangents of the display depth as small points");
+    ui.add(egui::Slider::new(&mut s.fraction, 0.2..=0.7).text("sphere view size"))
+        .on_hover_text("The inset's side as a share of the 3D view");
+}

@@ -1,0 +1,110 @@
+//! File: new (from a built-in scene), open, save, save as, export, recent files.
+
+use super::PanelCtx;
+use crate::editor::files::{self, Dialog, PathAction, Pending};
+use crate::scene::builtin;
+use bevy_egui::egui;
+
+pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
+    let path = p
+        .model
+        .path
+        .as_ref()
+        .map(|x| x.display().to_string())
+        .unwrap_or_else(|| "(built-in, not saved yet)".into());
+    ui.label(egui::RichText::new(path).weak().small())
+        .on_hover_text("The file the scene was opened from or saved to");
+    ui.horizontal_wrapped(|ui| {
+        ui.menu_button("New ▾", |ui| {
+            for (name, _) in builtin::SCENES {
+                if ui
+                    .button(name)
+                    .on_hover_text(format!("Start from the built-in scene {name}"))
+                    .clicked()
+                {
+                    let (model, ui_state) = (&p.model, &mut *p.files);
+                    files::request(
+                        Pending::New(name.into()),
+                        model,
+                        ui_state,
+                        &mut p.edits,
+                        &mut p.exit,
+                    );
+                    ui.close();
+                }
+            }
+        })
+        .response
+        .on_hover_text("Start a new scene from a built-in one");
+        if ui
+            .button("Open…")
+            .on_hover_text("Open a scene file (.ron), Ctrl+O")
+            .clicked()
+        {
+            p.files.dialog = Some(Dialog::Path {
+                action: PathAction::Open,
+                text: String::new(),
+                then: None,
+            });
+        }
+        if ui
+            .button("Save")
+            .on_hover_text("Save to the scene's file (Ctrl+S); atomic and verified")
+            .clicked()
+        {
+            files::save(&p.model, &mut p.files, &mut p.edits);
+        }
+        if ui
+            .button("Save as…")
+            .on_hover_text("Save under a new name (Ctrl+Shift+S)")
+            .clicked()
+        {
+            p.files.dialog = Some(Dialog::Path {
+                action: PathAction::SaveAs,
+                text: files::suggested(&p.model, "ron"),
+                then: None,
+            });
+        }
+    });
+    ui.horizontal(|ui| {
+        for (label, action, ext, tip) in [
+            (
+                "Export OBJ…",
+                PathAction::ExportObj,
+                "obj",
+                "Write the surface mesh as Wavefront OBJ (positions, normals, faces)",
+            ),
+            (
+                "Export STL…",
+                PathAction::ExportStl,
+                "stl",
+                "Write the surface mesh as binary STL",
+            ),
+        ] {
+            if ui.button(label).on_hover_text(tip).clicked() {
+                p.files.dialog = Some(Dialog::Path {
+                    action,
+                    text: files::suggested(&p.model, ext),
+                    then: None,
+                });
+            }
+        }
+    });
+    if !p.files.recent.is_empty() {
+        ui.label("Recent:");
+        for r in p.files.recent.clone() {
+            let name = r
+                .file_name()
+                .map(|n| n.to_string_lossy().to_string())
+                .unwrap_or_default();
+            if ui
+                .selectable_label(p.model.path.as_ref() == Some(&r), name)
+                .on_hover_text(format!("Open {}", r.display()))
+                .clicked()
+            {
+                let (model, ui_state) = (&p.model, &mut *p.files);
+                files::request(Pending::Open(r), model, ui_state, &mut p.edits, &mut p.exit);
+            }
+        }
+    }
+}

@@ -1,0 +1,373 @@
+//! The egui panels: a toolbar (undo, redo, frame) and a side panel of
+//! sections (File, Subdivision, Selection, Display, Analysis, Stats). Panels
+//! are thin views: they read resources and send edit messages (or change
+//! display settings); they never compute geometry.
+
+mod analysis;
+mod display;
+mod file;
+mod selection;
+mod stats;
+mod subdivision;
+
+use super::analysis::{AnalysisSettings, CurvatureField};
+use super::camera::{FrameRequest, SceneBounds, ViewArea};
+use super::files::FileUi;
+use super::handles::{HandleArrows, HandleSettings};
+use super::overlay::OverlaySettings;
+use super::picking::{DragGroups, Selection};
+use super::sphere_view::SphereSettings;
+use crate::ecs::{Edit, EditLog, EditMessage, History, Model, Stats};
+use bevy::ecs::system::SystemParam;
+use bevy::prelude::*;
+use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
+
+/// The side panel's sections.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PanelName {
+    /// New, open, save, export, recent files.
+    File,
+    /// Scheme, ω, blend order, depths.
+    Subdivision,
+    /// The selected handle: index, x/y/z, rotate, length, reset.
+    Selection,
+    /// What is drawn: arrows, labels, streamlines, sphere view.
+    Display,
+    /// Curvature comb, Gaussian and mean maps, zebra stripes.
+    Analysis,
+    /// Sizes and the cost of the last edit.
+    Stats,
+}
+
+impl PanelName {
+    /// All sections in panel order.
+    pub const ALL: [PanelName; 6] = [
+        PanelName::File,
+        PanelName::Subdivision,
+        PanelName::Selection,
+        PanelName::Display,
+        PanelName::Analysis,
+        PanelName::Stats,
+    ];
+
+    /// The section's title and command-line name.
+    pub fn name(self) -> &'static str {
+        match self {
+            PanelName::File => "file",
+            PanelName::Subdivision => "subdivision",
+            PanelName::Selection => "selection",
+            PanelName::Display => "display",
+            PanelName::Analysis => "analysis",
+            PanelName::Stats => "stats",
+        }
+    }
+
+    fn title(self) -> &'static str {
+        match self {
+            PanelName::File => "File",
+            PanelName::Subdivision => "Subdivision",
+            PanelName::Selection => "Selection",
+            PanelName::Display => "Display",
+            PanelName::Analysis => "Analysis",
+            PanelName::Stats => "Stats",
+        }
+    }
+
+    /// From its name.
+    pub fn parse(s: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|p| p.name() == s)
+    }
+}
+
+/// Which sections start open; a screenshot may ask for exactly one.
+#[derive(Resource, Debug, Clone)]
+pub struct UiState {
+    /// Sections open at start.
+    pub open: Vec<PanelName>,
+    /// Force exactly these open (screenshots), every frame.
+    pub force: bool,
+}
+
+impl Default for UiState {
+    fn default() -> Self {
+        UiState {
+            open: vec![
+                PanelName::Subdivision,
+                PanelName::Selection,
+                PanelName::Stats,
+            ],
+            force: false,
+        }
+    }
+}
+
+/// What the panels read and write.
+#[derive(SystemParam)]
+pub struct PanelCtx<'w> {
+    pub model: Res<'w, Model>,
+    pub history: Res<'w, History>,
+    pub stats: Res<'w, Stats>,
+    pub log: Res<'w, EditLog>,
+    pub selection: ResMut<'w, Selection>,
+    pub arrows: Res<'w, HandleArrows>,
+    pub handle_settings: ResMut<'w, HandleSettings>,
+    pub overlay: ResMut<'w, OverlaySettings>,
+    pub sphere: ResMut<'w, SphereSettings>,
+    pub analysis: ResMut<'w, AnalysisSettings>,
+    pub field: Res<'w, CurvatureField>,
+    pub files: ResMut<'w, FileUi>,
+    pub frame: ResMut<'w, FrameRequest>,
+    pub bounds: Res<'w, SceneBounds>,
+    pub groups: ResMut<'w, DragGroups>,
+    pub edits: MessageWriter<'w, EditMessage>,
+    pub exit: MessageWriter<'w, AppExit>,
+    pub ui_state: Res<'w, UiState>,
+    pub timing: Res<'w, FrameTiming>,
+    pub slider_groups: ResMut<'w, SliderGroups>,
+    pub opened: Res<'w, OpenedScene>,
+}
+
+/// The control net as the scene was opened (the Selection panel's reset).
+#[derive(Resource, Debug, Default)]
+pub struct OpenedScene {
+    net: Option<streamline_kernel::Grid<streamline_kernel::DVec3>>,
+    seen: u64,
+}
+
+/// The undo group of each slider's current drag.
+#[derive(Resource, Debug, Default)]
+pub struct SliderGroups(std::collections::HashMap<&'static str, u64>);
+
+impl PanelCtx<'_> {
+    /// Sends one edit.
+    pub fn send(&mut self, edit: Edit) {
+        self.edits.write(EditMessage::from(edit));
+    }
+
+    /// The direction control tangent `(row, col)` had when the scene was opened.
+    pub fn opened_direction(&self, row: usize, col: usize) -> Option<streamline_kernel::DVec3> {
+        let net = self.opened.net.as_ref()?;
+        (row < net.rows() && col < net.cols()).then(|| net.get(row, col))
+    }
+
+    /// The undo group for a change of slider `key`: one per drag, a new one
+    /// for each click or key press.
+    pub fn slider_group(&mut self, key: &'static str, r: &egui::Response) -> u64 {
+        let current = self.slider_groups.0.get(key).copied();
+        match current {
+            Some(g) if r.dragged() && !r.drag_started() => g,
+            _ => {
+                let g = self.groups.next();
+                self.slider_groups.0.insert(key, g);
+                g
+            }
+        }
+    }
+
+    /// Sends one edit of a group (a slider drag is one undo step).
+    pub fn send_grouped(&mut self, edit: Edit, group: u64) {
+        self.edits.write(EditMessage {
+            edit,
+            group: Some(group),
+        });
+    }
+}
+
+/// CPU time of the model's systems in recent frames (for the Stats panel).
+#[derive(Resource, Debug, Default)]
+pub struct FrameTiming {
+    /// Milliseconds of the last frame with an edit (edit → mesh).
+    pub last_ms: f64,
+    /// The largest of the last 120 frames with an edit.
+    pub max_ms: f64,
+    recent: std::collections::VecDeque<f64>,
+    seen: u64,
+}
+
+pub struct PanelPlugin;
+
+impl Plugin for PanelPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<UiState>()
+            .init_resource::<FrameTiming>()
+            .init_resource::<SliderGroups>()
+            .init_resource::<OpenedScene>()
+            .add_systems(Update, track_opened.after(crate::ecs::ModelSet::Output))
+            .add_systems(Update, track_timing.after(crate::ecs::ModelSet::Output))
+            .add_systems(Startup, spawn_ui_camera)
+            .add_systems(EguiPrimaryContextPass, panel);
+    }
+}
+
+/// egui draws through its own camera over the whole window, on top of the
+/// 3D view and the sphere inset (each of which has a viewport).
+fn spawn_ui_camera(mut commands: Commands, mut settings: ResMut<bevy_egui::EguiGlobalSettings>) {
+    use bevy::camera::CameraOutputMode;
+    use bevy::camera::visibility::RenderLayers;
+    use bevy::render::render_resource::BlendState;
+    settings.auto_create_primary_context = false;
+    commands.spawn((
+        bevy_egui::PrimaryEguiContext,
+        Camera2d,
+        RenderLayers::none(),
+        Camera {
+            order: 10,
+            output_mode: CameraOutputMode::Write {
+                blend_state: Some(BlendState::ALPHA_BLENDING),
+                clear_color: ClearColorConfig::None,
+            },
+            clear_color: ClearColorConfig::Custom(Color::NONE),
+            ..default()
+        },
+    ));
+}
+
+fn track_opened(model: Res<Model>, log: Res<EditLog>, mut o: ResMut<OpenedScene>) {
+    let opened = log.frame != o.seen
+        && log.entries.iter().any(|e| {
+            e.as_ref().is_ok_and(|s| {
+                s.starts_with("loaded") || s.starts_with("opened") || s.starts_with("recovered")
+            })
+        });
+    if o.net.is_none() || opened {
+        o.net = Some(model.scene.design.net.clone());
+    }
+    o.seen = log.frame;
+}
+
+fn track_timing(stats: Res<Stats>, log: Res<EditLog>, mut t: ResMut<FrameTiming>) {
+    if log.frame == t.seen {
+        return;
+    }
+    t.seen = log.frame;
+    let ms = stats.last.us_total() / 1000.0;
+    t.last_ms = ms;
+    t.recent.push_back(ms);
+    while t.recent.len() > 120 {
+        t.recent.pop_front();
+    }
+    t.max_ms = t.recent.iter().copied().fold(0.0, f64::max);
+}
+
+fn panel(mut contexts: EguiContexts, mut p: PanelCtx, mut area: ResMut<ViewArea>) -> Result {
+    let ctx = contexts.ctx_mut()?.clone();
+    let mut root = egui::Ui::new(
+        ctx.clone(),
+        "viewport".into(),
+        egui::UiBuilder::new()
+            .layer_id(egui::LayerId::background())
+            .max_rect(ctx.viewport_rect()),
+    );
+    egui::Panel::top("toolbar").show(&mut root, |ui| toolbar(ui, &mut p));
+    egui::Panel::bottom("status").show(&mut root, |ui| status(ui, &p));
+    egui::Panel::left("side_panel")
+        .resizable(true)
+        .default_size(300.0)
+        .size_range(220.0..=520.0)
+        .show(&mut root, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                for name in PanelName::ALL {
+                    let open = p.ui_state.open.contains(&name);
+                    let mut header = egui::CollapsingHeader::new(name.title())
+                        .id_salt(name.name())
+                        .default_open(open);
+                    if p.ui_state.force {
+                        header = header.open(Some(open));
+                    }
+                    header.show(ui, |ui| match name {
+                        PanelName::File => file::show(ui, &mut p),
+                        PanelName::Subdivision => subdivision::show(ui, &mut p),
+                        PanelName::Selection => selection::show(ui, &mut p),
+                        PanelName::Display => display::show(ui, &mut p),
+                        PanelName::Analysis => analysis::show(ui, &mut p),
+                        PanelName::Stats => stats::show(ui, &p),
+                    });
+                }
+            });
+        });
+    let r = root.available_rect_before_wrap();
+    let rect = Rect::new(r.min.x, r.min.y, r.max.x, r.max.y);
+    if area.0 != Some(rect) {
+        area.0 = Some(rect);
+    }
+    Ok(())
+}
+
+fn toolbar(ui: &mut egui::Ui, p: &mut PanelCtx) {
+    ui.horizontal(|ui| {
+        ui.strong("Streamline Studio");
+        let name = format!(
+            "{}{}",
+            p.model.scene.name,
+            if p.model.unsaved { " •" } else { "" }
+        );
+        ui.label(egui::RichText::new(name).weak())
+            .on_hover_text(match &p.model.path {
+                Some(path) => format!("{} (• = unsaved changes)", path.display()),
+                None => "a built-in scene, not saved to a file yet (• = unsaved changes)".into(),
+            });
+        ui.separator();
+        let undo = p.history.undo_len();
+        let redo = p.history.redo_len();
+        if ui
+            .add_enabled(undo > 0, egui::Button::new("⟲ Undo"))
+            .on_hover_text(format!("Undo the last edit (Ctrl+Z); {undo} steps"))
+            .on_disabled_hover_text("Nothing to undo")
+            .clicked()
+        {
+            p.send(Edit::Undo);
+        }
+        if ui
+            .add_enabled(redo > 0, egui::Button::new("⟳ Redo"))
+            .on_hover_text(format!("Redo (Ctrl+Shift+Z or Ctrl+Y); {redo} steps"))
+            .on_disabled_hover_text("Nothing to redo")
+            .clicked()
+        {
+            p.send(Edit::Redo);
+        }
+        ui.separator();
+        if ui
+            .button("Frame all")
+            .on_hover_text("Fit the whole surface in the view (A or Home)")
+            .clicked()
+        {
+            p.frame.0 = Some((p.bounds.center(), 0.5 * p.bounds.size()));
+        }
+        let sel = p.selection.handle.and_then(|h| p.arrows.find(h)).copied();
+        if ui
+            .add_enabled(sel.is_some(), egui::Button::new("Frame selected"))
+            .on_hover_text("Fit the selected handle in the view (F)")
+            .on_disabled_hover_text("Select an arrow first")
+            .clicked()
+            && let Some(a) = sel
+        {
+            p.frame.0 = Some((a.base, (a.length * 4.0).max(0.05 * p.bounds.size())));
+        }
+    });
+}
+
+fn status(ui: &mut egui::Ui, p: &PanelCtx) {
+    let text = p
+        .log
+        .entries
+        .iter()
+        .map(|e| match e {
+            Ok(s) => s.clone(),
+            Err(e) => format!("error: {e}"),
+        })
+        .filter(|s| !s.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ");
+    ui.horizontal(|ui| {
+        ui.label(egui::RichText::new(if text.is_empty() { "ready".into() } else { text }).weak())
+            .on_hover_text("What the last edit did");
+        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+            ui.label(
+                egui::RichText::new(
+                    "left drag: turn an arrow · right drag: orbit · middle drag: pan · wheel: zoom · Esc: cancel",
+                )
+                .weak(),
+            );
+        });
+    });
+}

@@ -1,0 +1,421 @@
+//! The Gaussian sphere view: an inset viewport in the 3D view's lower right
+//! corner with its own camera (turned like the main one) and render layer. It
+//! shows the unit sphere, the control tangents as points (the selected one
+//! highlighted), great arcs between neighbours in blue, the handles of the edit
+//! depth in red, and the subdivided tangents of the display depth as small
+//! points. Dragging a point moves that tangent to the point under the pointer.
+
+use super::camera::{MainCamera, OrbitCamera, ViewArea};
+use super::coords::{from_view, to_view};
+use super::handles::{HandleArrows, HandleSettings};
+use super::picking::{ActiveDrag, Drag, DragGroups, DragKind, Selection};
+use crate::ecs::components::{LevelData, SubdivisionLevel};
+use crate::ecs::{Edit, EditMessage, Model, ModelSet};
+use bevy::asset::RenderAssetUsages;
+use bevy::camera::Viewport;
+use bevy::camera::visibility::RenderLayers;
+use bevy::mesh::PrimitiveTopology;
+use bevy::prelude::*;
+use bevy::window::PrimaryWindow;
+use bevy_egui::input::egui_wants_any_pointer_input;
+use streamline_kernel::DVec3;
+
+/// The render layer of the sphere view.
+const LAYER: usize = 1;
+
+/// The inset's rectangle on the window (logical px), `None` when hidden.
+#[derive(Resource, Debug, Default, Clone, Copy)]
+pub struct SphereArea(pub Option<Rect>);
+
+impl SphereArea {
+    /// Whether `p` is inside the inset.
+    pub fn contains(&self, p: Vec2) -> bool {
+        self.0.is_some_and(|r| r.contains(p))
+    }
+}
+
+/// Settings of the sphere view.
+#[derive(Resource, Debug, Clone)]
+pub struct SphereSettings {
+    /// Show the inset.
+    pub show: bool,
+    /// Its side as a fraction of the 3D view's shorter side.
+    pub fraction: f32,
+    /// Show the subdivided tangents of the display depth.
+    pub subdivided: bool,
+}
+
+impl Default for SphereSettings {
+    fn default() -> Self {
+        SphereSettings {
+            show: true,
+            fraction: 0.4,
+            subdivided: true,
+        }
+    }
+}
+
+/// Gizmos drawn only in the sphere view.
+#[derive(Default, Reflect, GizmoConfigGroup)]
+pub struct SphereGizmos;
+
+#[derive(Component)]
+struct SphereCamera;
+
+#[derive(Component)]
+struct SubdividedPoints;
+
+pub struct SphereViewPlugin;
+
+impl Plugin for SphereViewPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<SphereArea>()
+            .init_resource::<SphereSettings>()
+            .init_gizmo_group::<SphereGizmos>()
+            .add_systems(Startup, setup)
+            .add_systems(
+                Update,
+                press
+                    .run_if(not(egui_wants_any_pointer_input))
+                    .before(ModelSet::Edit),
+            )
+            .add_systems(Update, drag_move.before(ModelSet::Edit))
+            .add_systems(Update, (update_points, draw).after(ModelSet::Output))
+            .add_systems(PostUpdate, place_camera);
+    }
+}
+
+fn setup(
+    mut commands: Commands,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+    mut config: ResMut<GizmoConfigStore>,
+) {
+    let (cfg, _) = config.config_mut::<SphereGizmos>();
+    cfg.render_layers = RenderLayers::layer(LAYER);
+    cfg.line.width = 1.5;
+    commands.spawn((
+        Camera3d::default(),
+        Camera {
+            order: 1,
+            clear_color: ClearColorConfig::Custom(Color::srgb(0.10, 0.11, 0.13)),
+            is_active: false,
+            ..default()
+        },
+        Transform::from_xyz(0.0, 0.0, 3.4).looking_at(Vec3::ZERO, Vec3::Y),
+        RenderLayers::layer(LAYER),
+        SphereCamera,
+    ));
+    commands.spawn((
+        Mesh3d(meshes.add(Sphere::new(0.995).mesh().uv(48, 24))),
+        MeshMaterial3d(materials.add(StandardMaterial {
+            base_color: Color::srgba(0.45, 0.5, 0.6, 0.28),
+            alpha_mode: AlphaMode::Blend,
+            unlit: true,
+            ..default()
+        })),
+        RenderLayers::layer(LAYER),
+    ));
+    let empty = Mesh::new(PrimitiveTopology::PointList, RenderAssetUsages::default())
+        .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, vec![[0.0f32, 0.0, 0.0]]);
+    commands.spawn((
+        Mesh3d(meshes.add(empty)),
+        MeshMaterial3d(materials.add(StandardMaterial {
+            base_color: Color::srgb(0.85, 0.88, 0.95),
+            unlit: true,
+            ..default()
+        })),
+        Transform::from_scale(Vec3::splat(1.004)),
+        RenderLayers::layer(LAYER),
+        SubdividedPoints,
+    ));
+}
+
+/// Places the inset in the lower right corner of the 3D view and turns its
+/// camera like the main one.
+fn place_camera(
+    settings: Res<SphereSettings>,
+    area: Res<ViewArea>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    main: Query<&OrbitCamera, With<MainCamera>>,
+    mut cam: Query<(&mut Camera, &mut Transform), With<SphereCamera>>,
+    mut sphere_area: ResMut<SphereArea>,
+) {
+    let Ok((mut camera, mut tf)) = cam.single_mut() else {
+        return;
+    };
+    let view = area
+        .0
+        .unwrap_or(Rect::new(0.0, 0.0, window.width(), window.height()));
+    let side = (view.width().min(view.height()) * settings.fraction).clamp(120.0, 420.0);
+    let margin = 8.0;
+    let rect = Rect::new(
+        view.max.x - side - margin,
+        view.max.y - side - margin,
+        view.max.x - margin,
+        view.max.y - margin,
+    );
+    let show =
+        settings.show && view.width() > side + 2.0 * margin && view.height() > side + 2.0 * margin;
+    if camera.is_active != show {
+        camera.is_active = show;
+    }
+    sphere_area.0 = show.then_some(rect);
+    if !show {
+        return;
+    }
+    let s = window.scale_factor();
+    let vp = Viewport {
+        physical_position: (rect.min * s).as_uvec2(),
+        physical_size: (rect.size() * s).as_uvec2().max(UVec2::ONE),
+        ..default()
+    };
+    let same = camera.viewport.as_ref().is_some_and(|v| {
+        v.physical_position == vp.physical_position && v.physical_size == vp.physical_size
+    });
+    if !same {
+        camera.viewport = Some(vp);
+    }
+    if let Ok(o) = main.single() {
+        let eye = to_view(o.eye_dir() * 3.4);
+        let t = Transform::from_translation(eye).looking_at(Vec3::ZERO, Vec3::Y);
+        if *tf != t {
+            *tf = t;
+        }
+    }
+}
+
+/// The display depth's tangents as a point cloud, rebuilt when that level changes.
+fn update_points(
+    model: Res<Model>,
+    settings: Res<SphereSettings>,
+    levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
+    points: Single<(&Mesh3d, &mut Visibility), With<SubdividedPoints>>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut shown: Local<Option<u32>>,
+) {
+    let (mesh, mut vis) = points.into_inner();
+    let want = if settings.subdivided {
+        Visibility::Inherited
+    } else {
+        Visibility::Hidden
+    };
+    if *vis != want {
+        *vis = want;
+    }
+    let depth = model.scene.display_depth;
+    let Some((_, data)) = levels.iter().find(|(l, _)| l.0 == depth) else {
+        return;
+    };
+    if !data.is_changed() && *shown == Some(depth) {
+        return;
+    }
+    *shown = Some(depth);
+    let pos: Vec<[f32; 3]> = data
+        .0
+        .tangents
+        .data()
+        .iter()
+        .map(|&t| to_view(t).to_array())
+        .collect();
+    if let Some(mut m) = meshes.get_mut(&mesh.0) {
+        m.insert_attribute(Mesh::ATTRIBUTE_POSITION, pos);
+    }
+}
+
+fn draw(
+    model: Res<Model>,
+    arrows: Res<HandleArrows>,
+    handle_settings: Res<HandleSettings>,
+    selection: Res<Selection>,
+    area: Res<SphereArea>,
+    main: Query<&OrbitCamera, With<MainCamera>>,
+    mut gizmos: Gizmos<SphereGizmos>,
+) {
+    if area.0.is_none() {
+        return;
+    }
+    let eye = main.single().map(|o| o.eye_dir()).unwrap_or(DVec3::X);
+    let faint = Color::srgba(0.7, 0.75, 0.85, 0.35);
+    for rot in [
+        Quat::IDENTITY,
+        Quat::from_rotation_x(std::f32::consts::FRAC_PI_2),
+        Quat::from_rotation_y(std::f32::consts::FRAC_PI_2),
+    ] {
+        gizmos
+            .circle(Isometry3d::from_rotation(rot), 1.0, faint)
+            .resolution(64);
+    }
+    // kernel x and y axes, as in the main view
+    gizmos.line(
+        Vec3::ZERO,
+        to_view(DVec3::X) * 1.15,
+        Color::srgb(0.9, 0.2, 0.2),
+    );
+    gizmos.line(
+        Vec3::ZERO,
+        to_view(DVec3::Y) * 1.15,
+        Color::srgb(0.2, 0.85, 0.3),
+    );
+    let net = &model.scene.design.net;
+    let blue = Color::srgb(0.3, 0.5, 1.0);
+    for r in 0..net.rows() {
+        for c in 0..net.cols() {
+            let a = to_view(net.get(r, c));
+            if c + 1 < net.cols() {
+                gizmos.short_arc_3d_between(Vec3::ZERO, a, to_view(net.get(r, c + 1)), blue);
+            }
+            if r + 1 < net.rows() {
+                let b = to_view(net.get(r + 1, c));
+                gizmos.short_arc_3d_between(Vec3::ZERO, a, b, blue.with_alpha(0.45));
+            }
+        }
+    }
+    let dot = |gizmos: &mut Gizmos<SphereGizmos>, d: DVec3, radius: f32, color: Color| {
+        let front = d.dot(eye) >= 0.0;
+        let color = if front { color } else { color.with_alpha(0.35) };
+        gizmos
+            .sphere(Isometry3d::from_translation(to_view(d)), radius, color)
+            .resolution(8);
+    };
+    let edit = arrows.edit_depth;
+    if edit > 0 && handle_settings.refined {
+        for a in &arrows.handles {
+            if handle_settings.shows(a.level, a.row, a.col) {
+                dot(&mut gizmos, a.dir, 0.012, Color::srgb(0.95, 0.25, 0.2));
+            }
+        }
+    }
+    for a in &arrows.controls {
+        dot(&mut gizmos, a.dir, 0.025, Color::srgb(1.0, 0.85, 0.1));
+    }
+    for h in [selection.hover, selection.handle].into_iter().flatten() {
+        if let Some(a) = arrows.find(h) {
+            dot(&mut gizmos, a.dir, 0.045, Color::WHITE);
+        }
+    }
+}
+
+/// The point of the unit sphere under a ray: the first hit, or the closest
+/// point of the silhouette when the ray misses.
+pub fn sphere_point(origin: DVec3, dir: DVec3) -> DVec3 {
+    let dir = dir.normalize_or(DVec3::Z);
+    let b = origin.dot(dir);
+    let c = origin.length_squared() - 1.0;
+    let disc = b * b - c;
+    let p = if disc >= 0.0 {
+        origin + dir * (-b - disc.sqrt())
+    } else {
+        origin - dir * b
+    };
+    p.try_normalize().unwrap_or(DVec3::Z)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn press(
+    buttons: Res<ButtonInput<MouseButton>>,
+    window: Single<&Window, With<PrimaryWindow>>,
+    area: Res<SphereArea>,
+    cam: Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
+    arrows: Res<HandleArrows>,
+    settings: Res<HandleSettings>,
+    mut selection: ResMut<Selection>,
+    mut drag: ResMut<Drag>,
+    mut groups: ResMut<DragGroups>,
+) {
+    if !buttons.just_pressed(MouseButton::Left) || drag.0.is_some() {
+        return;
+    }
+    let Some(cursor) = window.cursor_position().filter(|p| area.contains(*p)) else {
+        return;
+    };
+    let Ok((camera, gt)) = cam.single() else {
+        return;
+    };
+    let eye = from_view(gt.translation()).normalize_or(DVec3::Z);
+    let refined_hidden = arrows.edit_depth > 0 && !settings.refined;
+    let mut best: Option<(&super::handles::Arrow, f32)> = None;
+    for a in &arrows.handles {
+        if refined_hidden || !settings.shows(a.level, a.row, a.col) || a.dir.dot(eye) < 0.0 {
+            continue;
+        }
+        let Ok(p) = camera.world_to_viewport(gt, to_view(a.dir)) else {
+            continue;
+        };
+        let d = p.distance(cursor);
+        if d < 10.0 && best.is_none_or(|(_, bd)| d < bd) {
+            best = Some((a, d));
+        }
+    }
+    let Some((a, _)) = best else {
+        return;
+    };
+    selection.handle = Some((a.row, a.col));
+    drag.0 = Some(ActiveDrag {
+        row: a.row,
+        col: a.col,
+        group: groups.next(),
+        start_dir: a.dir,
+        last: a.dir,
+        sent: false,
+        kind: DragKind::Sphere,
+    });
+}
+
+fn drag_move(
+    window: Single<&Window, With<PrimaryWindow>>,
+    area: Res<SphereArea>,
+    cam: Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
+    mut drag: ResMut<Drag>,
+    mut edits: MessageWriter<EditMessage>,
+) {
+    let Some(d) = drag.0.as_mut() else {
+        return;
+    };
+    if d.kind != DragKind::Sphere {
+        return;
+    }
+    // outside the inset the pointer still steers: clamp it to the inset's edge
+    let Some(p) = window.cursor_position() else {
+        return;
+    };
+    let Some(rect) = area.0 else {
+        return;
+    };
+    let p = p.clamp(rect.min, rect.max - Vec2::ONE);
+    let Ok((camera, gt)) = cam.single() else {
+        return;
+    };
+    let Ok(ray) = camera.viewport_to_world(gt, p) else {
+        return;
+    };
+    let dir = sphere_point(from_view(ray.origin), from_view(*ray.direction));
+    if (dir - d.last).length() < 1e-7 {
+        return;
+    }
+    d.last = dir;
+    d.sent = true;
+    edits.write(EditMessage {
+        edit: Edit::SetDirection {
+            row: d.row,
+            col: d.col,
+            dir,
+        },
+        group: Some(d.group),
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sphere_point_hits_the_front_or_the_silhouette() {
+        let p = sphere_point(DVec3::new(0.0, 0.0, 5.0), DVec3::new(0.0, 0.0, -1.0));
+        assert!((p - DVec3::Z).length() < 1e-12);
+        let p = sphere_point(DVec3::new(3.0, 0.0, 5.0), DVec3::new(0.0, 0.0, -1.0));
+        assert!((p - DVec3::X).length() < 1e-12);
+        let p = sphere_point(DVec3::new(0.5, 0.0, 5.0), DVec3::new(0.0, 0.0, -1.0));
+        assert!((p.length() - 1.0).abs() < 1e-12 && p.z > 0.0 && (p.x - 0.5).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,133 @@
+//! The shaded surface: one mesh entity mirroring [`SurfaceData`]; rows an edit
+//! rewrote are patched in place, anything else rebuilds the Bevy mesh. Lights.
+
+use crate::ecs::{ModelSet, SurfaceData};
+use bevy::asset::RenderAssetUsages;
+use bevy::mesh::{Indices, PrimitiveTopology, VertexAttributeValues};
+use bevy::prelude::*;
+use streamline_kernel::mesh::SurfaceMesh;
+
+use super::coords::kernel_to_view;
+
+/// Marks the surface mesh entity.
+#[derive(Component)]
+pub struct SurfaceEntity;
+
+/// The generation of [`SurfaceData`] the Bevy mesh shows, and what changed last.
+#[derive(Resource, Default)]
+pub struct ShownSurface {
+    /// `SurfaceData::generation` last copied.
+    pub generation: u64,
+    /// The last copy rewrote every vertex (analysis must redo all).
+    pub full: bool,
+}
+
+/// The plain shaded material (the analysis plugin swaps in others).
+#[derive(Resource)]
+pub struct ShadedMaterial(pub Handle<StandardMaterial>);
+
+pub struct SurfacePlugin;
+
+impl Plugin for SurfacePlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<ShownSurface>()
+            .add_systems(Startup, setup)
+            .add_systems(Update, sync_mesh.after(ModelSet::Output));
+    }
+}
+
+fn setup(
+    mut commands: Commands,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+) {
+    let material = materials.add(StandardMaterial {
+        base_color: Color::srgb(0.62, 0.70, 0.82),
+        perceptual_roughness: 0.45,
+        metallic: 0.05,
+        double_sided: true,
+        cull_mode: None,
+        ..default()
+    });
+    commands.insert_resource(ShadedMaterial(material.clone()));
+    commands.spawn((
+        SurfaceEntity,
+        Mesh3d(meshes.add(to_bevy_mesh(&SurfaceMesh::default()))),
+        MeshMaterial3d(material),
+        Transform::from_rotation(kernel_to_view()),
+    ));
+    for (illuminance, from) in [
+        (9000.0, Vec3::new(3.0, 8.0, 5.0)),
+        (3500.0, Vec3::new(-4.0, 2.0, -6.0)),
+    ] {
+        commands.spawn((
+            DirectionalLight {
+                illuminance,
+                shadow_maps_enabled: false,
+                ..default()
+            },
+            Transform::from_translation(from).looking_at(Vec3::ZERO, Vec3::Y),
+        ));
+    }
+    commands.insert_resource(GlobalAmbientLight {
+        brightness: 400.0,
+        ..default()
+    });
+}
+
+pub(super) fn sync_mesh(
+    data: Res<SurfaceData>,
+    mut shown: ResMut<ShownSurface>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    surface: Single<&Mesh3d, With<SurfaceEntity>>,
+) {
+    if data.generation == shown.generation {
+        return;
+    }
+    shown.generation = data.generation;
+    let Some(mut mesh) = meshes.get_mut(&surface.0) else {
+        return;
+    };
+    let m = &data.mesh;
+    let cols = data.points.cols();
+    if let Some(span) = data.rows_changed
+        && mesh.count_vertices() == m.positions.len()
+        && cols > 0
+    {
+        let range = span.lo * cols..(span.hi + 1) * cols;
+        if let Some(VertexAttributeValues::Float32x3(p)) =
+            mesh.attribute_mut(Mesh::ATTRIBUTE_POSITION)
+        {
+            for i in range.clone() {
+                p[i] = m.positions[i].as_vec3().to_array();
+            }
+        }
+        if let Some(VertexAttributeValues::Float32x3(n)) =
+            mesh.attribute_mut(Mesh::ATTRIBUTE_NORMAL)
+        {
+            for i in range {
+                n[i] = m.normals[i].as_vec3().to_array();
+            }
+        }
+        shown.full = false;
+        return;
+    }
+    *mesh = to_bevy_mesh(m);
+    shown.full = true;
+}
+
+/// Converts the kernel's mesh buffers into a Bevy mesh (kernel axes; the
+/// entity's transform turns them into the view's).
+pub fn to_bevy_mesh(m: &SurfaceMesh) -> Mesh {
+    let pos: Vec<[f32; 3]> = m.positions.iter().map(|p| p.as_vec3().to_array()).collect();
+    let nrm: Vec<[f32; 3]> = m.normals.iter().map(|n| n.as_vec3().to_array()).collect();
+    let uv = vec![[0.5f32, 0.5]; pos.len()];
+    Mesh::new(
+        PrimitiveTopology::TriangleList,
+        RenderAssetUsages::default(),
+    )
+    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, pos)
+    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, nrm)
+    .with_inserted_attribute(Mesh::ATTRIBUTE_UV_0, uv)
+    .with_inserted_indices(Indices::U32(m.indices.clone()))
+}
