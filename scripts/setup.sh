@@ -2,12 +2,13 @@
 # Installs what Streamline Studio needs on a Debian machine, only what is missing:
 # a Rust toolchain is assumed (rustup); Bevy's x11 and Vulkan libraries are loaded
 # at run time, so no -dev headers are needed. For windows without a display (CI,
-# servers) it adds a virtual X server and Mesa's software Vulkan (llvmpipe).
+# servers) it adds a virtual X server and Mesa's software Vulkan (llvmpipe), and
+# xdotool, with which the GUI tests drive a real pointer.
 set -euo pipefail
 
 need=()
 have() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
-for pkg in libvulkan1 mesa-vulkan-drivers libx11-6 libxcursor1 libxrandr2 libxi6 libxkbcommon-x11-0 xvfb xauth; do
+for pkg in libvulkan1 mesa-vulkan-drivers libx11-6 libxcursor1 libxrandr2 libxi6 libxkbcommon-x11-0 xvfb xauth xdotool; do
   have "$pkg" || need+=("$pkg")
 done
 if ((${#need[@]})); then

@@ -53,6 +53,9 @@ pub struct ScreenshotArgs {
     /// Select handle ROW,COL of the edit depth.
     #[arg(long)]
     select: Option<String>,
+    /// For GUI tests: write a JSON report here on exit.
+    #[arg(long, hide = true)]
+    report: Option<PathBuf>,
 }
 
 /// `screenshot`.
@@ -108,6 +111,7 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
     req.analysis = analysis;
     req.comb = a.comb;
     req.select = select;
+    req.report = a.report.clone();
     // a screenshot never touches the user's recent files or recovery
     let dirs = EditorDirs {
         home: std::env::temp_dir().join(format!("streamline-shot-{}", std::process::id())),

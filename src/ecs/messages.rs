@@ -81,7 +81,7 @@ impl Edit {
             Edit::SetBlendOrder(o) => format!("blend order {}", o.name()),
             Edit::SetDisplayDepth(d) => format!("display depth {d}"),
             Edit::SetEditDepth(d) => format!("edit depth {d}"),
-            Edit::CancelGroup(g) => format!("cancel drag {g}"),
+            Edit::CancelGroup(_) => "cancel drag".into(),
             Edit::Undo => "undo".into(),
             Edit::Redo => "redo".into(),
             Edit::Load(p) => format!("load {}", p.display()),

@@ -145,12 +145,29 @@ fn rebuild(
     let Some(base) = find(0) else {
         return;
     };
-    let controls = level_arrows(&model, &base.0, 0.7);
+    let mut controls = level_arrows(&model, &base.0, 0.7);
+    // long intervals (a 3×3 net) would give arrows as large as the scene: cap
+    // them at a tenth of the control points' extent
+    let (lo, hi) = controls.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), a| (lo.min(a.base), hi.max(a.base)),
+    );
+    let cap = ((hi - lo).length() * 0.1).max(1e-6);
+    let clamp = |v: &mut Vec<Arrow>| {
+        for a in v.iter_mut() {
+            a.length = a.length.min(cap);
+        }
+    };
+    clamp(&mut controls);
     let handles = if edit == 0 {
         controls.clone()
     } else {
         match find(edit) {
-            Some(d) => level_arrows(&model, &d.0, 0.8),
+            Some(d) => {
+                let mut h = level_arrows(&model, &d.0, 0.8);
+                clamp(&mut h);
+                h
+            }
             None => return,
         }
     };

@@ -3,9 +3,13 @@
 //! save the primary window to a PNG, exit.
 
 use super::analysis::{AnalysisSettings, SurfaceMode};
+use super::camera::MainCamera;
+use super::coords::to_view;
+use super::handles::HandleArrows;
 use super::panels::{PanelName, UiState};
 use super::picking::Selection;
 use super::surface::ShownSurface;
+use crate::ecs::{History, Model, Stats};
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured, save_to_disk};
 use std::path::PathBuf;
@@ -26,6 +30,9 @@ pub struct ScreenshotRequest {
     pub comb: bool,
     /// Select this handle `(row, col)`.
     pub select: Option<(usize, usize)>,
+    /// Write a JSON report here on exit (for GUI tests), and `REPORT.at` with
+    /// the selected handle's shaft midpoint on screen (`x y`) once it is drawn.
+    pub report: Option<PathBuf>,
 }
 
 impl ScreenshotRequest {
@@ -41,6 +48,7 @@ impl ScreenshotRequest {
             analysis: None,
             comb: false,
             select: None,
+            report: None,
         }
     }
 }
@@ -50,6 +58,7 @@ struct ShotProgress {
     frame: u32,
     requested: bool,
     captured: Option<u32>,
+    position_written: bool,
 }
 
 pub struct ScreenshotPlugin;
@@ -84,12 +93,59 @@ fn set_up_view(
     }
 }
 
+/// What a GUI test reads back after the run.
+#[derive(serde::Serialize)]
+struct Report {
+    undo: usize,
+    redo: usize,
+    unsaved: bool,
+    selection: Option<(usize, usize)>,
+    last_edit: String,
+    net: Vec<[f64; 3]>,
+    cols: usize,
+}
+
+fn write_report(path: &std::path::Path, r: &Report) {
+    if let Ok(text) = serde_json::to_string_pretty(r) {
+        let _ = std::fs::write(path, text);
+    }
+}
+
+/// Writes `REPORT.at`: the selected handle's shaft midpoint in window pixels.
+fn write_handle_position(
+    req: &ScreenshotRequest,
+    selection: &Selection,
+    arrows: &HandleArrows,
+    camera: &Query<(&Camera, &GlobalTransform), With<MainCamera>>,
+) -> bool {
+    let (Some(report), Some(h)) = (&req.report, selection.handle) else {
+        return true;
+    };
+    let (Some(a), Ok((cam, gt))) = (arrows.find(h), camera.single()) else {
+        return false;
+    };
+    let mid = a.base + a.dir * (a.length * 0.6);
+    let Ok(p) = cam.world_to_viewport(gt, to_view(mid)) else {
+        return false;
+    };
+    let mut at = report.clone().into_os_string();
+    at.push(".at");
+    std::fs::write(at, format!("{} {}\n", p.x.round(), p.y.round())).is_ok()
+}
+
+#[allow(clippy::too_many_arguments)]
 fn drive(
     mut commands: Commands,
     req: Res<ScreenshotRequest>,
     shown: Res<ShownSurface>,
     mut p: ResMut<ShotProgress>,
     mut exit: MessageWriter<AppExit>,
+    model: Res<Model>,
+    history: Res<History>,
+    stats: Res<Stats>,
+    selection: Res<Selection>,
+    arrows: Res<HandleArrows>,
+    camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
 ) {
     p.frame += 1;
     if p.frame > req.frames + 600 {
@@ -99,6 +155,9 @@ fn drive(
     }
     if shown.generation == 0 {
         return; // not built yet
+    }
+    if !p.position_written && p.frame >= 10 {
+        p.position_written = write_handle_position(&req, &selection, &arrows, &camera);
     }
     if !p.requested && p.frame >= req.frames {
         p.requested = true;
@@ -112,6 +171,21 @@ fn drive(
     if let Some(at) = p.captured
         && p.frame > at + 2
     {
+        if let Some(path) = &req.report {
+            let net = &model.scene.design.net;
+            write_report(
+                path,
+                &Report {
+                    undo: history.undo_len(),
+                    redo: history.redo_len(),
+                    unsaved: model.unsaved,
+                    selection: selection.handle,
+                    last_edit: stats.last.edit.clone(),
+                    net: net.data().iter().map(|v| v.to_array()).collect(),
+                    cols: net.cols(),
+                },
+            );
+        }
         exit.write(AppExit::Success);
     }
 }

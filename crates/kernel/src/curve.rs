@@ -183,7 +183,8 @@ impl CurveScheme {
                     mid(t[k / 2], t[k / 2 + 1])
                 }
             }
-            CurveScheme::FourPoint { omega } => FourPointRule::cached(omega).at(t, k),
+            CurveScheme::FourPoint { .. } if k.is_multiple_of(2) => t[k / 2],
+            CurveScheme::FourPoint { omega } => FourPointRule::with_cached(omega, |r| r.at(t, k)),
         }
     }
 
@@ -221,16 +222,24 @@ impl FourPointRule {
     /// one costs four 24-term series; a surface step refines hundreds of rows).
     #[inline]
     pub fn cached(omega: f64) -> Self {
+        Self::with_cached(omega, |rule| *rule)
+    }
+
+    /// Runs `f` on the cached rule for `omega` without copying it (the rule is
+    /// 1.5 kB: the per-entry window path calls this for every output).
+    #[inline]
+    pub fn with_cached<R>(omega: f64, f: impl FnOnce(&FourPointRule) -> R) -> R {
         thread_local! {
-            static LAST: std::cell::Cell<Option<(u64, FourPointRule)>> = const { std::cell::Cell::new(None) };
+            static LAST: std::cell::RefCell<Option<(u64, FourPointRule)>> = const { std::cell::RefCell::new(None) };
         }
-        LAST.with(|c| match c.get() {
-            Some((bits, rule)) if bits == omega.to_bits() => rule,
-            _ => {
-                let rule = FourPointRule::new(omega);
-                c.set(Some((omega.to_bits(), rule)));
-                rule
+        LAST.with(|c| {
+            let bits = omega.to_bits();
+            if !matches!(&*c.borrow(), Some((b, _)) if *b == bits) {
+                *c.borrow_mut() = Some((bits, FourPointRule::new(omega)));
             }
+            let guard = c.borrow();
+            let (_, rule) = guard.as_ref().expect("set above");
+            f(rule)
         })
     }
 

@@ -146,8 +146,10 @@ impl FixedBlend {
         let n = terms_for(h);
         let (mut cu, mut su) = (self.cos_coef[n - 1], self.sin_coef[n - 1]);
         for k in (0..n - 1).rev() {
-            cu = cu.mul_add(h, self.cos_coef[k]);
-            su = su.mul_add(h, self.sin_coef[k]);
+            // plain multiply-add: `mul_add` is a slow library call on CPUs
+            // built without the FMA target feature (the default x86-64 target)
+            cu = cu * h + self.cos_coef[k];
+            su = su * h + self.sin_coef[k];
         }
         // r = a (cos uθ − c · sin uθ / sin θ) + b · sin uθ / sin θ, c = 1 − 2h.
         let c = 1.0 - 2.0 * h;

@@ -88,11 +88,37 @@ fn legend(ui: &mut egui::Ui, limit: f64) {
             egui::Color32::from_rgb(r, g, b),
         );
     }
-    ui.horizontal(|ui| {
-        ui.label(egui::RichText::new(format!("−{limit:.3e}")).small());
-        ui.label(egui::RichText::new("0").small());
-        ui.label(egui::RichText::new(format!("+{limit:.3e}")).small());
-    })
-    .response
-    .on_hover_text("The colour map: blue −limit, white 0, red +limit");
+    let (labels, _) = ui.allocate_exact_size(egui::vec2(rect.width(), 14.0), egui::Sense::hover());
+    let font = egui::FontId::proportional(11.0);
+    let colour = ui.visuals().text_color();
+    for (x, align, text) in [
+        (
+            labels.left(),
+            egui::Align2::LEFT_TOP,
+            format!("−{}", short(limit)),
+        ),
+        (labels.center().x, egui::Align2::CENTER_TOP, "0".to_string()),
+        (
+            labels.right(),
+            egui::Align2::RIGHT_TOP,
+            format!("+{}", short(limit)),
+        ),
+    ] {
+        ui.painter().text(
+            egui::pos2(x, labels.top()),
+            align,
+            text,
+            font.clone(),
+            colour,
+        );
+    }
+}
+
+/// A number in three significant digits, plain or in e-notation.
+fn short(v: f64) -> String {
+    if (1e-2..1e4).contains(&v.abs()) {
+        format!("{v:.3}")
+    } else {
+        format!("{v:.2e}")
+    }
 }

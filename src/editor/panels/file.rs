@@ -15,7 +15,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
     ui.label(egui::RichText::new(path).weak().small())
         .on_hover_text("The file the scene was opened from or saved to");
     ui.horizontal_wrapped(|ui| {
-        ui.menu_button("New ▾", |ui| {
+        ui.menu_button("New…", |ui| {
             for (name, _) in builtin::SCENES {
                 if ui
                     .button(name)

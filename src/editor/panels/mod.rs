@@ -263,7 +263,7 @@ fn panel(mut contexts: EguiContexts, mut p: PanelCtx, mut area: ResMut<ViewArea>
     egui::Panel::left("side_panel")
         .resizable(true)
         .default_size(300.0)
-        .size_range(220.0..=520.0)
+        .size_range(280.0..=520.0)
         .show(&mut root, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
                 for name in PanelName::ALL {

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Regenerates the pictures in docs/img/ (the editor under Xvfb with Mesa's
+# software Vulkan): one per panel section and one per curvature display.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+cargo build --release
+BIN="${CARGO_TARGET_DIR:-target}/release/streamline-studio"
+shot() { local name=$1; shift; xvfb-run -a -s "-screen 0 1280x800x24" "$BIN" screenshot "$@" --out "docs/img/$name.png" 2>/dev/null; echo "docs/img/$name.png"; }
+mkdir -p docs/img
+shot editor-car1 car1 --select 3,4
+shot panel-file car1 --panel file
+shot panel-subdivision car1 --panel subdivision
+shot panel-selection car1 --panel selection --select 3,4
+shot panel-display car1 --panel display
+shot panel-stats car1 --panel stats
+shot analysis-gaussian car1 --panel analysis --analysis gaussian
+shot analysis-mean car1 --panel analysis --analysis mean
+shot analysis-zebra car1 --panel analysis --analysis zebra
+shot analysis-comb car1 --panel analysis --comb
+shot editor-qi-side qi-side --select 1,2

@@ -1,0 +1,195 @@
+//! The editor as a user sees it, on a virtual X display with Mesa's software
+//! Vulkan (installed by scripts/setup.sh): screenshots are decoded and checked
+//! for the surface and the panel; a real pointer (xdotool) drags an arrow, and
+//! Esc cancels a drag.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const BIN: &str = env!("CARGO_BIN_EXE_streamline-studio");
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("streamline-gui-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Runs `screenshot` with `args` at 800×600 and returns the decoded RGB pixels.
+fn shot(dir: &Path, name: &str, args: &[&str]) -> (u32, u32, Vec<[u8; 3]>) {
+    let out = dir.join(format!("{name}.png"));
+    let run = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24", BIN, "screenshot"])
+        .args(args)
+        .args(["--size", "800x600", "--out"])
+        .arg(&out)
+        .env_remove("DISPLAY")
+        .output()
+        .expect("xvfb-run is installed by scripts/setup.sh");
+    assert!(
+        run.status.success(),
+        "screenshot failed: {}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&out).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let channels = info.color_type.samples();
+    assert!(channels >= 3, "{:?}", info.color_type);
+    let px = buf[..info.buffer_size()]
+        .chunks(channels)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect();
+    (info.width, info.height, px)
+}
+
+/// Share of pixels in the 3D view (right of the panel, below the toolbar,
+/// left of the sphere inset) that satisfy `f`.
+fn share(w: u32, h: u32, px: &[[u8; 3]], f: impl Fn([u8; 3]) -> bool) -> f64 {
+    let (mut n, mut hit) = (0usize, 0usize);
+    for y in (h / 10)..(h * 9 / 10) {
+        for x in (w * 2 / 5)..(w * 7 / 10) {
+            n += 1;
+            hit += f(px[(y * w + x) as usize]) as usize;
+        }
+    }
+    hit as f64 / n as f64
+}
+
+#[test]
+fn screenshots_show_the_surface_panels_and_curvature() {
+    let dir = temp_dir("shots");
+    // shaded: the light blue-grey surface covers a good part of the view
+    let (w, h, px) = shot(&dir, "shaded", &["car1"]);
+    let surface = share(w, h, &px, |[r, g, b]| r.min(g).min(b) > 120 && b >= r);
+    assert!(surface > 0.08, "surface covers {surface:.3} of the view");
+    // the panel (left 200 px) has text: light pixels on the dark panel
+    let text = (0..h * w)
+        .filter(|i| i % w < 200)
+        .filter(|&i| px[i as usize].iter().all(|&c| c > 150))
+        .count();
+    assert!(text > 300, "{text} text pixels in the panel");
+    // Gaussian curvature: the car has domes (red) and saddles (blue)
+    let (w, h, px) = shot(
+        &dir,
+        "gauss",
+        &["car1", "--analysis", "gaussian", "--panel", "analysis"],
+    );
+    let red = share(w, h, &px, |[r, g, b]| {
+        r as i32 > b as i32 + 60 && r as i32 > g as i32 + 40
+    });
+    let blue = share(w, h, &px, |[r, _, b]| b as i32 > r as i32 + 60);
+    assert!(red > 0.0008 && blue > 0.002, "red {red:.4}, blue {blue:.4}");
+    // zebra: black and white stripes on the surface
+    let (w, h, px) = shot(&dir, "zebra", &["car1", "--analysis", "zebra"]);
+    let black = share(w, h, &px, |p| p.iter().all(|&c| c < 35));
+    let white = share(w, h, &px, |p| p.iter().all(|&c| c > 180));
+    assert!(
+        black > 0.02 && white > 0.02,
+        "black {black:.3}, white {white:.3}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[derive(serde::Deserialize, Debug)]
+struct Report {
+    undo: usize,
+    last_edit: String,
+    net: Vec<[f64; 3]>,
+    cols: usize,
+}
+
+fn drag(dir: &Path, esc: bool) -> Report {
+    let report = dir.join(if esc { "esc.json" } else { "drag.json" });
+    let run = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24", "bash"])
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/gui/drag.sh"))
+        .arg(BIN)
+        .arg(dir.join("drag.png"))
+        .arg(&report)
+        .args(if esc { &["esc"][..] } else { &[][..] })
+        .env_remove("DISPLAY")
+        .output()
+        .expect("xvfb-run and xdotool are installed by scripts/setup.sh");
+    assert!(
+        run.status.success(),
+        "drag run failed: {}{}",
+        String::from_utf8_lossy(&run.stderr),
+        std::fs::read_to_string(report.with_extension("json.log")).unwrap_or_default()
+    );
+    serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap()
+}
+
+/// A left drag on the arrow of control tangent (0, 8) turns it (one undo step);
+/// the same drag with Esc pressed before release leaves it exactly as it was.
+#[test]
+fn pointer_drag_turns_an_arrow_and_esc_cancels() {
+    let dir = temp_dir("drag");
+    let start = streamline_studio::scene::builtin::default_scene()
+        .design
+        .net
+        .get(0, 8)
+        .to_array();
+    let moved = drag(&dir, false);
+    let d = moved.net[8];
+    assert_eq!(moved.cols, 9);
+    let turn =
+        ((d[0] - start[0]).powi(2) + (d[1] - start[1]).powi(2) + (d[2] - start[2]).powi(2)).sqrt();
+    assert!(turn > 0.05, "the arrow turned by {turn}: {moved:?}");
+    assert_eq!(moved.undo, 1, "a drag is one undo step");
+    let cancelled = drag(&dir, true);
+    assert_eq!(cancelled.net[8], start, "Esc restores the direction");
+    assert_eq!(cancelled.undo, 0, "a cancelled drag leaves no undo step");
+    assert!(
+        cancelled.last_edit.contains("cancel"),
+        "{}",
+        cancelled.last_edit
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn editor_without_display_says_what_to_do() {
+    let out = Command::new(BIN)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("no display found") && err.contains("xvfb-run"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+/// A display but no graphics adapter (Vulkan pointed at nothing): a message
+/// that says what to do, exit code 2, no panic report.
+#[test]
+fn editor_without_adapter_says_what_to_do() {
+    let dir = temp_dir("noadapter");
+    let out = Command::new("xvfb-run")
+        .args([
+            "-a",
+            "-s",
+            "-screen 0 1280x800x24",
+            BIN,
+            "screenshot",
+            "--out",
+        ])
+        .arg(dir.join("x.png"))
+        .env("VK_ICD_FILENAMES", dir.join("none.json"))
+        .env("WGPU_BACKEND", "vulkan")
+        .env_remove("DISPLAY")
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("no usable graphics adapter") && err.contains("mesa-vulkan-drivers"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked at"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Drives the editor with a real pointer (xdotool) on a virtual display: run it
+# inside `xvfb-run -a`. Starts a screenshot run that selects handle (0, 8) and
+# reports where its arrow is, drags that arrow upwards, optionally presses Esc
+# before letting go, and waits for the run to end.
+# Usage: drag.sh BIN OUT.png REPORT.json [esc]
+set -euo pipefail
+BIN=$1; OUT=$2; REPORT=$3; ESC=${4:-}
+STREAMLINE_STUDIO_SHOT_FRAMES=${FRAMES:-150} "$BIN" screenshot car1 --out "$OUT" \
+  --select 0,8 --report "$REPORT" --size 900x600 2>"$REPORT.log" &
+PID=$!
+for _ in $(seq 1 600); do
+  [ -s "$REPORT.at" ] && break
+  sleep 0.2
+done
+read -r X Y < "$REPORT.at"
+WID=$(xdotool search --name "Streamline Studio" | head -1 || true)
+[ -n "$WID" ] && xdotool windowfocus "$WID" 2>/dev/null || true
+# generous pauses: under load llvmpipe may draw only a few frames a second, and
+# the press must land in a frame where the pointer is still on the arrow
+xdotool mousemove "$X" "$Y"; sleep 1.5
+xdotool mousedown 1; sleep 1.5
+for _ in $(seq 1 10); do xdotool mousemove_relative -- 0 -9; sleep 0.25; done
+sleep 1.5
+if [ "$ESC" = esc ]; then xdotool key Escape; sleep 1.5; fi
+xdotool mouseup 1
+wait "$PID"
