@@ -47,14 +47,23 @@ impl SurfaceMesh {
     pub fn update_normals_row(&mut self, points: &Grid<DVec3>, r: usize) {
         let (rows, cols) = (points.rows(), points.cols());
         let (r0, r1) = (r.saturating_sub(1), (r + 1).min(rows - 1));
+        let (above, here, below) = (points.row(r0), points.row(r), points.row(r1));
+        let out = &mut self.normals[r * cols..(r + 1) * cols];
         let mut last = DVec3::Z;
         for c in 0..cols {
             let (c0, c1) = (c.saturating_sub(1), (c + 1).min(cols - 1));
-            let ds = points.get(r, c1) - points.get(r, c0);
-            let dt = points.get(r1, c) - points.get(r0, c);
-            let n = ds.cross(dt).try_normalize().unwrap_or(last);
+            let ds = here[c1] - here[c0];
+            let dt = below[c] - above[c];
+            let n = ds.cross(dt);
+            let len2 = n.length_squared();
+            // a degenerate point takes its neighbour's normal (never NaN)
+            let n = if len2 > 0.0 && len2.is_finite() {
+                n / len2.sqrt()
+            } else {
+                last
+            };
             last = n;
-            self.normals[r * cols + c] = n;
+            out[c] = n;
         }
     }
 }

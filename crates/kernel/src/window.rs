@@ -154,12 +154,103 @@ impl Window {
     }
 }
 
+/// Windows smaller than this many entries are refined on the calling thread;
+/// larger ones are split in two halves of rows run on two threads (the work
+/// per entry is the same either way, so results are bitwise equal).
+pub const PARALLEL_MIN_ENTRIES: usize = 8192;
+
+/// Splits rows `rows` of `dst` (a `width`-wide grid) between the calling
+/// thread and, when `parallel`, one more: `run(chunk, first_row, scratch)`
+/// fills its chunk of whole rows. `scratch` is the calling thread's.
+fn split_rows<T, F>(
+    dst: &mut [T],
+    width: usize,
+    rows: Span,
+    parallel: bool,
+    scratch: &mut Vec<T>,
+    run: F,
+) where
+    T: Refine + Send,
+    F: Fn(&mut [T], usize, &mut Vec<T>) + Sync,
+{
+    let region = &mut dst[rows.lo * width..(rows.hi + 1) * width];
+    if !parallel || rows.len() < 2 {
+        run(region, rows.lo, scratch);
+        return;
+    }
+    let split = rows.len() / 2;
+    let (top, bottom) = region.split_at_mut(split * width);
+    std::thread::scope(|scope| {
+        scope.spawn(|| run(bottom, rows.lo + split, &mut Vec::new()));
+        run(top, rows.lo, scratch);
+    });
+}
+
+/// Entries `cols` of rows `rows` of `dst`: the step along each row of `src`.
+fn refine_along_rows<T: Refine + Send + Sync>(
+    c: CurveScheme,
+    src: &Grid<T>,
+    dst: &mut Grid<T>,
+    rows: Span,
+    cols: Span,
+    parallel: bool,
+    scratch: &mut Vec<T>,
+) {
+    let width = dst.cols();
+    split_rows(
+        dst.data_mut(),
+        width,
+        rows,
+        parallel,
+        scratch,
+        |chunk, first, _| {
+            for (i, row) in chunk.chunks_mut(width).enumerate() {
+                let input = src.row(first + i);
+                for k in cols.iter() {
+                    row[k] = T::refine_at(c, input, k);
+                }
+            }
+        },
+    );
+}
+
+/// Entries `cols` of rows `rows` of `dst`: the step along each column of
+/// `src`, column by column (each column gathered once per thread).
+fn refine_along_cols<T: Refine + Send + Sync>(
+    c: CurveScheme,
+    src: &Grid<T>,
+    dst: &mut Grid<T>,
+    rows: Span,
+    cols: Span,
+    parallel: bool,
+    scratch: &mut Vec<T>,
+) {
+    let width = dst.cols();
+    split_rows(
+        dst.data_mut(),
+        width,
+        rows,
+        parallel,
+        scratch,
+        |chunk, first, column| {
+            for k in cols.iter() {
+                column.clear();
+                column.extend((0..src.rows()).map(|r| src.get(r, k)));
+                for (i, row) in chunk.chunks_mut(width).enumerate() {
+                    row[k] = T::refine_at(c, column, first + i);
+                }
+            }
+        },
+    );
+}
+
 /// One tensor step restricted to a window. `prev` is the coarse grid, `half`
 /// the intermediate grid of the first direction (s-first: `prev.rows × refined
 /// cols`; t-first: `refined rows × prev.cols`), `next` the fine grid; `win` is
 /// the dirty window of `prev`. Recomputes the affected entries of `half` and
-/// `next` in place and returns the dirty window of `next`.
-pub fn refine_grid_window<T: Refine>(
+/// `next` in place and returns the dirty window of `next`. Large windows run on
+/// two threads ([`PARALLEL_MIN_ENTRIES`]).
+pub fn refine_grid_window<T: Refine + Send + Sync>(
     scheme: SurfaceScheme,
     order: BlendOrder,
     prev: &Grid<T>,
@@ -170,38 +261,15 @@ pub fn refine_grid_window<T: Refine>(
 ) -> Window {
     let c = scheme.curve();
     let out = win.refine(scheme, prev.rows(), prev.cols());
+    let parallel = out.area() >= PARALLEL_MIN_ENTRIES;
     match order {
         BlendOrder::SFirst => {
-            for r in win.rows.iter() {
-                let src = prev.row(r);
-                let dst = half.row_mut(r);
-                for k in out.cols.iter() {
-                    dst[k] = T::refine_at(c, src, k);
-                }
-            }
-            for k in out.cols.iter() {
-                buf.clear();
-                buf.extend((0..half.rows()).map(|r| half.get(r, k)));
-                for r in out.rows.iter() {
-                    next.set(r, k, T::refine_at(c, buf, r));
-                }
-            }
+            refine_along_rows(c, prev, half, win.rows, out.cols, parallel, buf);
+            refine_along_cols(c, half, next, out.rows, out.cols, parallel, buf);
         }
         BlendOrder::TFirst => {
-            for k in win.cols.iter() {
-                buf.clear();
-                buf.extend((0..prev.rows()).map(|r| prev.get(r, k)));
-                for r in out.rows.iter() {
-                    half.set(r, k, T::refine_at(c, buf, r));
-                }
-            }
-            for r in out.rows.iter() {
-                let src = half.row(r);
-                let dst = next.row_mut(r);
-                for k in out.cols.iter() {
-                    dst[k] = T::refine_at(c, src, k);
-                }
-            }
+            refine_along_cols(c, prev, half, out.rows, win.cols, parallel, buf);
+            refine_along_rows(c, half, next, out.rows, out.cols, parallel, buf);
         }
     }
     out
@@ -244,23 +312,27 @@ mod tests {
             SurfaceScheme::CatmullClark,
             SurfaceScheme::DooSabin,
         ] {
-            for order in [BlendOrder::SFirst, BlendOrder::TFirst] {
-                let g = net(5, 7);
-                let full = refine_grid(scheme, order, &g);
-                let (hr, hc) = half_shape(scheme, order, 5, 7);
-                let mut half = Grid::filled(hr, hc, DVec3::ZERO);
-                let mut next = Grid::filled(full.rows(), full.cols(), DVec3::ZERO);
-                let w = refine_grid_window(
-                    scheme,
-                    order,
-                    &g,
-                    &mut half,
-                    &mut next,
-                    Window::all(5, 7),
-                    &mut Vec::new(),
-                );
-                assert_eq!(w, Window::all(full.rows(), full.cols()));
-                assert_eq!(next, full, "{scheme:?} {order:?}");
+            // 5×7 runs on one thread; 70×90 (over PARALLEL_MIN_ENTRIES) on two
+            for (rows, cols) in [(5, 7), (70, 90)] {
+                for order in [BlendOrder::SFirst, BlendOrder::TFirst] {
+                    let g = net(rows, cols);
+                    let full = refine_grid(scheme, order, &g);
+                    let (hr, hc) = half_shape(scheme, order, rows, cols);
+                    let mut half = Grid::filled(hr, hc, DVec3::ZERO);
+                    let mut next = Grid::filled(full.rows(), full.cols(), DVec3::ZERO);
+                    let w = refine_grid_window(
+                        scheme,
+                        order,
+                        &g,
+                        &mut half,
+                        &mut next,
+                        Window::all(rows, cols),
+                        &mut Vec::new(),
+                    );
+                    assert_eq!(w, Window::all(full.rows(), full.cols()));
+                    assert!(w.area() < PARALLEL_MIN_ENTRIES || rows > 5);
+                    assert_eq!(next, full, "{scheme:?} {order:?} {rows}×{cols}");
+                }
             }
         }
     }
