@@ -99,15 +99,15 @@ struct Report {
     cols: usize,
 }
 
-fn drag(dir: &Path, esc: bool) -> Report {
-    let report = dir.join(if esc { "esc.json" } else { "drag.json" });
+fn drag(dir: &Path, mode: &str) -> Report {
+    let report = dir.join(format!("{mode}.json"));
     let run = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1280x800x24", "bash"])
         .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/gui/drag.sh"))
         .arg(BIN)
         .arg(dir.join("drag.png"))
         .arg(&report)
-        .args(if esc { &["esc"][..] } else { &[][..] })
+        .arg(mode)
         .env_remove("DISPLAY")
         .output()
         .expect("xvfb-run and xdotool are installed by scripts/setup.sh");
@@ -121,7 +121,8 @@ fn drag(dir: &Path, esc: bool) -> Report {
 }
 
 /// A left drag on the arrow of control tangent (0, 8) turns it (one undo step);
-/// the same drag with Esc pressed before release leaves it exactly as it was.
+/// the same drag with Esc pressed before release leaves it exactly as it was;
+/// dragging its point on the sphere view turns it too.
 #[test]
 fn pointer_drag_turns_an_arrow_and_esc_cancels() {
     let dir = temp_dir("drag");
@@ -130,14 +131,14 @@ fn pointer_drag_turns_an_arrow_and_esc_cancels() {
         .net
         .get(0, 8)
         .to_array();
-    let moved = drag(&dir, false);
+    let moved = drag(&dir, "arrow");
     let d = moved.net[8];
     assert_eq!(moved.cols, 9);
     let turn =
         ((d[0] - start[0]).powi(2) + (d[1] - start[1]).powi(2) + (d[2] - start[2]).powi(2)).sqrt();
     assert!(turn > 0.05, "the arrow turned by {turn}: {moved:?}");
     assert_eq!(moved.undo, 1, "a drag is one undo step");
-    let cancelled = drag(&dir, true);
+    let cancelled = drag(&dir, "esc");
     assert_eq!(cancelled.net[8], start, "Esc restores the direction");
     assert_eq!(cancelled.undo, 0, "a cancelled drag leaves no undo step");
     assert!(
@@ -162,6 +163,29 @@ fn editor_without_display_says_what_to_do() {
         "{err}"
     );
     assert!(!err.contains("panicked"), "{err}");
+    // a scene file is read (and checked) before the window opens
+    let run = |arg: &str| {
+        let out = Command::new(BIN)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .arg(arg)
+            .env_remove("DISPLAY")
+            .env_remove("WAYLAND_DISPLAY")
+            .output()
+            .unwrap();
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stderr).to_string(),
+        )
+    };
+    let (code, err) = run("scenes/car2.ron");
+    assert_eq!(code, Some(2));
+    assert!(err.contains("no display found"), "{err}");
+    let (code, err) = run("tests/bad/scenes/zero-tangent.ron");
+    assert_eq!(code, Some(2));
+    assert!(
+        err.contains("zero-tangent.ron:5:24") && err.contains("non-zero direction"),
+        "{err}"
+    );
 }
 
 /// A display but no graphics adapter (Vulkan pointed at nothing): a message

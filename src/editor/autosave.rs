@@ -88,23 +88,28 @@ fn offer_recovery(
     if shot.is_some() {
         return;
     }
+    if let Some(d) = pending_recovery(&dirs, model.path.as_deref()) {
+        ui.dialog = Some(d);
+    }
+}
+
+/// The recovery offer, if the recovery file exists and is newer than the
+/// scene's file (`scene`: `None` for a built-in scene).
+pub fn pending_recovery(dirs: &EditorDirs, scene: Option<&std::path::Path>) -> Option<Dialog> {
     let modified = |p: &std::path::Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
-    let Some(saved) = modified(&dirs.recovery_file()) else {
-        return;
-    };
+    let saved = modified(&dirs.recovery_file())?;
     let origin = std::fs::read_to_string(dirs.recovery_meta())
         .ok()
         .and_then(|t| serde_json::from_str::<RecoveryMeta>(&t).ok())
         .and_then(|m| m.origin);
-    let scene_time = model.path.as_deref().and_then(modified);
-    if scene_time.is_some_and(|t| t >= saved) {
-        return; // the scene was saved after the autosave
+    if scene.and_then(modified).is_some_and(|t| t >= saved) {
+        return None; // the scene was saved after the autosave
     }
     let age = SystemTime::now().duration_since(saved).unwrap_or_default();
-    ui.dialog = Some(Dialog::Recover {
+    Some(Dialog::Recover {
         when: format!("{} min ago", age.as_secs() / 60),
         origin,
-    });
+    })
 }
 
 /// Opens the recovery file as the current (unsaved) scene.
@@ -166,5 +171,50 @@ fn on_exit(
         && let Err(e) = write_recovery(&dirs, &model)
     {
         error!("autosave on quit failed: {e}");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::builtin;
+
+    fn dirs(name: &str) -> EditorDirs {
+        let home =
+            std::env::temp_dir().join(format!("streamline-autosave-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&home);
+        EditorDirs { home }
+    }
+
+    #[test]
+    fn recovery_round_trip_and_offer() {
+        let d = dirs("round");
+        assert!(pending_recovery(&d, None).is_none(), "nothing saved yet");
+        let mut scene = builtin::default_scene();
+        scene.name = "edited car".into();
+        let mut model = Model::new(scene);
+        let origin = d.home.join("car.ron");
+        model.path = Some(origin.clone());
+        write_recovery(&d, &model).unwrap();
+        // the scene file does not exist: the autosave is newer
+        match pending_recovery(&d, Some(&origin)) {
+            Some(Dialog::Recover {
+                origin: Some(o), ..
+            }) => assert_eq!(o, origin),
+            other => panic!("{other:?}"),
+        }
+        // the recovered scene is the saved one
+        let back = io::load(&d.recovery_file()).unwrap();
+        assert_eq!(back.name, "edited car");
+        assert_eq!(back.to_file(), model.scene.to_file());
+        // a scene saved after the autosave: no offer
+        std::thread::sleep(Duration::from_millis(20));
+        io::save(&model.scene, &origin).unwrap();
+        assert!(pending_recovery(&d, Some(&origin)).is_none());
+        // a built-in scene (no file): always offered
+        assert!(pending_recovery(&d, None).is_some());
+        remove_recovery(&d);
+        assert!(pending_recovery(&d, None).is_none());
+        let _ = std::fs::remove_dir_all(&d.home);
     }
 }

@@ -8,6 +8,7 @@ use super::coords::to_view;
 use super::handles::HandleArrows;
 use super::panels::{PanelName, UiState};
 use super::picking::Selection;
+use super::sphere_view::SphereCamera;
 use super::surface::ShownSurface;
 use crate::ecs::{History, Model, Stats};
 use bevy::prelude::*;
@@ -117,6 +118,7 @@ fn write_handle_position(
     selection: &Selection,
     arrows: &HandleArrows,
     camera: &Query<(&Camera, &GlobalTransform), With<MainCamera>>,
+    sphere: &Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
 ) -> bool {
     let (Some(report), Some(h)) = (&req.report, selection.handle) else {
         return true;
@@ -128,9 +130,23 @@ fn write_handle_position(
     let Ok(p) = cam.world_to_viewport(gt, to_view(mid)) else {
         return false;
     };
+    // second line: the handle's point on the sphere view
+    let Ok((scam, sgt)) = sphere.single() else {
+        return false;
+    };
+    let Ok(q) = scam.world_to_viewport(sgt, to_view(a.dir)) else {
+        return false;
+    };
     let mut at = report.clone().into_os_string();
     at.push(".at");
-    std::fs::write(at, format!("{} {}\n", p.x.round(), p.y.round())).is_ok()
+    let text = format!(
+        "{} {}\n{} {}\n",
+        p.x.round(),
+        p.y.round(),
+        q.x.round(),
+        q.y.round()
+    );
+    std::fs::write(at, text).is_ok()
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -146,6 +162,7 @@ fn drive(
     selection: Res<Selection>,
     arrows: Res<HandleArrows>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
+    sphere: Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
 ) {
     p.frame += 1;
     if p.frame > req.frames + 600 {
@@ -157,7 +174,7 @@ fn drive(
         return; // not built yet
     }
     if !p.position_written && p.frame >= 10 {
-        p.position_written = write_handle_position(&req, &selection, &arrows, &camera);
+        p.position_written = write_handle_position(&req, &selection, &arrows, &camera, &sphere);
     }
     if !p.requested && p.frame >= req.frames {
         p.requested = true;

@@ -59,8 +59,9 @@ impl Default for SphereSettings {
 #[derive(Default, Reflect, GizmoConfigGroup)]
 pub struct SphereGizmos;
 
+/// Marks the sphere view's camera.
 #[derive(Component)]
-struct SphereCamera;
+pub struct SphereCamera;
 
 #[derive(Component)]
 struct SubdividedPoints;

@@ -3,7 +3,8 @@
 # inside `xvfb-run -a`. Starts a screenshot run that selects handle (0, 8) and
 # reports where its arrow is, drags that arrow upwards, optionally presses Esc
 # before letting go, and waits for the run to end.
-# Usage: drag.sh BIN OUT.png REPORT.json [esc]
+# With `sphere` it drags the handle's point on the Gaussian sphere view instead.
+# Usage: drag.sh BIN OUT.png REPORT.json [esc|sphere]
 set -euo pipefail
 BIN=$1; OUT=$2; REPORT=$3; ESC=${4:-}
 STREAMLINE_STUDIO_SHOT_FRAMES=${FRAMES:-150} "$BIN" screenshot car1 --out "$OUT" \
@@ -13,7 +14,11 @@ for _ in $(seq 1 600); do
   [ -s "$REPORT.at" ] && break
   sleep 0.2
 done
-read -r X Y < "$REPORT.at"
+if [ "$ESC" = sphere ]; then
+  read -r X Y < <(sed -n 2p "$REPORT.at")
+else
+  read -r X Y < <(sed -n 1p "$REPORT.at")
+fi
 WID=$(xdotool search --name "Streamline Studio" | head -1 || true)
 [ -n "$WID" ] && xdotool windowfocus "$WID" 2>/dev/null || true
 # generous pauses: under load llvmpipe may draw only a few frames a second, and

@@ -62,6 +62,19 @@ impl PanelName {
         }
     }
 
+    fn tooltip(self) -> &'static str {
+        match self {
+            PanelName::File => "New, open, save, export, recent files",
+            PanelName::Subdivision => "Scheme, ω, blend order, display and edit depth",
+            PanelName::Selection => "The selected handle: direction, rotation, length, reset",
+            PanelName::Display => "What is drawn in the 3D view and the sphere view",
+            PanelName::Analysis => {
+                "Curvature comb, Gaussian and mean curvature maps, zebra stripes"
+            }
+            PanelName::Stats => "Sizes, and what the last edit cost stage by stage",
+        }
+    }
+
     fn title(self) -> &'static str {
         match self {
             PanelName::File => "File",
@@ -274,7 +287,7 @@ fn panel(mut contexts: EguiContexts, mut p: PanelCtx, mut area: ResMut<ViewArea>
                     if p.ui_state.force {
                         header = header.open(Some(open));
                     }
-                    header.show(ui, |ui| match name {
+                    let shown = header.show(ui, |ui| match name {
                         PanelName::File => file::show(ui, &mut p),
                         PanelName::Subdivision => subdivision::show(ui, &mut p),
                         PanelName::Selection => selection::show(ui, &mut p),
@@ -282,6 +295,7 @@ fn panel(mut contexts: EguiContexts, mut p: PanelCtx, mut area: ResMut<ViewArea>
                         PanelName::Analysis => analysis::show(ui, &mut p),
                         PanelName::Stats => stats::show(ui, &p),
                     });
+                    shown.header_response.on_hover_text(name.tooltip());
                 }
             });
         });
