@@ -8,6 +8,14 @@ use std::process::Command;
 
 const BIN: &str = env!("CARGO_BIN_EXE_streamline-studio");
 
+/// The editor renders in software (llvmpipe): one GUI run at a time keeps the
+/// frame rate, and so the pointer and key timings, sane on a 2-core machine.
+static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+fn gui_lock() -> std::sync::MutexGuard<'static, ()> {
+    ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 fn temp_dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("streamline-gui-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
@@ -58,6 +66,7 @@ fn share(w: u32, h: u32, px: &[[u8; 3]], f: impl Fn([u8; 3]) -> bool) -> f64 {
 
 #[test]
 fn screenshots_show_the_surface_panels_and_curvature() {
+    let _gui = gui_lock();
     let dir = temp_dir("shots");
     // shaded: the light blue-grey surface covers a good part of the view
     let (w, h, px) = shot(&dir, "shaded", &["car1"]);
@@ -125,6 +134,7 @@ fn drag(dir: &Path, mode: &str) -> Report {
 /// dragging its point on the sphere view turns it too.
 #[test]
 fn pointer_drag_turns_an_arrow_and_esc_cancels() {
+    let _gui = gui_lock();
     let dir = temp_dir("drag");
     let start = streamline_studio::scene::builtin::default_scene()
         .design
@@ -192,6 +202,7 @@ fn editor_without_display_says_what_to_do() {
 /// that says what to do, exit code 2, no panic report.
 #[test]
 fn editor_without_adapter_says_what_to_do() {
+    let _gui = gui_lock();
     let dir = temp_dir("noadapter");
     let out = Command::new("xvfb-run")
         .args([
@@ -215,5 +226,40 @@ fn editor_without_adapter_says_what_to_do() {
         "{err}"
     );
     assert!(!err.contains("panicked at"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The File dialogs with the keyboard: Ctrl+O, a typed path and Enter open a
+/// scene; Ctrl+Shift+S, Ctrl+A, a typed path and Enter save it there (atomic,
+/// verified); the saved file loads back as the opened scene.
+#[test]
+fn file_dialogs_open_and_save_as() {
+    let _gui = gui_lock();
+    let dir = temp_dir("files");
+    let open = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/car2.ron");
+    let save = dir.join("saved.ron");
+    let report = dir.join("files.json");
+    let run = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24", "bash"])
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/gui/files.sh"))
+        .arg(BIN)
+        .arg(dir.join("files.png"))
+        .arg(&report)
+        .arg(&open)
+        .arg(&save)
+        .env_remove("DISPLAY")
+        .output()
+        .expect("xvfb-run and xdotool are installed by scripts/setup.sh");
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let r: Report = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let car2 = streamline_studio::scene::io::load(&open).unwrap();
+    assert_eq!(r.cols, car2.design.net.cols(), "car2 was opened: {r:?}");
+    assert!(r.last_edit.contains("save"), "{r:?}");
+    let saved = streamline_studio::scene::io::load(&save).expect("saved and valid");
+    assert_eq!(saved.to_file(), car2.to_file());
     let _ = std::fs::remove_dir_all(&dir);
 }

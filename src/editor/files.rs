@@ -257,8 +257,11 @@ fn shortcuts(
     mut ui: ResMut<FileUi>,
     mut edits: MessageWriter<EditMessage>,
 ) {
-    let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
-    let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
+    // a modifier pressed and let go within one frame (a fast tap, or a
+    // synthetic key event) still counts
+    let held = |k: [KeyCode; 2]| keys.any_pressed(k) || keys.any_just_pressed(k);
+    let ctrl = held([KeyCode::ControlLeft, KeyCode::ControlRight]);
+    let shift = held([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
     if !ctrl || ui.dialog.is_some() {
         return;
     }
@@ -415,6 +418,12 @@ fn dialogs(
                 let field = m
                     .add(egui::TextEdit::singleline(&mut text).desired_width(420.0))
                     .on_hover_text(format!("A file path ending in .{}", action.extension()));
+                // typing goes to the path at once (once: Enter later gives focus up)
+                let focus_id = egui::Id::new("path_dialog_focused");
+                if !m.data(|d| d.get_temp::<bool>(focus_id).unwrap_or(false)) {
+                    field.request_focus();
+                    m.data_mut(|d| d.insert_temp(focus_id, true));
+                }
                 let enter = field.lost_focus() && m.input(|i| i.key_pressed(egui::Key::Enter));
                 if action == PathAction::Open {
                     m.label(egui::RichText::new("Scene files nearby:").weak());
@@ -532,6 +541,7 @@ fn dialogs(
                 });
             }
         });
+    let before = ui.dialog.clone();
     // a branch that moved on to another dialog keeps that one
     if close {
         if ui.dialog.as_ref() == Some(&dialog) {
@@ -539,6 +549,11 @@ fn dialogs(
         }
     } else if modal.should_close() {
         ui.dialog = None;
+    }
+    // the next path dialog takes the keyboard focus again
+    let kind = |d: &Option<Dialog>| d.as_ref().map(std::mem::discriminant);
+    if kind(&ui.dialog) != kind(&before) || ui.dialog.is_none() {
+        ctx.data_mut(|d| d.remove::<bool>(egui::Id::new("path_dialog_focused")));
     }
     Ok(())
 }

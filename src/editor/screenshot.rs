@@ -34,6 +34,9 @@ pub struct ScreenshotRequest {
     /// Write a JSON report here on exit (for GUI tests), and `REPORT.at` with
     /// the selected handle's shaft midpoint on screen (`x y`) once it is drawn.
     pub report: Option<PathBuf>,
+    /// Take the picture only once this file exists (GUI tests create it when
+    /// their pointer and keys are done); from `STREAMLINE_STUDIO_SHOT_WAIT`.
+    pub wait_for: Option<PathBuf>,
 }
 
 impl ScreenshotRequest {
@@ -50,6 +53,7 @@ impl ScreenshotRequest {
             comb: false,
             select: None,
             report: None,
+            wait_for: std::env::var_os("STREAMLINE_STUDIO_SHOT_WAIT").map(PathBuf::from),
         }
     }
 }
@@ -60,6 +64,7 @@ struct ShotProgress {
     requested: bool,
     captured: Option<u32>,
     position_written: bool,
+    held: u32,
 }
 
 pub struct ScreenshotPlugin;
@@ -165,7 +170,15 @@ fn drive(
     sphere: Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
 ) {
     p.frame += 1;
-    if p.frame > req.frames + 600 {
+    // GUI tests: hold the capture until their script says it is done
+    let waiting = req
+        .wait_for
+        .as_ref()
+        .is_some_and(|f| !f.exists() && p.frame < 20_000);
+    if waiting {
+        p.held += 1;
+    }
+    if p.frame > req.frames + p.held + 600 {
         error!("screenshot: no frame was captured after {} frames", p.frame);
         exit.write(AppExit::error());
         return;
@@ -176,7 +189,7 @@ fn drive(
     if !p.position_written && p.frame >= 10 {
         p.position_written = write_handle_position(&req, &selection, &arrows, &camera, &sphere);
     }
-    if !p.requested && p.frame >= req.frames {
+    if !p.requested && !waiting && p.frame >= req.frames {
         p.requested = true;
         commands
             .spawn(Screenshot::primary_window())

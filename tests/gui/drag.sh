@@ -7,7 +7,7 @@
 # Usage: drag.sh BIN OUT.png REPORT.json [esc|sphere]
 set -euo pipefail
 BIN=$1; OUT=$2; REPORT=$3; ESC=${4:-}
-STREAMLINE_STUDIO_SHOT_FRAMES=${FRAMES:-150} "$BIN" screenshot car1 --out "$OUT" \
+STREAMLINE_STUDIO_SHOT_WAIT="$REPORT.done" STREAMLINE_STUDIO_SHOT_FRAMES=${FRAMES:-30} "$BIN" screenshot car1 --out "$OUT" \
   --select 0,8 --report "$REPORT" --size 900x600 2>"$REPORT.log" &
 PID=$!
 for _ in $(seq 1 600); do
@@ -19,14 +19,20 @@ if [ "$ESC" = sphere ]; then
 else
   read -r X Y < <(sed -n 1p "$REPORT.at")
 fi
-WID=$(xdotool search --name "Streamline Studio" | head -1 || true)
-[ -n "$WID" ] && xdotool windowfocus "$WID" 2>/dev/null || true
+# without a window manager the keyboard goes nowhere until the window is focused
+WID=$(xdotool search --name "Streamline Studio" | tail -1)
+xdotool windowfocus --sync "$WID"
 # generous pauses: under load llvmpipe may draw only a few frames a second, and
 # the press must land in a frame where the pointer is still on the arrow
+# arrive with a small wiggle so that a frame sees the pointer on the arrow
+xdotool mousemove "$((X - 3))" "$Y"; sleep 0.7
 xdotool mousemove "$X" "$Y"; sleep 1.5
 xdotool mousedown 1; sleep 1.5
 for _ in $(seq 1 10); do xdotool mousemove_relative -- 0 -9; sleep 0.25; done
 sleep 1.5
 if [ "$ESC" = esc ]; then xdotool key Escape; sleep 1.5; fi
 xdotool mouseup 1
+# let the last frames land, then let the editor take its picture and exit
+sleep 2
+touch "$REPORT.done"
 wait "$PID"
