@@ -408,6 +408,25 @@ fn cancelled_drag_restores_and_leaves_history() {
     assert_eq!(app.world().resource::<ecs::History>().redo_len(), 0);
     // a second cancel, or one of another group, is refused
     assert!(ecs::apply(&mut app, Edit::CancelGroup(11)).is_err());
+    assert!(
+        app.world().resource::<ecs::Model>().unsaved,
+        "the earlier edit is still unsaved"
+    );
+    // on a fresh scene, a cancelled drag leaves it saved
+    let mut fresh = car_app(0, 2);
+    fresh.world_mut().write_message(ecs::EditMessage {
+        edit: Edit::Rotate {
+            row: 2,
+            col: 2,
+            axis: DVec3::Z,
+            radians: 0.2,
+        },
+        group: Some(5),
+    });
+    fresh.update();
+    assert!(fresh.world().resource::<ecs::Model>().unsaved);
+    ecs::apply(&mut fresh, Edit::CancelGroup(5)).unwrap();
+    assert!(!fresh.world().resource::<ecs::Model>().unsaved);
     ecs::apply(&mut app, Edit::Undo).unwrap();
     assert_eq!(app.world().resource::<ecs::History>().undo_len(), 0);
 }

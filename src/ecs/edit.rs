@@ -63,7 +63,8 @@ pub(crate) fn apply_edits(
             Ok(done) => {
                 if let Some(s) = snapshot {
                     let limit = ctx.config.history_limit;
-                    ctx.history.record(&s, msg.group, limit);
+                    let was = ctx.model.unsaved;
+                    ctx.history.record(&s, msg.group, limit, was);
                     ctx.model.unsaved = true;
                 }
                 log.entries.push(Ok(done));
@@ -174,11 +175,12 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             Ok(if undo { "undone" } else { "redone" }.into())
         }
         Edit::CancelGroup(g) => {
-            let target = ctx
+            let (target, was_unsaved) = ctx
                 .history
                 .cancel(*g)
                 .ok_or_else(|| format!("drag {g} is not the last edit; nothing to cancel"))?;
             restore(ctx, target);
+            ctx.model.unsaved = was_unsaved;
             Ok("drag cancelled".into())
         }
         Edit::Load(path) => {

@@ -62,6 +62,8 @@ pub struct History {
     pub(crate) undo: VecDeque<Scene>,
     pub(crate) redo: Vec<Scene>,
     pub(crate) last_group: Option<u64>,
+    /// Whether the scene had unsaved changes before the open group began.
+    pub(crate) group_was_unsaved: bool,
 }
 
 impl History {
@@ -76,11 +78,18 @@ impl History {
     }
 
     /// Records `before` as an undo step unless `group` continues the last one.
-    pub(crate) fn record(&mut self, before: &Scene, group: Option<u64>, limit: usize) {
+    pub(crate) fn record(
+        &mut self,
+        before: &Scene,
+        group: Option<u64>,
+        limit: usize,
+        was_unsaved: bool,
+    ) {
         if group.is_some() && group == self.last_group {
             return;
         }
         self.last_group = group;
+        self.group_was_unsaved = was_unsaved;
         self.undo.push_back(before.clone());
         while self.undo.len() > limit.max(1) {
             self.undo.pop_front();
@@ -106,13 +115,13 @@ impl History {
     }
 
     /// Cancels the open group `group`: returns the scene from before its first
-    /// edit and drops that undo step, leaving redo as it was before the group.
-    pub(crate) fn cancel(&mut self, group: u64) -> Option<Scene> {
+    /// edit, and whether it had unsaved changes then, and drops that undo step.
+    pub(crate) fn cancel(&mut self, group: u64) -> Option<(Scene, bool)> {
         if self.last_group != Some(group) {
             return None;
         }
         self.last_group = None;
-        self.undo.pop_back()
+        self.undo.pop_back().map(|s| (s, self.group_was_unsaved))
     }
 
     /// Forgets everything (after a load).

@@ -62,6 +62,26 @@ pub struct ActiveDrag {
     pub kind: DragKind,
 }
 
+impl ActiveDrag {
+    /// Points the dragged tangent at `dir`: one `SetDirection` of the drag's
+    /// undo group, unless it barely moved.
+    pub fn steer(&mut self, dir: DVec3, edits: &mut MessageWriter<EditMessage>) {
+        if (dir - self.last).length() < 1e-7 {
+            return;
+        }
+        self.last = dir;
+        self.sent = true;
+        edits.write(EditMessage {
+            edit: Edit::SetDirection {
+                row: self.row,
+                col: self.col,
+                dir,
+            },
+            group: Some(self.group),
+        });
+    }
+}
+
 /// The drag in progress, if any.
 #[derive(Resource, Debug, Default)]
 pub struct Drag(pub Option<ActiveDrag>);
@@ -269,19 +289,7 @@ fn drag_move(
         return;
     };
     let dir = trackball_rotate(d.start_dir, start, p, center, radius, camera);
-    if (dir - d.last).length() < 1e-7 {
-        return;
-    }
-    d.last = dir;
-    d.sent = true;
-    edits.write(EditMessage {
-        edit: Edit::SetDirection {
-            row: d.row,
-            col: d.col,
-            dir,
-        },
-        group: Some(d.group),
-    });
+    d.steer(dir, &mut edits);
 }
 
 fn release_or_cancel(

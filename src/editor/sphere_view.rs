@@ -10,7 +10,7 @@ use super::coords::{from_view, to_view};
 use super::handles::{HandleArrows, HandleSettings};
 use super::picking::{ActiveDrag, Drag, DragGroups, DragKind, Selection};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
-use crate::ecs::{Edit, EditMessage, Model, ModelSet};
+use crate::ecs::{EditMessage, Model, ModelSet};
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::Viewport;
 use bevy::camera::visibility::RenderLayers;
@@ -391,19 +391,7 @@ fn drag_move(
         return;
     };
     let dir = sphere_point(from_view(ray.origin), from_view(*ray.direction));
-    if (dir - d.last).length() < 1e-7 {
-        return;
-    }
-    d.last = dir;
-    d.sent = true;
-    edits.write(EditMessage {
-        edit: Edit::SetDirection {
-            row: d.row,
-            col: d.col,
-            dir,
-        },
-        group: Some(d.group),
-    });
+    d.steer(dir, &mut edits);
 }
 
 #[cfg(test)]
