@@ -7,7 +7,7 @@ use super::components::*;
 use super::resources::*;
 use bevy::prelude::*;
 use std::time::Instant;
-use streamline_kernel::incremental::{Buffers, LevelState, build_levels, propagate};
+use streamline_kernel::incremental::{LevelState, build_levels, propagate};
 use streamline_kernel::window::{Span, Window};
 
 /// Control handles whose direction or parameter changed.
@@ -57,7 +57,6 @@ pub(crate) fn reblend(
     mut lines: Query<(Entity, &Streamline, &mut StreamlineTangents)>,
     mut stats: ResMut<Stats>,
     mut log: ResMut<EditLog>,
-    mut buf: Local<Buffers>,
 ) {
     let t0 = Instant::now();
     if model.full {
@@ -107,13 +106,7 @@ pub(crate) fn reblend(
     ls.sort_by_key(|(l, _)| *l);
     let mut refs: Vec<&mut LevelState> = ls.iter_mut().map(|(_, d)| &mut d.0).collect();
     sd.resize(refs.len(), None);
-    let result = propagate(
-        &model.scene.design,
-        &model.scene.details,
-        &mut refs,
-        &sd,
-        &mut buf,
-    );
+    let result = propagate(&model.scene.design, &model.scene.details, &mut refs, &sd);
     match result {
         Ok(p) => {
             stats.last.tangents_reblended += p.reblended;

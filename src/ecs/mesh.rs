@@ -36,10 +36,13 @@ pub(crate) fn patch_mesh(
             s.points.row_mut(line.row).copy_from_slice(&p.0);
         }
     }
-    if reshaped || span.len() == rows {
+    if reshaped {
         s.mesh.rebuild(&s.points);
         s.rows_changed = None;
     } else {
+        // same shape: the triangles stay, only the moved rows' positions and
+        // the normals around them are rewritten (a drag on the car at depth 5
+        // moves nearly every row; rewriting 82k triangles would be wasted)
         for r in span.lo..=span.hi {
             let base = r * cols;
             s.mesh.positions[base..base + cols].copy_from_slice(s.points.row(r));

@@ -13,7 +13,7 @@
 
 use crate::error::KernelError;
 use crate::limits::{MAX_DEPTH, MAX_TANGENTS_PER_LEVEL};
-use crate::sphere::{FixedBlend, mid};
+use crate::sphere::{FixedBlend, mid, quarter, quarters, three_quarters};
 use crate::tangent::normalize_all;
 use glam::DVec3;
 
@@ -130,6 +130,8 @@ impl CurveScheme {
 
     /// One refinement step of unit tangents into `out` (cleared first).
     /// `input.len() ≥ self.min_len()` and the inputs are unit (not re-checked).
+    /// Every output is computed with the operations of [`Prepared::tangent`]
+    /// (bit-for-bit equal), sharing each leg's work between its outputs.
     pub fn refine_tangents(self, input: &[DVec3], out: &mut Vec<DVec3>) {
         out.clear();
         let n = input.len();
@@ -138,54 +140,49 @@ impl CurveScheme {
         match self {
             CurveScheme::Chaikin => {
                 for w in input.windows(2) {
-                    let m = mid(w[0], w[1]);
-                    out.push(mid(w[0], m)); // blend(a, b, 1/4), Eq. 53
-                    out.push(mid(m, w[1])); // blend(a, b, 3/4)
+                    let (q, t) = quarters(w[0], w[1]); // Eq. 53
+                    out.push(q);
+                    out.push(t);
                 }
             }
             CurveScheme::CubicBSpline => {
+                // leg i gives (blend(tᵢ,tᵢ₊₁,¼), blend(tᵢ,tᵢ₊₁,¾)); the vertex
+                // point of tᵢ is mid(¾ of leg i−1, ¼ of leg i) (Eq. 58)
                 out.push(mid(input[0], input[1]));
+                let mut left = three_quarters(input[0], input[1]);
                 for i in 1..n - 1 {
-                    let (a, b, c) = (input[i - 1], input[i], input[i + 1]);
-                    let l = mid(mid(a, b), b); // blend(a, b, 3/4)
-                    let r = mid(b, mid(b, c)); // blend(b, c, 1/4)
-                    out.push(mid(l, r)); // vertex point, Eq. 58
-                    out.push(mid(b, c)); // edge point, Eq. 57
+                    let (q, t) = quarters(input[i], input[i + 1]);
+                    out.push(mid(left, q)); // vertex point, Eq. 58
+                    out.push(mid(input[i], input[i + 1])); // edge point, Eq. 57
+                    left = t;
                 }
             }
             CurveScheme::FourPoint { omega } => FourPointRule::cached(omega).refine(input, out),
         }
     }
 
-    /// Output `k` of one refinement step of unit tangents, computed with the
-    /// same operations as [`Self::refine_tangents`] (bit-for-bit equal), for
-    /// the windowed rebuild.
+    /// Where output `k` of one step on `n` inputs comes from.
+    #[inline]
+    pub fn stencil(self, n: usize, k: usize) -> Stencil {
+        match self {
+            CurveScheme::Chaikin if k.is_multiple_of(2) => Stencil::Quarter(k / 2),
+            CurveScheme::Chaikin => Stencil::ThreeQuarters(k / 2),
+            CurveScheme::CubicBSpline if k == 0 => Stencil::Mid(0),
+            CurveScheme::CubicBSpline if k % 2 == 1 => Stencil::Vertex(k.div_ceil(2)),
+            CurveScheme::CubicBSpline => Stencil::Mid(k / 2),
+            CurveScheme::FourPoint { .. } if k.is_multiple_of(2) => Stencil::Copy(k / 2),
+            CurveScheme::FourPoint { .. } if n == 2 => Stencil::Mid(0),
+            CurveScheme::FourPoint { .. } if k == 1 => Stencil::End(0, 1, 2),
+            CurveScheme::FourPoint { .. } if k == 2 * n - 3 => Stencil::End(n - 1, n - 2, n - 3),
+            CurveScheme::FourPoint { .. } => Stencil::Insert((k - 1) / 2),
+        }
+    }
+
+    /// Output `k` of one refinement step of unit tangents, bit-for-bit equal
+    /// to [`Self::refine_tangents`]'s, for the windowed rebuild.
     #[inline]
     pub fn tangent_at(self, t: &[DVec3], k: usize) -> DVec3 {
-        match self {
-            CurveScheme::Chaikin => {
-                let i = k / 2;
-                let m = mid(t[i], t[i + 1]);
-                if k.is_multiple_of(2) {
-                    mid(t[i], m)
-                } else {
-                    mid(m, t[i + 1])
-                }
-            }
-            CurveScheme::CubicBSpline => {
-                if k == 0 {
-                    mid(t[0], t[1])
-                } else if k % 2 == 1 {
-                    let i = k.div_ceil(2);
-                    let (a, b, c) = (t[i - 1], t[i], t[i + 1]);
-                    mid(mid(mid(a, b), b), mid(b, mid(b, c)))
-                } else {
-                    mid(t[k / 2], t[k / 2 + 1])
-                }
-            }
-            CurveScheme::FourPoint { .. } if k.is_multiple_of(2) => t[k / 2],
-            CurveScheme::FourPoint { omega } => FourPointRule::with_cached(omega, |r| r.at(t, k)),
-        }
+        Prepared::new(self).tangent(self.stencil(t.len(), k), |j| t[j])
     }
 
     /// One refinement step of planar scalars (the parameter grids: SPEC §4), the
@@ -255,26 +252,6 @@ impl FourPointRule {
         mid(self.quarter.apply(a, b), self.minus_quarter.apply(b, c))
     }
 
-    /// Output `k` of one step alone (same operations as [`Self::refine`]).
-    #[inline]
-    pub fn at(&self, t: &[DVec3], k: usize) -> DVec3 {
-        let n = t.len();
-        if k.is_multiple_of(2) {
-            return t[k / 2];
-        }
-        if n == 2 {
-            return mid(t[0], t[1]);
-        }
-        if k == 1 {
-            self.end(t[0], t[1], t[2])
-        } else if k == 2 * n - 3 {
-            self.end(t[n - 1], t[n - 2], t[n - 3])
-        } else {
-            let i = (k - 1) / 2;
-            self.interior(t[i - 1], t[i], t[i + 1], t[i + 2])
-        }
-    }
-
     /// One step into `out` (appended). `input.len() ≥ 2`.
     pub fn refine(&self, t: &[DVec3], out: &mut Vec<DVec3>) {
         let n = t.len();
@@ -291,6 +268,85 @@ impl FourPointRule {
         out.push(t[n - 2]);
         out.push(self.end(t[n - 1], t[n - 2], t[n - 3]));
         out.push(t[n - 1]);
+    }
+}
+
+/// Which inputs one output of a step reads, and by which rule (SPEC §2).
+/// The same stencils drive tangents ([`Prepared::tangent`]) and scalars
+/// ([`crate::scalar::apply`]), so the parameter grids follow the tangents.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stencil {
+    /// Input `i` itself (4-point, even outputs).
+    Copy(usize),
+    /// The midpoint of inputs `i`, `i+1` (cubic edge points, Eq. 57; 4-point on two inputs).
+    Mid(usize),
+    /// Chaikin's first point on leg `(i, i+1)`: `blend(tᵢ, tᵢ₊₁, ¼)` (Eq. 53).
+    Quarter(usize),
+    /// Chaikin's second point on leg `(i, i+1)`: `blend(tᵢ, tᵢ₊₁, ¾)`.
+    ThreeQuarters(usize),
+    /// The cubic B-spline vertex point of input `i` (reads `i−1 … i+1`, Eq. 58).
+    Vertex(usize),
+    /// The 4-point insert between inputs `i`, `i+1` (reads `i−1 … i+2`, Eq. 61).
+    Insert(usize),
+    /// The 3-point end insert between inputs `a` and `b`, with `c` beyond `b`.
+    End(usize, usize, usize),
+}
+
+impl Stencil {
+    /// The lowest and highest input index read.
+    pub fn reads(self) -> (usize, usize) {
+        match self {
+            Stencil::Copy(i) => (i, i),
+            Stencil::Mid(i) | Stencil::Quarter(i) | Stencil::ThreeQuarters(i) => (i, i + 1),
+            Stencil::Vertex(i) => (i - 1, i + 1),
+            Stencil::Insert(i) => (i - 1, i + 2),
+            Stencil::End(a, b, c) => (a.min(b).min(c), a.max(b).max(c)),
+        }
+    }
+}
+
+/// A scheme ready to apply entry by entry: the 4-point rule's series are
+/// computed once (for the other schemes the rule is unused).
+#[derive(Debug, Clone, Copy)]
+pub struct Prepared {
+    scheme: CurveScheme,
+    four: FourPointRule,
+}
+
+impl Prepared {
+    /// Prepares `scheme` (assumed validated).
+    #[inline]
+    pub fn new(scheme: CurveScheme) -> Self {
+        let omega = match scheme {
+            CurveScheme::FourPoint { omega } => omega,
+            _ => OMEGA_DEFAULT,
+        };
+        Prepared {
+            scheme,
+            four: FourPointRule::cached(omega),
+        }
+    }
+
+    /// The scheme.
+    pub fn scheme(&self) -> CurveScheme {
+        self.scheme
+    }
+
+    /// The output of stencil `st`, reading input `j` as `f(j)`.
+    #[inline(always)]
+    pub fn tangent(&self, st: Stencil, f: impl Fn(usize) -> DVec3) -> DVec3 {
+        match st {
+            Stencil::Copy(i) => f(i),
+            Stencil::Mid(i) => mid(f(i), f(i + 1)),
+            Stencil::Quarter(i) => quarter(f(i), f(i + 1)),
+            Stencil::ThreeQuarters(i) => three_quarters(f(i), f(i + 1)),
+            Stencil::Vertex(i) => {
+                let b = f(i);
+                mid(three_quarters(f(i - 1), b), quarter(b, f(i + 1)))
+            }
+            Stencil::Insert(i) => self.four.interior(f(i - 1), f(i), f(i + 1), f(i + 2)),
+            Stencil::End(a, b, c) => self.four.end(f(a), f(b), f(c)),
+        }
     }
 }
 

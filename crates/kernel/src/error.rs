@@ -67,6 +67,8 @@ pub enum KernelError {
     },
     /// A positive quantity (length, sample count) is not positive.
     NotPositive { what: &'static str, value: f64 },
+    /// A fine-tuning (scalar B-spline) function is not usable; `problem` says why and what to do.
+    BadFunction { what: &'static str, problem: String },
 }
 
 impl fmt::Display for KernelError {
@@ -136,6 +138,7 @@ impl fmt::Display for KernelError {
             NotPositive { what, value } => {
                 write!(f, "{what} is {value}; it must be a positive finite number")
             }
+            BadFunction { what, problem } => write!(f, "{what}: {problem}"),
         }
     }
 }

@@ -79,13 +79,7 @@ impl LevelState {
                 sigma: vec![0.0; nr],
             },
         };
-        me.update(
-            design,
-            details,
-            prev,
-            Window::all(rows, cols),
-            &mut Buffers::default(),
-        )?;
+        me.update(design, details, prev, Window::all(rows, cols))?;
         Ok(me)
     }
 
@@ -106,7 +100,6 @@ impl LevelState {
         details: &Details,
         prev: &LevelState,
         win: Window,
-        buf: &mut Buffers,
     ) -> Result<(Window, UpdateCount), KernelError> {
         let (scheme, order) = (design.scheme, design.order);
         let out = refine_grid_window(
@@ -116,7 +109,6 @@ impl LevelState {
             &mut self.half,
             &mut self.base,
             win,
-            &mut buf.tangents,
         );
         refine_grid_window(
             scheme,
@@ -125,7 +117,6 @@ impl LevelState {
             &mut self.half_s,
             &mut self.params.s,
             win,
-            &mut buf.scalars,
         );
         let c = scheme.curve();
         for r in out.rows.iter() {
@@ -165,13 +156,6 @@ impl LevelState {
             params: self.params.clone(),
         }
     }
-}
-
-/// Reused scratch space for column gathers.
-#[derive(Debug, Clone, Default)]
-pub struct Buffers {
-    tangents: Vec<DVec3>,
-    scalars: Vec<f64>,
 }
 
 fn check_window(p: &ParamGrid, level: u32, w: Window) -> Result<(), KernelError> {
@@ -285,7 +269,6 @@ pub fn propagate(
     details: &Details,
     levels: &mut [&mut LevelState],
     seeds: &[Option<Window>],
-    buf: &mut Buffers,
 ) -> Result<Propagation, KernelError> {
     let mut prop = Propagation {
         dirty: vec![None; levels.len()],
@@ -310,7 +293,7 @@ pub fn propagate(
         let (prev, me) = (&*above[l - 1], &mut *below[0]);
         let mut dirty = None;
         if let Some(w) = prop.dirty[l - 1] {
-            let (d, n) = me.update(design, details, prev, w, buf)?;
+            let (d, n) = me.update(design, details, prev, w)?;
             prop.reblended += n.reblended;
             prop.details += n.details;
             dirty = Some(d);

@@ -15,9 +15,11 @@
 //! [`KernelError`] that names the place and the fix. This crate never imports Bevy.
 
 pub mod analysis;
+pub mod bspline;
 pub mod curve;
 pub mod design;
 pub mod error;
+pub mod finetune;
 pub mod grid;
 pub mod incremental;
 pub mod initial_curve;

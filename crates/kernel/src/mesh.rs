@@ -58,7 +58,7 @@ impl SurfaceMesh {
             let len2 = n.length_squared();
             // a degenerate point takes its neighbour's normal (never NaN)
             let n = if len2 > 0.0 && len2.is_finite() {
-                n / len2.sqrt()
+                n * (1.0 / len2.sqrt())
             } else {
                 last
             };

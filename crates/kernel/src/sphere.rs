@@ -24,6 +24,10 @@ pub const DEGENERATE_SIN: f64 = 1e-14;
 /// undefined and the antipodal branch takes over.
 pub const MID_MIN_NORM2: f64 = 1e-24;
 
+/// `|a + b|²` below which [`quarters`] computes its two midpoints one by one
+/// instead of through the shared norm `√(2 + |a + b|)` (see there).
+pub const QUARTER_MIN_NORM2: f64 = 1e-4;
+
 static ANTIPODAL_EVENTS: AtomicUsize = AtomicUsize::new(0);
 
 /// How many antipodal pairs were blended since the program started (all threads).
@@ -81,9 +85,66 @@ pub fn mid(a: DVec3, b: DVec3) -> DVec3 {
     let m = a + b;
     let n2 = m.length_squared();
     if n2 > MID_MIN_NORM2 {
-        m / n2.sqrt()
+        // one division, then three multiplications (a vector divided by a
+        // scalar would cost three divisions)
+        m * (1.0 / n2.sqrt())
     } else {
         antipodal_blend(a, 0.5)
+    }
+}
+
+/// Chaikin's two points on the leg `a, b`: `(blend(a, b, ¼), blend(a, b, ¾))`
+/// (Eqs. 51–53), with one square root and one division per point.
+///
+/// Eq. 53 computes them as midpoints of the midpoint `m = mid(a, b)`:
+/// `mid(a, m)` and `mid(m, b)`. With `l = |a + b|`, `|a + m|² = 2 + 2 a·m =
+/// 2 + l` (since `1 + a·b = l²/2`), so both share the norm `√(2 + l)` and
+/// `blend(a, b, ¼) = (a + m)/√(2 + l)`. Equal to [`quarter`] and
+/// [`three_quarters`] bit for bit.
+///
+/// The identity `|a + m|² = 2 + l` carries the inputs' rounding (`|a|² = 1 ±
+/// 2⁻⁵²`) divided by `l`; below [`QUARTER_MIN_NORM2`] (θ > 179.4°) the two
+/// midpoints are computed as they stand, and antipodal pairs take [`mid`]'s branch.
+#[inline]
+pub fn quarters(a: DVec3, b: DVec3) -> (DVec3, DVec3) {
+    let sum = a + b;
+    let l2 = sum.length_squared();
+    if l2 > QUARTER_MIN_NORM2 {
+        let l = l2.sqrt();
+        let m = sum * (1.0 / l);
+        let r = 1.0 / (2.0 + l).sqrt();
+        ((a + m) * r, (m + b) * r)
+    } else {
+        let m = mid(a, b);
+        (mid(a, m), mid(m, b))
+    }
+}
+
+/// `blend(a, b, ¼)`: the first of [`quarters`], with the same operations.
+#[inline]
+pub fn quarter(a: DVec3, b: DVec3) -> DVec3 {
+    let sum = a + b;
+    let l2 = sum.length_squared();
+    if l2 > QUARTER_MIN_NORM2 {
+        let l = l2.sqrt();
+        let m = sum * (1.0 / l);
+        (a + m) * (1.0 / (2.0 + l).sqrt())
+    } else {
+        quarters(a, b).0
+    }
+}
+
+/// `blend(a, b, ¾)`: the second of [`quarters`], with the same operations.
+#[inline]
+pub fn three_quarters(a: DVec3, b: DVec3) -> DVec3 {
+    let sum = a + b;
+    let l2 = sum.length_squared();
+    if l2 > QUARTER_MIN_NORM2 {
+        let l = l2.sqrt();
+        let m = sum * (1.0 / l);
+        (m + b) * (1.0 / (2.0 + l).sqrt())
+    } else {
+        quarters(a, b).1
     }
 }
 
@@ -296,6 +357,26 @@ mod tests {
         }
         let m = mid(a, -a);
         assert!((m.length() - 1.0).abs() < 1e-14 && m.dot(a).abs() < 1e-12);
+    }
+
+    #[test]
+    fn quarters_match_blend_and_singles() {
+        for k in 0..400 {
+            let ang = 1e-9 + (k as f64 / 400.0) * (std::f64::consts::PI - 1e-3);
+            let a = unit(0.2, 0.7, -0.3);
+            let axis = a.any_orthonormal_vector();
+            let b = glam::DQuat::from_axis_angle(axis, ang) * a;
+            let (q, t) = quarters(a, b);
+            assert_eq!((q, t), (quarter(a, b), three_quarters(a, b)), "θ={ang}");
+            // |a + b| = 2 cos(θ/2) is the conditioning of the midpoint
+            let tol = 2e-15 + 1e-15 / (ang / 2.0).cos();
+            assert!((q - blend(a, b, 0.25)).length() < tol, "¼ at θ={ang}");
+            assert!((t - blend(a, b, 0.75)).length() < tol, "¾ at θ={ang}");
+            assert!((q - mid(a, mid(a, b))).length() < tol, "Eq. 53 at θ={ang}");
+        }
+        let a = unit(0.3, -0.2, 0.9);
+        let (q, t) = quarters(a, -a);
+        assert!((q.length() - 1.0).abs() < 1e-14 && (t.length() - 1.0).abs() < 1e-14);
     }
 
     #[test]

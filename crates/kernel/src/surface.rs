@@ -7,7 +7,7 @@
 //! commute, so the [`BlendOrder`] is chosen by the scene (000 §4, last paragraph
 //! before §5): [`BlendOrder::SFirst`] refines every row, then every column of the result.
 
-use crate::curve::{CurveScheme, OMEGA_DEFAULT};
+use crate::curve::{CurveScheme, OMEGA_DEFAULT, Prepared, Stencil};
 use crate::error::{KernelError, Place};
 use crate::grid::Grid;
 use crate::tangent::normalize_at;
@@ -129,29 +129,42 @@ impl BlendOrder {
 /// A 1D refinement applied along rows and columns of a grid; implemented for
 /// tangents (on the sphere) and scalars (parameter grids).
 pub trait Refine: Copy + Default {
+    /// The scheme prepared for entry-by-entry use.
+    type Rule: Sync;
+    /// Prepares `scheme` (assumed validated).
+    fn prepare(scheme: CurveScheme) -> Self::Rule;
     /// One step of `scheme` on `input` into `out`.
     fn refine(scheme: CurveScheme, input: &[Self], out: &mut Vec<Self>);
-    /// Output `k` of that step alone, bit-for-bit equal to `refine`'s (for windows).
-    fn refine_at(scheme: CurveScheme, input: &[Self], k: usize) -> Self;
+    /// The output of stencil `st`, reading input `j` as `f(j)`: bit-for-bit
+    /// equal to `refine`'s output with that stencil (for windows).
+    fn apply(rule: &Self::Rule, st: Stencil, f: impl Fn(usize) -> Self) -> Self;
 }
 
 impl Refine for DVec3 {
+    type Rule = Prepared;
+    fn prepare(scheme: CurveScheme) -> Prepared {
+        Prepared::new(scheme)
+    }
     fn refine(scheme: CurveScheme, input: &[Self], out: &mut Vec<Self>) {
         scheme.refine_tangents(input, out);
     }
-    #[inline]
-    fn refine_at(scheme: CurveScheme, input: &[Self], k: usize) -> Self {
-        scheme.tangent_at(input, k)
+    #[inline(always)]
+    fn apply(rule: &Prepared, st: Stencil, f: impl Fn(usize) -> Self) -> Self {
+        rule.tangent(st, f)
     }
 }
 
 impl Refine for f64 {
+    type Rule = CurveScheme;
+    fn prepare(scheme: CurveScheme) -> CurveScheme {
+        scheme
+    }
     fn refine(scheme: CurveScheme, input: &[Self], out: &mut Vec<Self>) {
         scheme.refine_scalars(input, out);
     }
-    #[inline]
-    fn refine_at(scheme: CurveScheme, input: &[Self], k: usize) -> Self {
-        crate::scalar::at(scheme, input, k)
+    #[inline(always)]
+    fn apply(scheme: &CurveScheme, st: Stencil, f: impl Fn(usize) -> Self) -> Self {
+        crate::scalar::apply(*scheme, st, f)
     }
 }
 

@@ -4,9 +4,10 @@
 //! step maps a dirty input range `[a, b]` to the outputs that read any of it:
 //! the stencil radius of the scheme on each side, indices doubled
 //! ([`Span::refine`]). Every entry in the new window is recomputed with the
-//! same per-entry rule as the full step ([`CurveScheme::tangent_at`],
-//! [`crate::scalar::at`]), so a windowed update gives bit-for-bit the numbers of
-//! a full rebuild.
+//! same per-entry rule as the full step (the [`crate::curve::Stencil`] of the
+//! entry, applied by [`crate::curve::Prepared::tangent`] or
+//! [`crate::scalar::apply`]), so a windowed update gives bit-for-bit the
+//! numbers of a full rebuild.
 
 use crate::curve::CurveScheme;
 use crate::grid::Grid;
@@ -160,88 +161,71 @@ impl Window {
 pub const PARALLEL_MIN_ENTRIES: usize = 8192;
 
 /// Splits rows `rows` of `dst` (a `width`-wide grid) between the calling
-/// thread and, when `parallel`, one more: `run(chunk, first_row, scratch)`
-/// fills its chunk of whole rows. `scratch` is the calling thread's.
-fn split_rows<T, F>(
-    dst: &mut [T],
-    width: usize,
-    rows: Span,
-    parallel: bool,
-    scratch: &mut Vec<T>,
-    run: F,
-) where
-    T: Refine + Send,
-    F: Fn(&mut [T], usize, &mut Vec<T>) + Sync,
+/// thread and, when `parallel`, one more: `run(chunk, first_row)` fills its
+/// chunk of whole rows.
+fn split_rows<T, F>(dst: &mut [T], width: usize, rows: Span, parallel: bool, run: F)
+where
+    T: Send,
+    F: Fn(&mut [T], usize) + Sync,
 {
     let region = &mut dst[rows.lo * width..(rows.hi + 1) * width];
     if !parallel || rows.len() < 2 {
-        run(region, rows.lo, scratch);
+        run(region, rows.lo);
         return;
     }
     let split = rows.len() / 2;
     let (top, bottom) = region.split_at_mut(split * width);
     std::thread::scope(|scope| {
-        scope.spawn(|| run(bottom, rows.lo + split, &mut Vec::new()));
-        run(top, rows.lo, scratch);
+        scope.spawn(|| run(bottom, rows.lo + split));
+        run(top, rows.lo);
     });
 }
 
 /// Entries `cols` of rows `rows` of `dst`: the step along each row of `src`.
 fn refine_along_rows<T: Refine + Send + Sync>(
+    rule: &T::Rule,
     c: CurveScheme,
     src: &Grid<T>,
     dst: &mut Grid<T>,
     rows: Span,
     cols: Span,
     parallel: bool,
-    scratch: &mut Vec<T>,
 ) {
     let width = dst.cols();
-    split_rows(
-        dst.data_mut(),
-        width,
-        rows,
-        parallel,
-        scratch,
-        |chunk, first, _| {
-            for (i, row) in chunk.chunks_mut(width).enumerate() {
-                let input = src.row(first + i);
-                for k in cols.iter() {
-                    row[k] = T::refine_at(c, input, k);
-                }
+    let n = src.cols();
+    split_rows(dst.data_mut(), width, rows, parallel, |chunk, first| {
+        for (i, row) in chunk.chunks_mut(width).enumerate() {
+            let input = src.row(first + i);
+            for k in cols.iter() {
+                row[k] = T::apply(rule, c.stencil(n, k), |j| input[j]);
             }
-        },
-    );
+        }
+    });
 }
 
 /// Entries `cols` of rows `rows` of `dst`: the step along each column of
-/// `src`, column by column (each column gathered once per thread).
+/// `src`, done a row at a time (output row `r` combines whole input rows by
+/// the stencil of `r`, so memory is read in order and nothing is gathered).
 fn refine_along_cols<T: Refine + Send + Sync>(
+    rule: &T::Rule,
     c: CurveScheme,
     src: &Grid<T>,
     dst: &mut Grid<T>,
     rows: Span,
     cols: Span,
     parallel: bool,
-    scratch: &mut Vec<T>,
 ) {
     let width = dst.cols();
-    split_rows(
-        dst.data_mut(),
-        width,
-        rows,
-        parallel,
-        scratch,
-        |chunk, first, column| {
+    let n = src.rows();
+    let (data, w) = (src.data(), src.cols());
+    split_rows(dst.data_mut(), width, rows, parallel, |chunk, first| {
+        for (i, row) in chunk.chunks_mut(width).enumerate() {
+            let st = c.stencil(n, first + i);
             for k in cols.iter() {
-                column.clear();
-                column.extend((0..src.rows()).map(|r| src.get(r, k)));
-                for (i, row) in chunk.chunks_mut(width).enumerate() {
-                    row[k] = T::refine_at(c, column, first + i);
-                }
+                row[k] = T::apply(rule, st, |j| data[j * w + k]);
             }
-        },
-    );
+        }
+    });
 }
 
 /// One tensor step restricted to a window. `prev` is the coarse grid, `half`
@@ -257,19 +241,19 @@ pub fn refine_grid_window<T: Refine + Send + Sync>(
     half: &mut Grid<T>,
     next: &mut Grid<T>,
     win: Window,
-    buf: &mut Vec<T>,
 ) -> Window {
     let c = scheme.curve();
+    let rule = T::prepare(c);
     let out = win.refine(scheme, prev.rows(), prev.cols());
     let parallel = out.area() >= PARALLEL_MIN_ENTRIES;
     match order {
         BlendOrder::SFirst => {
-            refine_along_rows(c, prev, half, win.rows, out.cols, parallel, buf);
-            refine_along_cols(c, half, next, out.rows, out.cols, parallel, buf);
+            refine_along_rows(&rule, c, prev, half, win.rows, out.cols, parallel);
+            refine_along_cols(&rule, c, half, next, out.rows, out.cols, parallel);
         }
         BlendOrder::TFirst => {
-            refine_along_cols(c, prev, half, out.rows, win.cols, parallel, buf);
-            refine_along_rows(c, half, next, out.rows, out.cols, parallel, buf);
+            refine_along_cols(&rule, c, prev, half, out.rows, win.cols, parallel);
+            refine_along_rows(&rule, c, half, next, out.rows, out.cols, parallel);
         }
     }
     out
@@ -327,7 +311,6 @@ mod tests {
                         &mut half,
                         &mut next,
                         Window::all(rows, cols),
-                        &mut Vec::new(),
                     );
                     assert_eq!(w, Window::all(full.rows(), full.cols()));
                     assert!(w.area() < PARALLEL_MIN_ENTRIES || rows > 5);

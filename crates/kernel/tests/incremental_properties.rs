@@ -5,9 +5,7 @@
 mod common;
 
 use proptest::prelude::*;
-use streamline_kernel::incremental::{
-    Buffers, LevelState, build_levels, propagate, reference_levels,
-};
+use streamline_kernel::incremental::{LevelState, build_levels, propagate, reference_levels};
 use streamline_kernel::multires::{self, Details};
 use streamline_kernel::window::Window;
 use streamline_kernel::{BlendOrder, DVec3, Design, Grid, SurfaceScheme, presets};
@@ -87,7 +85,6 @@ proptest! {
         let mut d = design(scheme, order, 5, 6);
         let mut details = Details::new();
         let mut levels = build_levels(&d, &details, depth).unwrap();
-        let mut buf = Buffers::default();
         for e in &edits {
             let mut seeds = vec![None; depth as usize + 1];
             match *e {
@@ -119,7 +116,7 @@ proptest! {
             if streamline_kernel::incremental::check_params(&d, depth).is_err() {
                 return Ok(()); // refused edit: nothing to compare
             }
-            propagate(&d, &details, &mut refs, &seeds, &mut buf).unwrap();
+            propagate(&d, &details, &mut refs, &seeds).unwrap();
         }
         let reference = reference_levels(&d, &details, depth).unwrap();
         for (l, (a, b)) in levels.iter().zip(&reference).enumerate() {
@@ -145,7 +142,7 @@ fn single_edit_is_local_on_20x20_depth_3() {
     d.set_tangent(10, 10, DVec3::new(0.3, 0.9, 0.1)).unwrap();
     let mut refs: Vec<&mut LevelState> = levels.iter_mut().collect();
     let seeds = [Some(Window::cell(10, 10)), None, None, None];
-    let p = propagate(&d, &details, &mut refs, &seeds, &mut Buffers::default()).unwrap();
+    let p = propagate(&d, &details, &mut refs, &seeds).unwrap();
     let total: usize = levels[1..].iter().map(|l| l.shape().0 * l.shape().1).sum();
     let fine = p.dirty[3].unwrap();
     let rows = levels[3].shape().0;
