@@ -118,6 +118,25 @@ fn random_scene() -> impl Strategy<Value = Scene> {
                         .insert(key, DVec3::new(rnd(), rnd(), 1.0).normalize());
                 }
                 scene.view.yaw = streamline_studio::scene::format::Finite(rnd() * 180.0);
+                if rnd() > 0.0 {
+                    // fine tuning with random degrees, counts and values (SPEC §6)
+                    let (ds, dt) = ((rnd().abs() * 3.0) as usize, (rnd().abs() * 3.0) as usize);
+                    let (ns, nt) = (
+                        ds + 1 + (rnd().abs() * 3.0) as usize,
+                        dt + 1 + (rnd().abs() * 2.0) as usize,
+                    );
+                    let vals =
+                        Grid::new(nt, ns, (0..ns * nt).map(|_| 1.0 + rnd()).collect()).ok()?;
+                    scene.tuning = Some(streamline_kernel::finetune::SurfaceTuning {
+                        function: streamline_kernel::bspline::TensorBSpline::new(ds, dt, vals)
+                            .ok()?,
+                        constraint: [
+                            streamline_kernel::finetune::Constraint::Free,
+                            streamline_kernel::finetune::Constraint::KeepEnds,
+                            streamline_kernel::finetune::Constraint::KeepClosed,
+                        ][(rnd().abs() * 2.99) as usize],
+                    });
+                }
                 scene.validate(Path::new("<random>"), "").ok()?;
                 Some(scene)
             },

@@ -45,6 +45,7 @@ fn streamline_of(model: &Model, level: &LevelState, row: usize) -> StreamlineTan
         s: p.s.row(row).to_vec(),
         sigma: p.sigma[row],
         origin: model.scene.design.initial.point(p.t[row]),
+        t: p.t[row],
     }
 }
 
@@ -82,6 +83,7 @@ pub(crate) fn reblend(
             new_lines.push((
                 Streamline { row },
                 streamline_of(&model, display, row),
+                StreamlineAlpha::default(),
                 StreamlinePoints::default(),
             ));
         }

@@ -2,6 +2,8 @@
 
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
+use streamline_kernel::bspline::BSpline;
+use streamline_kernel::finetune::Constraint;
 use streamline_kernel::incremental::LevelState;
 
 /// A control tangent of level 0 at `(row, col)`.
@@ -62,7 +64,16 @@ pub struct StreamlineTangents {
     pub sigma: f64,
     /// The initial curve's point at the row's `t`.
     pub origin: DVec3,
+    /// The row's parameter `t` (across the streamlines).
+    pub t: f64,
 }
+
+/// The fine-tuning function of one streamline (SPEC §6), `None` when fine
+/// tuning is off: the surface function restricted to the row's `v`, and the
+/// constraint. Written with `set_if_neq`, so an edit of a control value
+/// re-integrates only the streamlines whose function changed.
+#[derive(Component, Debug, Clone, Default, PartialEq)]
+pub struct StreamlineAlpha(pub Option<(BSpline, Constraint)>);
 
 /// The integrated, placed streamline: `n + 2` points (Eq. 65).
 #[derive(Component, Debug, Clone, Default, PartialEq)]

@@ -11,6 +11,7 @@ use crate::scene::{Scene, io};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use std::time::Instant;
+use streamline_kernel::finetune::SurfaceTuning;
 use streamline_kernel::incremental::check_params;
 use streamline_kernel::multires;
 use streamline_kernel::window::Window;
@@ -173,6 +174,34 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             restore(ctx, target);
             ctx.model.unsaved = true;
             Ok(if undo { "undone" } else { "redone" }.into())
+        }
+        Edit::SetTuning(t) => {
+            ctx.model.scene.tuning = t.clone();
+            Ok(if t.is_some() {
+                "fine tuning on".into()
+            } else {
+                "fine tuning off".into()
+            })
+        }
+        Edit::SetTuningValue { row, col, value } => {
+            let tuning = ctx
+                .model
+                .scene
+                .tuning
+                .get_or_insert_with(SurfaceTuning::identity);
+            tuning
+                .function
+                .set(*row, *col, *value)
+                .map_err(|e| format!("{e}; the fine-tuning values are unchanged"))?;
+            Ok(format!("fine-tuning value ({row}, {col}) = {value}"))
+        }
+        Edit::SetTuningConstraint(c) => {
+            ctx.model
+                .scene
+                .tuning
+                .get_or_insert_with(SurfaceTuning::identity)
+                .constraint = *c;
+            Ok(format!("fine-tuning constraint {}", c.name()))
         }
         Edit::CancelGroup(g) => {
             let (target, was_unsaved) = ctx

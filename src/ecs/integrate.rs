@@ -1,20 +1,58 @@
-//! The integrate stage: streamlines whose tangents changed are integrated
-//! again (Eq. 65) and placed on the initial curve (Eqs. 1–2).
+//! The integrate stage: streamlines whose tangents or fine-tuning function
+//! changed are integrated again (Eq. 65, or its fine-tuned form, SPEC §6) and
+//! placed on the initial curve (Eqs. 1–2).
 
 use super::components::*;
-use super::resources::Stats;
+use super::resources::{Model, Stats};
 use bevy::prelude::*;
 use std::time::Instant;
+use streamline_kernel::finetune::{SurfaceTuning, fine_tune_into};
 use streamline_kernel::streamline::place_into;
 
+/// Gives every streamline its row of the scene's fine-tuning function; only
+/// rows whose function (or constraint) differs are marked changed.
+pub(crate) fn retune(
+    model: Res<Model>,
+    mut lines: Query<(&StreamlineTangents, &mut StreamlineAlpha)>,
+    added: Query<(), Added<Streamline>>,
+) {
+    if !model.is_changed() && added.is_empty() {
+        return;
+    }
+    let Some(tuning) = &model.scene.tuning else {
+        for (_, mut a) in &mut lines {
+            a.set_if_neq(StreamlineAlpha(None));
+        }
+        return;
+    };
+    let (lo, hi) = lines
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (t, _)| {
+            (lo.min(t.t), hi.max(t.t))
+        });
+    for (t, mut a) in &mut lines {
+        let v = SurfaceTuning::row_v(t.t, lo, hi);
+        let f = tuning.row_function(v);
+        a.set_if_neq(StreamlineAlpha(Some((f, tuning.constraint))));
+    }
+}
+
 pub(crate) fn integrate(
-    mut lines: Query<(&StreamlineTangents, &mut StreamlinePoints), Changed<StreamlineTangents>>,
+    mut lines: Query<
+        (&StreamlineTangents, &StreamlineAlpha, &mut StreamlinePoints),
+        Or<(Changed<StreamlineTangents>, Changed<StreamlineAlpha>)>,
+    >,
     mut stats: ResMut<Stats>,
 ) {
     let t0 = Instant::now();
     let mut n = 0;
-    for (t, mut p) in &mut lines {
-        place_into(&t.tangents, &t.s, t.sigma, t.origin, &mut p.0);
+    for (t, alpha, mut p) in &mut lines {
+        match &alpha.0 {
+            None => place_into(&t.tangents, &t.s, t.sigma, t.origin, &mut p.0),
+            Some((f, c)) => {
+                fine_tune_into(&t.tangents, &t.s, t.sigma, t.origin, f, *c, &mut p.0);
+            }
+        }
         n += 1;
     }
     if n > 0 {

@@ -4,6 +4,7 @@
 use crate::scene::Scene;
 use bevy::prelude::*;
 use std::path::PathBuf;
+use streamline_kernel::finetune::{Constraint, SurfaceTuning};
 use streamline_kernel::{BlendOrder, DVec3, SurfaceScheme};
 
 /// One edit.
@@ -34,6 +35,13 @@ pub enum Edit {
     SetDisplayDepth(u32),
     /// Level of the handles.
     SetEditDepth(u32),
+    /// Turns fine tuning on with this function and constraint, or off (SPEC §6).
+    SetTuning(Option<SurfaceTuning>),
+    /// Sets fine-tuning control value `(row, col)` (row across the
+    /// streamlines, column along them); turns fine tuning on (3×3 quadratic) if off.
+    SetTuningValue { row: usize, col: usize, value: f64 },
+    /// What fine-tuned streamlines keep; turns fine tuning on if off.
+    SetTuningConstraint(Constraint),
     /// Cancel a drag: restore the scene from before the first edit of `group`
     /// and forget that undo step (no redo). Esc during a drag sends it.
     CancelGroup(u64),
@@ -81,6 +89,12 @@ impl Edit {
             Edit::SetBlendOrder(o) => format!("blend order {}", o.name()),
             Edit::SetDisplayDepth(d) => format!("display depth {d}"),
             Edit::SetEditDepth(d) => format!("edit depth {d}"),
+            Edit::SetTuning(Some(_)) => "fine tuning on".into(),
+            Edit::SetTuning(None) => "fine tuning off".into(),
+            Edit::SetTuningValue { row, col, value } => {
+                format!("fine-tuning value ({row}, {col}) = {value}")
+            }
+            Edit::SetTuningConstraint(c) => format!("fine-tuning constraint {}", c.name()),
             Edit::CancelGroup(_) => "cancel drag".into(),
             Edit::Undo => "undo".into(),
             Edit::Redo => "redo".into(),

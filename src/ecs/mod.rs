@@ -80,7 +80,12 @@ impl Plugin for ModelPlugin {
                     .chain()
                     .in_set(ModelSet::Blend),
             )
-            .add_systems(Update, integrate::integrate.in_set(ModelSet::Integrate))
+            .add_systems(
+                Update,
+                (integrate::retune, integrate::integrate)
+                    .chain()
+                    .in_set(ModelSet::Integrate),
+            )
             .add_systems(Update, mesh::patch_mesh.in_set(ModelSet::Mesh))
             .add_systems(Update, output::write_files.in_set(ModelSet::Output));
     }

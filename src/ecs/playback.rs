@@ -169,6 +169,16 @@ fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
         Step::SetBlendOrder(o) => Edit::SetBlendOrder(o.to_kernel()),
         Step::SetDisplayDepth(d) => Edit::SetDisplayDepth(*d),
         Step::SetEditDepth(d) => Edit::SetEditDepth(*d),
+        Step::SetTuning(t) => Edit::SetTuning(match t {
+            None => None,
+            Some(t) => Some(t.to_kernel()?),
+        }),
+        Step::SetTuningValue { row, col, value } => Edit::SetTuningValue {
+            row: *row,
+            col: *col,
+            value: value.0,
+        },
+        Step::SetTuningConstraint(c) => Edit::SetTuningConstraint(c.to_kernel()),
         Step::Undo => Edit::Undo,
         Step::Redo => Edit::Redo,
         _ => return Err("not an edit".into()),
@@ -277,6 +287,7 @@ fn check(
             details,
             can_undo,
             can_redo,
+            tuning,
         } => {
             let s = &model.scene;
             let mut bad = Vec::new();
@@ -327,6 +338,11 @@ fn check(
                 can_redo.map(|x| x.to_string()),
                 (history.redo_len() > 0).to_string(),
             );
+            cmp(
+                "fine tuning on",
+                tuning.map(|x| x.to_string()),
+                s.tuning.is_some().to_string(),
+            );
             if bad.is_empty() {
                 Ok(String::new())
             } else {
@@ -362,6 +378,28 @@ fn check(
                     "max difference from `{mark}` is {d:.3e} (tolerance {})",
                     tolerance.0
                 )),
+            }
+        }
+        Step::ExpectEndsSame { mark, tolerance } => {
+            let m = marks
+                .get(mark)
+                .ok_or_else(|| format!("no mark `{mark}`; add a Mark(\"{mark}\") step first"))?;
+            let p = &surface.points;
+            if (m.rows(), m.cols()) != (p.rows(), p.cols()) {
+                return Err(format!("the surface's shape differs from mark `{mark}`"));
+            }
+            let last = p.cols() - 1;
+            let d = (0..p.rows())
+                .flat_map(|r| [(r, 0), (r, last)])
+                .map(|(r, c)| (p.get(r, c) - m.get(r, c)).length())
+                .fold(0.0, f64::max);
+            if d <= tolerance.0 {
+                Ok(format!("(ends moved at most {d:.2e})"))
+            } else {
+                Err(format!(
+                    "an end moved by {d:.3e} from `{mark}` (tolerance {})",
+                    tolerance.0
+                ))
             }
         }
         _ => Err("not an expectation".into()),

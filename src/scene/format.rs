@@ -18,6 +18,7 @@
 //!     edit_depth: 0,
 //!     details: [],                           // (level, row, col, local: (x, y, z))
 //!     view: (yaw: 35.0, pitch: 25.0, distance: 8.0, target: (2.2, 0.0, 0.5)),
+//!     tuning: None,                          // or Some((degree_s: 2, degree_t: 2, values: [[…]], constraint: Free))
 //! )
 //! ```
 
@@ -66,6 +67,41 @@ pub struct SceneFile {
     /// The camera.
     #[serde(default)]
     pub view: ViewSpec,
+    /// Fine tuning (SPEC §6): absent or `None` when off.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tuning: Option<TuningSpec>,
+}
+
+/// Fine tuning: a tensor B-spline scalar function `α(u, v)` scaling the
+/// derivative along every streamline, and what the streamlines keep.
+///
+/// ```ron
+/// tuning: Some((degree_s: 2, degree_t: 2, values: [[1.0, 1.2, 1.0], [1.0, 1.0, 1.0], [1.0, 0.8, 1.0]], constraint: Free)),
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TuningSpec {
+    /// Degree along the streamlines (0–5; 2 is usual).
+    pub degree_s: usize,
+    /// Degree across them (0–5; 2 is usual).
+    pub degree_t: usize,
+    /// Control values: one row per value across (`t`), one column per value along (`s`); 1 changes nothing.
+    pub values: Vec<Vec<Finite>>,
+    /// `Free`, `KeepEnds` or `KeepClosed`.
+    #[serde(default)]
+    pub constraint: ConstraintSpec,
+}
+
+/// What fine-tuned streamlines keep.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum ConstraintSpec {
+    /// Nothing.
+    #[default]
+    Free,
+    /// Both ends of every streamline.
+    KeepEnds,
+    /// The chord from first to last point (closed stays closed).
+    KeepClosed,
 }
 
 fn default_display_depth() -> u32 {

@@ -4,6 +4,8 @@
 use super::error::SceneError;
 use super::format::*;
 use std::path::Path;
+use streamline_kernel::bspline::TensorBSpline;
+use streamline_kernel::finetune::{Constraint, SurfaceTuning};
 use streamline_kernel::incremental::check_params;
 use streamline_kernel::initial_curve::InitialCurve;
 use streamline_kernel::multires::Details;
@@ -26,6 +28,8 @@ pub struct Scene {
     pub edit_depth: u32,
     /// The camera.
     pub view: ViewSpec,
+    /// Fine tuning (SPEC §6), if on.
+    pub tuning: Option<SurfaceTuning>,
 }
 
 impl SchemeSpec {
@@ -68,6 +72,71 @@ impl OrderSpec {
     }
 }
 
+impl ConstraintSpec {
+    /// The kernel's constraint.
+    pub fn to_kernel(self) -> Constraint {
+        match self {
+            ConstraintSpec::Free => Constraint::Free,
+            ConstraintSpec::KeepEnds => Constraint::KeepEnds,
+            ConstraintSpec::KeepClosed => Constraint::KeepClosed,
+        }
+    }
+
+    /// From the kernel's.
+    pub fn from_kernel(c: Constraint) -> Self {
+        match c {
+            Constraint::Free => ConstraintSpec::Free,
+            Constraint::KeepEnds => ConstraintSpec::KeepEnds,
+            Constraint::KeepClosed => ConstraintSpec::KeepClosed,
+        }
+    }
+}
+
+impl TuningSpec {
+    /// The kernel's surface tuning, or what is wrong and what to do.
+    pub fn to_kernel(&self) -> Result<SurfaceTuning, String> {
+        let rows = self.values.len();
+        let cols = self.values.first().map_or(0, Vec::len);
+        if let Some(r) = self.values.iter().position(|r| r.len() != cols) {
+            return Err(format!(
+                "fine tuning: row {r} of values has {} entries but row 0 has {cols}; every row needs the same number",
+                self.values[r].len()
+            ));
+        }
+        if rows == 0 || cols == 0 {
+            return Err(
+                "fine tuning: values is empty; give rows of control values, e.g. [[1.0, 1.0, 1.0], [1.0, 1.0, 1.0], [1.0, 1.0, 1.0]]"
+                    .into(),
+            );
+        }
+        let grid = Grid::new(
+            rows,
+            cols,
+            self.values.iter().flatten().map(|v| v.0).collect(),
+        )
+        .map_err(|e| e.to_string())?;
+        let function = TensorBSpline::new(self.degree_s, self.degree_t, grid)
+            .map_err(|e| format!("fine tuning: {e}"))?;
+        Ok(SurfaceTuning {
+            function,
+            constraint: self.constraint.to_kernel(),
+        })
+    }
+
+    /// The file form of a kernel surface tuning.
+    pub fn from_kernel(t: &SurfaceTuning) -> Self {
+        let v = t.function.values();
+        TuningSpec {
+            degree_s: t.function.degree_s(),
+            degree_t: t.function.degree_t(),
+            values: (0..v.rows())
+                .map(|r| v.row(r).iter().map(|&x| Finite(x)).collect())
+                .collect(),
+            constraint: ConstraintSpec::from_kernel(t.constraint),
+        }
+    }
+}
+
 impl InitialSpec {
     /// The kernel's initial curve.
     pub fn to_kernel(&self) -> Result<InitialCurve, KernelError> {
@@ -103,6 +172,7 @@ impl Scene {
             display_depth,
             edit_depth: 0,
             view: ViewSpec::default(),
+            tuning: None,
         }
     }
 
@@ -253,6 +323,10 @@ impl Scene {
                 ));
             }
         }
+        let tuning = match &f.tuning {
+            None => None,
+            Some(t) => Some(t.to_kernel().map_err(|e| at("tuning", e))?),
+        };
         let scene = Scene {
             name: f.name,
             design,
@@ -261,6 +335,7 @@ impl Scene {
             display_depth: f.display_depth,
             edit_depth: f.edit_depth,
             view: f.view,
+            tuning,
         };
         scene.validate(file, text)?;
         Ok(scene)
@@ -296,6 +371,7 @@ impl Scene {
                 })
                 .collect(),
             view: self.view,
+            tuning: self.tuning.as_ref().map(TuningSpec::from_kernel),
         }
     }
 

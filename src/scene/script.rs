@@ -12,7 +12,7 @@
 //! ```
 
 use super::error::SceneError;
-use super::format::{Dir, Finite, OrderSpec, Point, SchemeSpec};
+use super::format::{ConstraintSpec, Dir, Finite, OrderSpec, Point, SchemeSpec, TuningSpec};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -61,6 +61,16 @@ pub enum Step {
     SetDisplayDepth(u32),
     /// Changes the edit depth.
     SetEditDepth(u32),
+    /// Turns fine tuning on with this function (see the scene's `tuning`), or off with `None`.
+    SetTuning(Option<TuningSpec>),
+    /// Sets fine-tuning control value `(row, col)` (row across, column along the streamlines).
+    SetTuningValue {
+        row: usize,
+        col: usize,
+        value: Finite,
+    },
+    /// What fine-tuned streamlines keep: `Free`, `KeepEnds` or `KeepClosed`.
+    SetTuningConstraint(ConstraintSpec),
     /// Undoes the last edit.
     Undo,
     /// Redoes the last undone edit.
@@ -101,6 +111,8 @@ pub enum Step {
         can_undo: Option<bool>,
         #[serde(default)]
         can_redo: Option<bool>,
+        #[serde(default)]
+        tuning: Option<bool>,
     },
     /// The previous step failed with a message containing this text.
     ExpectError(String),
@@ -110,6 +122,8 @@ pub enum Step {
     ExpectSame { mark: String, tolerance: Finite },
     /// Every streamline point differs from `mark` by more than `tolerance` somewhere.
     ExpectChanged { mark: String, tolerance: Finite },
+    /// The first and last points of every streamline are within `tolerance` of those under `mark`.
+    ExpectEndsSame { mark: String, tolerance: Finite },
 }
 
 impl Step {
@@ -124,6 +138,7 @@ impl Step {
                 | Step::Mark(_)
                 | Step::ExpectSame { .. }
                 | Step::ExpectChanged { .. }
+                | Step::ExpectEndsSame { .. }
         )
     }
 }

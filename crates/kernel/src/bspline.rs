@@ -268,11 +268,15 @@ impl TensorBSpline {
 
     /// Sets control value `(row, col)` (must be finite).
     pub fn set(&mut self, row: usize, col: usize, v: f64) -> Result<(), KernelError> {
-        if row >= self.values.rows() || col >= self.values.cols() {
-            return Err(KernelError::IndexOutOfRange {
-                what: "fine-tuning control value",
-                index: row * self.values.cols() + col,
-                len: self.values.data().len(),
+        let (rows, cols) = (self.values.rows(), self.values.cols());
+        if row >= rows || col >= cols {
+            return Err(KernelError::BadFunction {
+                what: "fine-tuning function",
+                problem: format!(
+                    "control value ({row}, {col}) is out of range: there are {rows} rows (across the streamlines) of {cols} values (along them); use row 0..{} and column 0..{}",
+                    rows - 1,
+                    cols - 1
+                ),
             });
         }
         if !v.is_finite() {

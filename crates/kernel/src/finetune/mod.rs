@@ -17,6 +17,8 @@
 pub mod chaikin;
 pub mod constraint;
 pub mod streamline;
+pub mod surface;
 
 pub use constraint::{Constraint, nearest_meeting};
 pub use streamline::{FineTuned, fine_tune_into};
+pub use surface::SurfaceTuning;
