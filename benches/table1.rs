@@ -1,7 +1,8 @@
 //! The paper's Table 1 side by side (subdivision vs QI curves, 5 control tangents)
 //! and full builds of the 9×6 car surface at depths 0–5. The workloads are the
 //! ones `streamline-studio bench` runs (`src/workloads.rs`); the `incremental`
-//! group times one edit through the ECS against a full rebuild (issue 3).
+//! group times one edit through the ECS against a full rebuild (issue 3), and
+//! one fine-tuning value edit on the car at depth 3 (issue 6).
 //!
 //! Run: `cargo bench --bench table1`. Figures and ratios: docs/benchmarks.md.
 
@@ -37,7 +38,10 @@ fn incremental(c: &mut Criterion) {
     g.warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(3))
         .sample_size(10);
-    for mut w in workloads::incremental() {
+    for mut w in workloads::incremental()
+        .into_iter()
+        .chain(workloads::fine_tuning())
+    {
         g.bench_function(&w.name, |b| b.iter(|| black_box((w.run)())));
     }
     g.finish();

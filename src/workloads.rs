@@ -94,7 +94,50 @@ pub fn all() -> Vec<Workload> {
     let mut rows = table1();
     rows.extend(car_surface([3, 5]));
     rows.extend(incremental());
+    rows.extend(fine_tuning());
     rows
+}
+
+/// One fine-tuning control-value edit on the car at depth 3 (3×3 quadratic
+/// function, paper 003's surfaces), from message to updated mesh (issue 6),
+/// free and with every streamline's ends kept, beside the same app's tangent
+/// edit. Rows: `tune/car/d3/<free|keep-ends>`.
+pub fn fine_tuning() -> Vec<Workload> {
+    use crate::ecs::{self, Edit, SurfaceData};
+    use crate::scene::Scene;
+    use streamline_kernel::finetune::{Constraint, SurfaceTuning};
+    [
+        ("free", Constraint::Free),
+        ("keep-ends", Constraint::KeepEnds),
+    ]
+    .into_iter()
+    .map(|(what, constraint)| {
+        let mut scene = Scene::from_design("car", presets::car1(), 3);
+        scene.tuning = Some(SurfaceTuning {
+            constraint,
+            ..SurfaceTuning::identity()
+        });
+        let mut app = ecs::headless_app(scene);
+        let mut flip = false;
+        Workload {
+            name: format!("tune/car/d3/{what}"),
+            run: Box::new(move || {
+                flip = !flip;
+                let value = if flip { 1.3 } else { 0.8 };
+                ecs::send(
+                    &mut app,
+                    Edit::SetTuningValue {
+                        row: 1,
+                        col: 1,
+                        value,
+                    },
+                );
+                app.update();
+                app.world().resource::<SurfaceData>().mesh.positions[0].x
+            }),
+        }
+    })
+    .collect()
 }
 
 /// One edit through the ECS pipeline (message → blend → integrate → mesh) vs a

@@ -153,38 +153,54 @@ impl BSpline {
         let m = self.values.len();
         debug_assert_eq!(out.len(), m);
         let k = &self.knots;
-        let anti = self.antiderivative_knots();
-        let (mu, n) = basis_at(&anti, p + 1, m + 1, u);
-        // cumulative from the top: tail[j] = Σ_{l ≥ j} N'_l(u)
+        // the antiderivative's knots are these with each end repeated once
+        // more; its span search and basis read them through an offset view
+        let (mu, n) = basis_at_extended(k, p + 1, m + 1, u);
         let first = mu - (p + 1);
         for (i, o) in out.iter_mut().enumerate() {
-            // Σ_{j > i} N'_j = Σ over nonzero j in first..=mu with j > i
-            let mut tail = 0.0;
-            for (jj, nv) in n.iter().enumerate().take(p + 2) {
-                if first + jj > i {
-                    tail += nv;
-                }
-            }
+            // Σ_{j > i} N'_j(u) over the nonzero N'_first … N'_mu
+            let tail: f64 = n
+                .iter()
+                .take(p + 2)
+                .enumerate()
+                .filter(|(jj, _)| first + jj > i)
+                .map(|(_, v)| v)
+                .sum();
             *o = tail * (k[i + p + 1] - k[i]) / (p + 1) as f64;
         }
     }
+}
 
-    fn antiderivative_knots(&self) -> Vec<f64> {
-        let k = &self.knots;
-        let mut knots = Vec::with_capacity(k.len() + 2);
-        knots.push(k[0]);
-        knots.extend_from_slice(k);
-        knots.push(k[k.len() - 1]);
-        knots
-    }
+/// [`basis_at`] on `knots` with its first and last knot repeated once more
+/// (the antiderivative's knot vector), without building it.
+fn basis_at_extended(knots: &[f64], p: usize, m: usize, u: f64) -> (usize, [f64; MAX_DEGREE + 2]) {
+    let last = knots.len() - 1;
+    let kn = |i: usize| {
+        if i == 0 {
+            knots[0]
+        } else {
+            knots[(i - 1).min(last)]
+        }
+    };
+    basis_with(kn, p, m, u)
 }
 
 /// Basis values of degree `p` on `knots` (with `m` control values) at `u`.
 fn basis_at(knots: &[f64], p: usize, m: usize, u: f64) -> (usize, [f64; MAX_DEGREE + 2]) {
-    let u = u.clamp(knots[p], knots[m]);
+    basis_with(|i| knots[i], p, m, u)
+}
+
+/// Cox–de Boor in triangular form (NURBS Book A2.2) on knots read through `kn`.
+fn basis_with(
+    kn: impl Fn(usize) -> f64,
+    p: usize,
+    m: usize,
+    u: f64,
+) -> (usize, [f64; MAX_DEGREE + 2]) {
+    let u = u.clamp(kn(p), kn(m));
     // the span: largest μ in p..m with knots[μ] ≤ u, and μ ≤ m−1
     let mut mu = p;
-    while mu + 1 < m && knots[mu + 1] <= u {
+    while mu + 1 < m && kn(mu + 1) <= u {
         mu += 1;
     }
     let mut n = [0.0; MAX_DEGREE + 2];
@@ -192,8 +208,8 @@ fn basis_at(knots: &[f64], p: usize, m: usize, u: f64) -> (usize, [f64; MAX_DEGR
     let mut right = [0.0; MAX_DEGREE + 2];
     n[0] = 1.0;
     for j in 1..=p {
-        left[j] = u - knots[mu + 1 - j];
-        right[j] = knots[mu + j] - u;
+        left[j] = u - kn(mu + 1 - j);
+        right[j] = kn(mu + j) - u;
         let mut saved = 0.0;
         for r in 0..j {
             let den = right[r + 1] + left[j - r];

@@ -156,13 +156,10 @@ fn constraint_rows(
     // integrals of each basis function at every node and at σ
     let mut at_nodes = vec![vec![0.0; m]; n + 2];
     let mut buf = vec![0.0; m];
-    let ends = |i: usize| {
-        let mut e = vec![0.0; m];
-        e[i] = 1.0;
-        let f = BSpline::uniform(alpha.degree(), e).expect("same shape");
-        (f.eval(0.0), f.eval(1.0))
-    };
-    let end_values: Vec<(f64, f64)> = (0..m).map(ends).collect();
+    // on clamped knots only N₀ is nonzero at u = 0 and only N_{m−1} at u = 1
+    let end_values: Vec<(f64, f64)> = (0..m)
+        .map(|i| (f64::from(i == 0), f64::from(i == m - 1)))
+        .collect();
     let mut integral_all = |x: f64, out: &mut [f64]| {
         alpha.basis_integrals(dom.u(x), &mut buf);
         let end = dom.s0 + dom.len;
