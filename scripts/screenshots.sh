@@ -14,6 +14,8 @@ shot panel-subdivision car1 --panel subdivision
 shot panel-selection car1 --panel selection --select 3,4
 shot panel-display car1 --panel display
 shot panel-stats car1 --panel stats
+shot panel-tuning car1-tuned --panel tuning --select 2,4
+shot analysis-tuned-mean car1-tuned --panel analysis --analysis mean
 shot analysis-gaussian car1 --panel analysis --analysis gaussian
 shot analysis-mean car1 --panel analysis --analysis mean
 shot analysis-zebra car1 --panel analysis --analysis zebra

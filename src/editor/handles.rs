@@ -12,8 +12,8 @@ use crate::ecs::{Model, ModelSet};
 use bevy::prelude::*;
 use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
 use streamline_kernel::DVec3;
-use streamline_kernel::incremental::{LevelState, place_row};
-use streamline_kernel::streamline::point_at;
+use streamline_kernel::finetune::streamline::point_by_fraction;
+use streamline_kernel::incremental::{LevelState, place_row_tuned};
 
 /// One arrow: a tangent at its streamline point.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -103,6 +103,7 @@ impl Plugin for HandlesPlugin {
 fn level_arrows(model: &Model, l: &LevelState, scale: f64) -> Vec<Arrow> {
     let (rows, cols) = l.shape();
     let initial = &model.scene.design.initial;
+    let tuning = model.scene.tuning.as_ref();
     let s = &l.params.s;
     let span: f64 = (0..rows)
         .map(|r| (s.get(r, cols - 1) - s.get(r, 0)) / (cols.max(2) - 1) as f64)
@@ -112,10 +113,10 @@ fn level_arrows(model: &Model, l: &LevelState, scale: f64) -> Vec<Arrow> {
     let mut pts = Vec::new();
     let mut out = Vec::with_capacity(rows * cols);
     for r in 0..rows {
-        place_row(initial, &l.tangents, &l.params, r, &mut pts);
+        place_row_tuned(initial, &l.tangents, &l.params, r, tuning, &mut pts);
         for c in 0..cols {
             let dir = l.tangents.get(r, c);
-            let base = point_at(&pts, l.tangents.row(r), s.row(r), s.get(r, c));
+            let base = point_by_fraction(&pts, s.row(r), s.get(r, c));
             out.push(Arrow {
                 level: l.level,
                 row: r,

@@ -10,6 +10,7 @@
 
 use crate::design::{Design, Level};
 use crate::error::KernelError;
+use crate::finetune::{SurfaceTuning, fine_tune_into};
 use crate::grid::Grid;
 use crate::initial_curve::InitialCurve;
 use crate::multires::{self, Details};
@@ -244,6 +245,37 @@ pub fn place_row(
         params.s.row(r),
         params.sigma[r],
         initial.point(params.t[r]),
+        out,
+    );
+}
+
+/// [`place_row`] with fine tuning (SPEC §6): row `r`'s restriction of
+/// `tuning` (at its `v` among the level's rows) scales its derivative.
+pub fn place_row_tuned(
+    initial: &InitialCurve,
+    tangents: &Grid<DVec3>,
+    params: &ParamGrid,
+    r: usize,
+    tuning: Option<&SurfaceTuning>,
+    out: &mut Vec<DVec3>,
+) {
+    let Some(tuning) = tuning else {
+        return place_row(initial, tangents, params, r, out);
+    };
+    let (lo, hi) = params
+        .t
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    let f = tuning.row_function(SurfaceTuning::row_v(params.t[r], lo, hi));
+    fine_tune_into(
+        tangents.row(r),
+        params.s.row(r),
+        params.sigma[r],
+        initial.point(params.t[r]),
+        &f,
+        tuning.constraint,
         out,
     );
 }

@@ -1,5 +1,6 @@
 //! The egui panels: a toolbar (undo, redo, frame) and a side panel of
-//! sections (File, Subdivision, Selection, Display, Analysis, Stats). Panels
+//! sections (File, Subdivision, Selection, Display, Fine tuning, Analysis,
+//! Stats). Panels
 //! are thin views: they read resources and send edit messages (or change
 //! display settings); they never compute geometry.
 
@@ -9,6 +10,7 @@ mod file;
 mod selection;
 mod stats;
 mod subdivision;
+mod tuning;
 
 use super::analysis::{AnalysisSettings, CurvatureField};
 use super::camera::{FrameRequest, SceneBounds, ViewArea};
@@ -33,6 +35,8 @@ pub enum PanelName {
     Selection,
     /// What is drawn: arrows, labels, streamlines, sphere view.
     Display,
+    /// Fine tuning: α(s, t), its constraint and plot.
+    Tuning,
     /// Curvature comb, Gaussian and mean maps, zebra stripes.
     Analysis,
     /// Sizes and the cost of the last edit.
@@ -41,11 +45,12 @@ pub enum PanelName {
 
 impl PanelName {
     /// All sections in panel order.
-    pub const ALL: [PanelName; 6] = [
+    pub const ALL: [PanelName; 7] = [
         PanelName::File,
         PanelName::Subdivision,
         PanelName::Selection,
         PanelName::Display,
+        PanelName::Tuning,
         PanelName::Analysis,
         PanelName::Stats,
     ];
@@ -57,6 +62,7 @@ impl PanelName {
             PanelName::Subdivision => "subdivision",
             PanelName::Selection => "selection",
             PanelName::Display => "display",
+            PanelName::Tuning => "tuning",
             PanelName::Analysis => "analysis",
             PanelName::Stats => "stats",
         }
@@ -68,6 +74,9 @@ impl PanelName {
             PanelName::Subdivision => "Scheme, ω, blend order, display and edit depth",
             PanelName::Selection => "The selected handle: direction, rotation, length, reset",
             PanelName::Display => "What is drawn in the 3D view and the sphere view",
+            PanelName::Tuning => {
+                "Fine tuning: scale the derivative along the streamlines by a B-spline function"
+            }
             PanelName::Analysis => {
                 "Curvature comb, Gaussian and mean curvature maps, zebra stripes"
             }
@@ -81,6 +90,7 @@ impl PanelName {
             PanelName::Subdivision => "Subdivision",
             PanelName::Selection => "Selection",
             PanelName::Display => "Display",
+            PanelName::Tuning => "Fine tuning",
             PanelName::Analysis => "Analysis",
             PanelName::Stats => "Stats",
         }
@@ -292,6 +302,7 @@ fn panel(mut contexts: EguiContexts, mut p: PanelCtx, mut area: ResMut<ViewArea>
                         PanelName::Subdivision => subdivision::show(ui, &mut p),
                         PanelName::Selection => selection::show(ui, &mut p),
                         PanelName::Display => display::show(ui, &mut p),
+                        PanelName::Tuning => tuning::show(ui, &mut p),
                         PanelName::Analysis => analysis::show(ui, &mut p),
                         PanelName::Stats => stats::show(ui, &p),
                     });

@@ -140,6 +140,21 @@ pub fn fine_tune_into(
     FineTuned { alpha }
 }
 
+/// The point of a fine-tuned polyline (`points`, from [`fine_tune_into`]) at
+/// the original arc length `x`, found by its fraction of the segment that
+/// holds it (exact for the identity; the editor puts arrows there).
+pub fn point_by_fraction(points: &[DVec3], s: &[f64], x: f64) -> DVec3 {
+    let n = s.len() - 1;
+    let k = segment_of(s, x).min(n);
+    let (a0, a1) = (point_arclength(s, k), point_arclength(s, k + 1));
+    let f = if a1 > a0 {
+        ((x - a0) / (a1 - a0)).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    points[k].lerp(points[k + 1], f)
+}
+
 /// The rows of `A` in `A c = A 1` for one streamline: the far end
 /// `p(s_n) − p(σ)` and near end `p(s₀) − p(σ)` (keep ends, 6 rows) or the
 /// chord `p(s_n) − p(s₀)` (keep closed, 3 rows), each linear in the values.
