@@ -15,11 +15,13 @@ type ChangedControls<'w, 's> =
     Query<'w, 's, &'static ControlHandle, Or<(Changed<Direction>, Changed<ArcParam>)>>;
 
 pub(crate) fn collect_seeds(
+    meter: Res<super::meter::CpuMeter>,
     model: Res<Model>,
     mut seeds: ResMut<Seeds>,
     controls: ChangedControls,
     details: Query<&DetailHandle, Changed<DetailLocal>>,
 ) {
+    let _meter = meter.start();
     if model.full {
         return;
     }
@@ -49,8 +51,21 @@ fn streamline_of(model: &Model, level: &LevelState, row: usize) -> StreamlineTan
     }
 }
 
+/// [`streamline_of`] into the component's own buffers (no allocation per edit).
+fn refresh(model: &Model, level: &LevelState, row: usize, t: &mut StreamlineTangents) {
+    let p = &level.params;
+    t.tangents.clear();
+    t.tangents.extend_from_slice(level.tangents.row(row));
+    t.s.clear();
+    t.s.extend_from_slice(p.s.row(row));
+    t.sigma = p.sigma[row];
+    t.origin = model.scene.design.initial.point(p.t[row]);
+    t.t = p.t[row];
+}
+
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn reblend(
+    meter: Res<super::meter::CpuMeter>,
     mut commands: Commands,
     mut model: ResMut<Model>,
     mut seeds: ResMut<Seeds>,
@@ -59,6 +74,7 @@ pub(crate) fn reblend(
     mut stats: ResMut<Stats>,
     mut log: ResMut<EditLog>,
 ) {
+    let _meter = meter.start();
     let t0 = Instant::now();
     if model.full {
         model.full = false;
@@ -118,7 +134,7 @@ pub(crate) fn reblend(
                 let rows: Span = w.rows;
                 for (_, line, mut t) in lines.iter_mut() {
                     if rows.lo <= line.row && line.row <= rows.hi {
-                        *t = streamline_of(&model, level, line.row);
+                        refresh(&model, level, line.row, &mut t);
                     }
                 }
             }

@@ -40,11 +40,13 @@ pub(crate) struct EditCtx<'w, 's> {
 }
 
 pub(crate) fn apply_edits(
+    meter: Res<super::meter::CpuMeter>,
     mut reader: MessageReader<EditMessage>,
     mut ctx: EditCtx,
     mut log: ResMut<EditLog>,
     mut stats: ResMut<Stats>,
 ) {
+    let _meter = meter.start();
     let t0 = Instant::now();
     let mut labels = Vec::new();
     let mut any = false;

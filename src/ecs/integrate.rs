@@ -12,10 +12,12 @@ use streamline_kernel::streamline::place_into;
 /// Gives every streamline its row of the scene's fine-tuning function; only
 /// rows whose function (or constraint) differs are marked changed.
 pub(crate) fn retune(
+    meter: Res<super::meter::CpuMeter>,
     model: Res<Model>,
     mut lines: Query<(&StreamlineTangents, &mut StreamlineAlpha)>,
     added: Query<(), Added<Streamline>>,
 ) {
+    let _meter = meter.start();
     if !model.is_changed() && added.is_empty() {
         return;
     }
@@ -37,13 +39,24 @@ pub(crate) fn retune(
     }
 }
 
+/// Streamlines whose tangents or fine-tuning function changed.
+type ChangedLines<'w, 's> = Query<
+    'w,
+    's,
+    (
+        &'static StreamlineTangents,
+        &'static StreamlineAlpha,
+        &'static mut StreamlinePoints,
+    ),
+    Or<(Changed<StreamlineTangents>, Changed<StreamlineAlpha>)>,
+>;
+
 pub(crate) fn integrate(
-    mut lines: Query<
-        (&StreamlineTangents, &StreamlineAlpha, &mut StreamlinePoints),
-        Or<(Changed<StreamlineTangents>, Changed<StreamlineAlpha>)>,
-    >,
+    meter: Res<super::meter::CpuMeter>,
+    mut lines: ChangedLines,
     mut stats: ResMut<Stats>,
 ) {
+    let _meter = meter.start();
     let t0 = Instant::now();
     let mut n = 0;
     for (t, alpha, mut p) in &mut lines {

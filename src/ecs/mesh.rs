@@ -9,11 +9,13 @@ use streamline_kernel::window::Span;
 use streamline_kernel::{DVec3, Grid};
 
 pub(crate) fn patch_mesh(
+    meter: Res<super::meter::CpuMeter>,
     changed: Query<(&Streamline, &StreamlinePoints), Changed<StreamlinePoints>>,
     all: Query<(), With<Streamline>>,
     mut surface: ResMut<SurfaceData>,
     mut stats: ResMut<Stats>,
 ) {
+    let _meter = meter.start();
     let t0 = Instant::now();
     let rows = all.iter().count();
     let mut span: Option<Span> = None;
@@ -48,9 +50,7 @@ pub(crate) fn patch_mesh(
             s.mesh.positions[base..base + cols].copy_from_slice(s.points.row(r));
         }
         let around = span.widen(1, rows);
-        for r in around.iter() {
-            s.mesh.update_normals_row(&s.points, r);
-        }
+        s.mesh.update_normals_rows(&s.points, around.lo, around.hi);
         s.rows_changed = Some(around);
     }
     s.generation += 1;

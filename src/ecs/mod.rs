@@ -10,6 +10,7 @@ mod edit;
 mod integrate;
 mod mesh;
 pub mod messages;
+pub mod meter;
 mod output;
 pub mod playback;
 pub mod resources;
@@ -59,6 +60,7 @@ impl Plugin for ModelPlugin {
             .insert_resource(self.config.clone())
             .init_resource::<History>()
             .init_resource::<Stats>()
+            .init_resource::<meter::CpuMeter>()
             .init_resource::<EditLog>()
             .init_resource::<SurfaceData>()
             .init_resource::<resources::Seeds>()

@@ -6,11 +6,13 @@ use crate::scene::{export, io};
 use bevy::prelude::*;
 
 pub(crate) fn write_files(
+    meter: Res<super::meter::CpuMeter>,
     mut reader: MessageReader<EditMessage>,
     mut model: ResMut<Model>,
     surface: Res<SurfaceData>,
     mut log: ResMut<EditLog>,
 ) {
+    let _meter = meter.start();
     for msg in reader.read() {
         match &msg.edit {
             Edit::Save(path) => match io::save(&model.scene, path) {

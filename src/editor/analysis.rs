@@ -207,6 +207,7 @@ fn setup(
 
 #[allow(clippy::too_many_arguments)]
 fn apply_mode(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     settings: Res<AnalysisSettings>,
     data: Res<SurfaceData>,
     shown: Res<ShownSurface>,
@@ -218,6 +219,7 @@ fn apply_mode(
     camera: Query<&OrbitCamera, With<MainCamera>>,
     mut last: Local<Option<(AnalysisSettings, u64, Option<DVec3>)>>,
 ) {
+    let _meter = meter.start();
     let (mesh, mut material) = surface.into_inner();
     let want = match settings.mode {
         SurfaceMode::Shaded => &shaded.0,
@@ -296,11 +298,13 @@ fn zebra_uv(data: &SurfaceData, settings: &AnalysisSettings, eye: DVec3) -> Vec<
 
 /// Combs on up to `comb_lines` streamlines, spread evenly over the surface.
 fn draw_combs(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     settings: Res<AnalysisSettings>,
     bounds: Res<SceneBounds>,
     lines: Query<(&Streamline, &StreamlineTangents, &StreamlinePoints)>,
     mut gizmos: Gizmos,
 ) {
+    let _meter = meter.start();
     if !settings.comb {
         return;
     }

@@ -133,12 +133,14 @@ pub fn recover(
 }
 
 fn tick(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     dirs: Res<EditorDirs>,
     config: Res<AutosaveConfig>,
     model: Res<Model>,
     mut state: ResMut<AutosaveState>,
     mut ui: ResMut<FileUi>,
 ) {
+    let _meter = meter.start();
     if model.is_changed() && model.unsaved {
         state.dirty = true;
     }

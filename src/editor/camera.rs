@@ -141,7 +141,12 @@ fn spawn(mut commands: Commands, model: Res<Model>) {
     ));
 }
 
-fn bounds(data: Res<SurfaceData>, mut b: ResMut<SceneBounds>) {
+fn bounds(
+    meter: Res<crate::ecs::meter::CpuMeter>,
+    data: Res<SurfaceData>,
+    mut b: ResMut<SceneBounds>,
+) {
+    let _meter = meter.start();
     if data.generation == b.generation || data.points.data().is_empty() {
         return;
     }
@@ -157,10 +162,12 @@ fn bounds(data: Res<SurfaceData>, mut b: ResMut<SceneBounds>) {
 
 /// A newly opened scene brings its own view (edits never change the view).
 fn follow_scene_view(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     model: Res<Model>,
     mut shown: Local<Option<ViewSpec>>,
     mut q: Query<&mut OrbitCamera, With<MainCamera>>,
 ) {
+    let _meter = meter.start();
     let v = model.scene.view;
     if *shown == Some(v) {
         return;
@@ -175,6 +182,7 @@ fn follow_scene_view(
 }
 
 fn orbit(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     buttons: Res<ButtonInput<MouseButton>>,
     motion: Res<AccumulatedMouseMotion>,
     scroll: Res<AccumulatedMouseScroll>,
@@ -182,6 +190,7 @@ fn orbit(
     window: Single<&Window, With<PrimaryWindow>>,
     mut q: Query<&mut OrbitCamera, With<MainCamera>>,
 ) {
+    let _meter = meter.start();
     let Ok(mut cam) = q.single_mut() else {
         return;
     };
@@ -210,12 +219,14 @@ fn orbit(
 }
 
 fn keys(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     keys: Res<ButtonInput<KeyCode>>,
     bounds: Res<SceneBounds>,
     handles: Res<super::handles::HandleArrows>,
     selection: Res<super::picking::Selection>,
     mut req: ResMut<FrameRequest>,
 ) {
+    let _meter = meter.start();
     if keys.just_pressed(KeyCode::KeyA) || keys.just_pressed(KeyCode::Home) {
         req.0 = Some((bounds.center(), 0.5 * bounds.size()));
     }
@@ -228,9 +239,11 @@ fn keys(
 }
 
 fn apply_frame_and_view(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     mut req: ResMut<FrameRequest>,
     mut q: Query<(&mut OrbitCamera, &mut Transform), With<MainCamera>>,
 ) {
+    let _meter = meter.start();
     let Ok((mut cam, mut tf)) = q.single_mut() else {
         return;
     };
@@ -245,10 +258,12 @@ fn apply_frame_and_view(
 
 /// Fits the main camera's viewport to the area the panels leave free.
 fn set_viewport(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     area: Res<ViewArea>,
     window: Single<&Window, With<PrimaryWindow>>,
     mut q: Query<&mut Camera, With<MainCamera>>,
 ) {
+    let _meter = meter.start();
     let Ok(mut camera) = q.single_mut() else {
         return;
     };

@@ -252,11 +252,13 @@ pub fn suggested(model: &Model, ext: &str) -> String {
 }
 
 fn shortcuts(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     keys: Res<ButtonInput<KeyCode>>,
     model: Res<Model>,
     mut ui: ResMut<FileUi>,
     mut edits: MessageWriter<EditMessage>,
 ) {
+    let _meter = meter.start();
     // a modifier pressed and let go within one frame (a fast tap, or a
     // synthetic key event) still counts
     let held = |k: [KeyCode; 2]| keys.any_pressed(k) || keys.any_just_pressed(k);
@@ -293,12 +295,14 @@ fn shortcuts(
 }
 
 fn close_requested(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     mut closes: MessageReader<WindowCloseRequested>,
     model: Res<Model>,
     mut ui: ResMut<FileUi>,
     mut edits: MessageWriter<EditMessage>,
     mut exit: MessageWriter<AppExit>,
 ) {
+    let _meter = meter.start();
     if closes.read().count() > 0 {
         request(Pending::Quit, &model, &mut ui, &mut edits, &mut exit);
     }
@@ -307,11 +311,13 @@ fn close_requested(
 /// Errors of the last edits go to the error dialog; opened and saved files to
 /// the recent list.
 fn watch_outcomes(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     log: Res<EditLog>,
     model: Res<Model>,
     dirs: Res<EditorDirs>,
     mut ui: ResMut<FileUi>,
 ) {
+    let _meter = meter.start();
     if log.frame != ui.log_frame {
         ui.log_frame = log.frame;
         for e in log.entries.iter().filter_map(|e| e.as_ref().err()) {
@@ -336,11 +342,13 @@ fn watch_outcomes(
 }
 
 fn continue_after_save(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     model: Res<Model>,
     mut ui: ResMut<FileUi>,
     mut edits: MessageWriter<EditMessage>,
     mut exit: MessageWriter<AppExit>,
 ) {
+    let _meter = meter.start();
     if !model.unsaved
         && let Some(p) = ui.after_save.take()
     {
@@ -376,6 +384,7 @@ fn nearby_scenes(model: &Model) -> Vec<PathBuf> {
 }
 
 fn dialogs(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     mut contexts: EguiContexts,
     model: Res<Model>,
     dirs: Res<EditorDirs>,
@@ -383,6 +392,7 @@ fn dialogs(
     mut edits: MessageWriter<EditMessage>,
     mut exit: MessageWriter<AppExit>,
 ) -> Result {
+    let _meter = meter.start();
     let ctx = contexts.ctx_mut()?.clone();
     if !ui.errors.is_empty() {
         let mut open = true;

@@ -131,10 +131,12 @@ fn level_arrows(model: &Model, l: &LevelState, scale: f64) -> Vec<Arrow> {
 }
 
 fn rebuild(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     model: Res<Model>,
     levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
     mut arrows: ResMut<HandleArrows>,
 ) {
+    let _meter = meter.start();
     let edit = model.scene.edit_depth;
     let changed = levels
         .iter()
@@ -185,12 +187,14 @@ const SELECTED: Color = Color::srgb(1.0, 1.0, 1.0);
 const HOVER: Color = Color::srgb(1.0, 0.6, 0.1);
 
 fn draw(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     arrows: Res<HandleArrows>,
     settings: Res<HandleSettings>,
     selection: Res<Selection>,
     drag: Res<Drag>,
     mut gizmos: Gizmos,
 ) {
+    let _meter = meter.start();
     let edit = arrows.edit_depth;
     let active = drag.0.as_ref().map(|d| (d.row, d.col)).or(selection.handle);
     let colour = |a: &Arrow, base: Color| {
@@ -250,12 +254,14 @@ fn arrow(gizmos: &mut Gizmos, a: &Arrow, color: Color) {
 
 /// Column numbers at the control arrows' tips, and the selected handle's index.
 fn labels(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     mut contexts: EguiContexts,
     arrows: Res<HandleArrows>,
     settings: Res<HandleSettings>,
     selection: Res<Selection>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
 ) -> Result {
+    let _meter = meter.start();
     let Ok((camera, gt)) = camera.single() else {
         return Ok(());
     };

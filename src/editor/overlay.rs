@@ -37,11 +37,13 @@ impl Plugin for OverlayPlugin {
 }
 
 fn draw(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     settings: Res<OverlaySettings>,
     data: Res<SurfaceData>,
     bounds: Res<SceneBounds>,
     mut gizmos: Gizmos,
 ) {
+    let _meter = meter.start();
     if settings.axes_and_grid {
         let size = bounds.size().max(1.0) as f32;
         gizmos.line(

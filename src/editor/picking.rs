@@ -164,7 +164,9 @@ fn view_cursor(window: &Window, camera: &Camera, sphere: &SphereArea) -> Option<
     (r.contains(p) && !sphere.contains(p)).then_some(p)
 }
 
+#[allow(clippy::too_many_arguments)]
 fn hover(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     window: Single<&Window, With<PrimaryWindow>>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
     arrows: Res<HandleArrows>,
@@ -173,6 +175,7 @@ fn hover(
     drag: Res<Drag>,
     mut selection: ResMut<Selection>,
 ) {
+    let _meter = meter.start();
     let Ok((camera, gt)) = camera.single() else {
         return;
     };
@@ -189,6 +192,7 @@ fn hover(
 
 #[allow(clippy::too_many_arguments)]
 fn press(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     buttons: Res<ButtonInput<MouseButton>>,
     window: Single<&Window, With<PrimaryWindow>>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
@@ -198,6 +202,7 @@ fn press(
     mut drag: ResMut<Drag>,
     mut groups: ResMut<DragGroups>,
 ) {
+    let _meter = meter.start();
     if !buttons.just_pressed(MouseButton::Left) || drag.0.is_some() {
         return;
     }
@@ -269,10 +274,12 @@ pub fn trackball_rotate(
 }
 
 fn drag_move(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     window: Single<&Window, With<PrimaryWindow>>,
     mut drag: ResMut<Drag>,
     mut edits: MessageWriter<EditMessage>,
 ) {
+    let _meter = meter.start();
     let Some(d) = drag.0.as_mut() else {
         return;
     };
@@ -293,12 +300,14 @@ fn drag_move(
 }
 
 fn release_or_cancel(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     buttons: Res<ButtonInput<MouseButton>>,
     keys: Res<ButtonInput<KeyCode>>,
     mut drag: ResMut<Drag>,
     mut selection: ResMut<Selection>,
     mut edits: MessageWriter<EditMessage>,
 ) {
+    let _meter = meter.start();
     if keys.just_pressed(KeyCode::Escape) {
         match drag.0.take() {
             Some(d) if d.sent => {
@@ -315,7 +324,12 @@ fn release_or_cancel(
 }
 
 /// Drops a selection that no longer exists (after a depth change or a load).
-fn keep_selection_valid(arrows: Res<HandleArrows>, mut selection: ResMut<Selection>) {
+fn keep_selection_valid(
+    meter: Res<crate::ecs::meter::CpuMeter>,
+    arrows: Res<HandleArrows>,
+    mut selection: ResMut<Selection>,
+) {
+    let _meter = meter.start();
     if !arrows.is_changed() || arrows.handles.is_empty() {
         return;
     }

@@ -109,6 +109,12 @@ struct Report {
     last_edit: String,
     net: Vec<[f64; 3]>,
     cols: usize,
+    /// The model's systems in frames with an edit: last and largest (ms).
+    model_ms: (f64, f64),
+    /// All our systems (model and editor) in frames with an edit: last and largest (ms).
+    ours_ms: (f64, f64),
+    /// Display depth.
+    depth: u32,
 }
 
 fn write_report(path: &std::path::Path, r: &Report) {
@@ -164,6 +170,7 @@ fn drive(
     model: Res<Model>,
     history: Res<History>,
     stats: Res<Stats>,
+    timing: Res<super::panels::FrameTiming>,
     selection: Res<Selection>,
     arrows: Res<HandleArrows>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
@@ -213,6 +220,9 @@ fn drive(
                     last_edit: stats.last.edit.clone(),
                     net: net.data().iter().map(|v| v.to_array()).collect(),
                     cols: net.cols(),
+                    model_ms: (timing.last_ms, timing.max_ms),
+                    ours_ms: (timing.ours_last_ms, timing.ours_max_ms),
+                    depth: model.scene.display_depth,
                 },
             );
         }

@@ -135,6 +135,7 @@ fn setup(
 /// Places the inset in the lower right corner of the 3D view and turns its
 /// camera like the main one.
 fn place_camera(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     settings: Res<SphereSettings>,
     area: Res<ViewArea>,
     window: Single<&Window, With<PrimaryWindow>>,
@@ -142,6 +143,7 @@ fn place_camera(
     mut cam: Query<(&mut Camera, &mut Transform), With<SphereCamera>>,
     mut sphere_area: ResMut<SphereArea>,
 ) {
+    let _meter = meter.start();
     let Ok((mut camera, mut tf)) = cam.single_mut() else {
         return;
     };
@@ -188,6 +190,7 @@ fn place_camera(
 
 /// The display depth's tangents as a point cloud, rebuilt when that level changes.
 fn update_points(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     model: Res<Model>,
     settings: Res<SphereSettings>,
     levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
@@ -195,6 +198,7 @@ fn update_points(
     mut meshes: ResMut<Assets<Mesh>>,
     mut shown: Local<Option<u32>>,
 ) {
+    let _meter = meter.start();
     let (mesh, mut vis) = points.into_inner();
     let want = if settings.subdivided {
         Visibility::Inherited
@@ -224,7 +228,9 @@ fn update_points(
     }
 }
 
+#[allow(clippy::too_many_arguments)]
 fn draw(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     model: Res<Model>,
     arrows: Res<HandleArrows>,
     handle_settings: Res<HandleSettings>,
@@ -233,6 +239,7 @@ fn draw(
     main: Query<&OrbitCamera, With<MainCamera>>,
     mut gizmos: Gizmos<SphereGizmos>,
 ) {
+    let _meter = meter.start();
     if area.0.is_none() {
         return;
     }
@@ -314,6 +321,7 @@ pub fn sphere_point(origin: DVec3, dir: DVec3) -> DVec3 {
 
 #[allow(clippy::too_many_arguments)]
 fn press(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     buttons: Res<ButtonInput<MouseButton>>,
     window: Single<&Window, With<PrimaryWindow>>,
     area: Res<SphereArea>,
@@ -324,6 +332,7 @@ fn press(
     mut drag: ResMut<Drag>,
     mut groups: ResMut<DragGroups>,
 ) {
+    let _meter = meter.start();
     if !buttons.just_pressed(MouseButton::Left) || drag.0.is_some() {
         return;
     }
@@ -364,12 +373,14 @@ fn press(
 }
 
 fn drag_move(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     window: Single<&Window, With<PrimaryWindow>>,
     area: Res<SphereArea>,
     cam: Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
     mut drag: ResMut<Drag>,
     mut edits: MessageWriter<EditMessage>,
 ) {
+    let _meter = meter.start();
     let Some(d) = drag.0.as_mut() else {
         return;
     };

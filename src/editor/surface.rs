@@ -76,11 +76,13 @@ fn setup(
 }
 
 pub(super) fn sync_mesh(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     data: Res<SurfaceData>,
     mut shown: ResMut<ShownSurface>,
     mut meshes: ResMut<Assets<Mesh>>,
     surface: Single<&Mesh3d, With<SurfaceEntity>>,
 ) {
+    let _meter = meter.start();
     if data.generation == shown.generation {
         return;
     }

@@ -26,6 +26,7 @@ pub mod initial_curve;
 pub mod limits;
 pub mod mesh;
 pub mod multires;
+pub mod parallel;
 pub mod params;
 pub mod presets;
 pub mod qi;

@@ -36,35 +36,71 @@ impl SurfaceMesh {
         self.positions.extend_from_slice(points.data());
         self.normals.clear();
         self.normals.resize(points.data().len(), DVec3::Z);
-        for r in 0..points.rows() {
-            self.update_normals_row(points, r);
-        }
+        self.update_normals_rows(points, 0, points.rows().saturating_sub(1));
         self.indices.clear();
         write_indices(points.rows(), points.cols(), &mut self.indices);
     }
 
+    /// Recomputes the normals of rows `lo ..= hi`; at least
+    /// [`PARALLEL_MIN_POINTS`] of them are split over two threads (same
+    /// operations per point, so the same bits).
+    pub fn update_normals_rows(&mut self, points: &Grid<DVec3>, lo: usize, hi: usize) {
+        let cols = points.cols();
+        if cols == 0 || points.rows() == 0 || hi < lo {
+            return;
+        }
+        let region = &mut self.normals[lo * cols..(hi + 1) * cols];
+        let n = hi - lo + 1;
+        if n * cols < PARALLEL_MIN_POINTS || n < 2 {
+            for (i, out) in region.chunks_mut(cols).enumerate() {
+                normals_row(points, lo + i, out);
+            }
+            return;
+        }
+        let (top, bottom) = region.split_at_mut((n / 2) * cols);
+        crate::parallel::join(
+            || {
+                for (i, out) in top.chunks_mut(cols).enumerate() {
+                    normals_row(points, lo + i, out);
+                }
+            },
+            || {
+                for (i, out) in bottom.chunks_mut(cols).enumerate() {
+                    normals_row(points, lo + n / 2 + i, out);
+                }
+            },
+        );
+    }
+
     /// Recomputes the normals of row `r` (after its points, or a neighbour's, changed).
     pub fn update_normals_row(&mut self, points: &Grid<DVec3>, r: usize) {
-        let (rows, cols) = (points.rows(), points.cols());
-        let (r0, r1) = (r.saturating_sub(1), (r + 1).min(rows - 1));
-        let (above, here, below) = (points.row(r0), points.row(r), points.row(r1));
-        let out = &mut self.normals[r * cols..(r + 1) * cols];
-        let mut last = DVec3::Z;
-        for c in 0..cols {
-            let (c0, c1) = (c.saturating_sub(1), (c + 1).min(cols - 1));
-            let ds = here[c1] - here[c0];
-            let dt = below[c] - above[c];
-            let n = ds.cross(dt);
-            let len2 = n.length_squared();
-            // a degenerate point takes its neighbour's normal (never NaN)
-            let n = if len2 > 0.0 && len2.is_finite() {
-                n * (1.0 / len2.sqrt())
-            } else {
-                last
-            };
-            last = n;
-            out[c] = n;
-        }
+        self.update_normals_rows(points, r, r);
+    }
+}
+
+/// Mesh updates of at least this many points run on two threads.
+pub const PARALLEL_MIN_POINTS: usize = 16_384;
+
+/// The normals of row `r` of `points` into `out`.
+fn normals_row(points: &Grid<DVec3>, r: usize, out: &mut [DVec3]) {
+    let (rows, cols) = (points.rows(), points.cols());
+    let (r0, r1) = (r.saturating_sub(1), (r + 1).min(rows - 1));
+    let (above, here, below) = (points.row(r0), points.row(r), points.row(r1));
+    let mut last = DVec3::Z;
+    for c in 0..cols {
+        let (c0, c1) = (c.saturating_sub(1), (c + 1).min(cols - 1));
+        let ds = here[c1] - here[c0];
+        let dt = below[c] - above[c];
+        let n = ds.cross(dt);
+        let len2 = n.length_squared();
+        // a degenerate point takes its neighbour's normal (never NaN)
+        let n = if len2 > 0.0 && len2.is_finite() {
+            n * (1.0 / len2.sqrt())
+        } else {
+            last
+        };
+        last = n;
+        out[c] = n;
     }
 }
 

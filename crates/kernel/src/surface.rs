@@ -129,6 +129,9 @@ impl BlendOrder {
 /// A 1D refinement applied along rows and columns of a grid; implemented for
 /// tangents (on the sphere) and scalars (parameter grids).
 pub trait Refine: Copy + Default {
+    /// Windows of at least this many entries are split over two threads
+    /// (below it, starting a thread costs more than it saves).
+    const PARALLEL_MIN_ENTRIES: usize;
     /// The scheme prepared for entry-by-entry use.
     type Rule: Sync;
     /// Prepares `scheme` (assumed validated).
@@ -141,6 +144,7 @@ pub trait Refine: Copy + Default {
 }
 
 impl Refine for DVec3 {
+    const PARALLEL_MIN_ENTRIES: usize = crate::window::PARALLEL_MIN_ENTRIES;
     type Rule = Prepared;
     fn prepare(scheme: CurveScheme) -> Prepared {
         Prepared::new(scheme)
@@ -155,6 +159,8 @@ impl Refine for DVec3 {
 }
 
 impl Refine for f64 {
+    /// A scalar rule is a few multiply-adds: never worth a thread here.
+    const PARALLEL_MIN_ENTRIES: usize = usize::MAX;
     type Rule = CurveScheme;
     fn prepare(scheme: CurveScheme) -> CurveScheme {
         scheme

@@ -155,10 +155,11 @@ impl Window {
     }
 }
 
-/// Windows smaller than this many entries are refined on the calling thread;
-/// larger ones are split in two halves of rows run on two threads (the work
-/// per entry is the same either way, so results are bitwise equal).
-pub const PARALLEL_MIN_ENTRIES: usize = 8192;
+/// Windows of tangents smaller than this many entries are refined on the
+/// calling thread; larger ones are split in two halves of rows run on two
+/// threads (the work per entry is the same either way, so results are
+/// bitwise equal). Scalar grids stay on one thread ([`Refine::PARALLEL_MIN_ENTRIES`]).
+pub const PARALLEL_MIN_ENTRIES: usize = 16_384;
 
 /// Splits rows `rows` of `dst` (a `width`-wide grid) between the calling
 /// thread and, when `parallel`, one more: `run(chunk, first_row)` fills its
@@ -175,10 +176,7 @@ where
     }
     let split = rows.len() / 2;
     let (top, bottom) = region.split_at_mut(split * width);
-    std::thread::scope(|scope| {
-        scope.spawn(|| run(bottom, rows.lo + split));
-        run(top, rows.lo);
-    });
+    crate::parallel::join(|| run(top, rows.lo), || run(bottom, rows.lo + split));
 }
 
 /// Entries `cols` of rows `rows` of `dst`: the step along each row of `src`.
@@ -233,7 +231,7 @@ fn refine_along_cols<T: Refine + Send + Sync>(
 /// cols`; t-first: `refined rows × prev.cols`), `next` the fine grid; `win` is
 /// the dirty window of `prev`. Recomputes the affected entries of `half` and
 /// `next` in place and returns the dirty window of `next`. Large windows run on
-/// two threads ([`PARALLEL_MIN_ENTRIES`]).
+/// two threads ([`Refine::PARALLEL_MIN_ENTRIES`]).
 pub fn refine_grid_window<T: Refine + Send + Sync>(
     scheme: SurfaceScheme,
     order: BlendOrder,
@@ -245,7 +243,7 @@ pub fn refine_grid_window<T: Refine + Send + Sync>(
     let c = scheme.curve();
     let rule = T::prepare(c);
     let out = win.refine(scheme, prev.rows(), prev.cols());
-    let parallel = out.area() >= PARALLEL_MIN_ENTRIES;
+    let parallel = out.area() >= T::PARALLEL_MIN_ENTRIES;
     match order {
         BlendOrder::SFirst => {
             refine_along_rows(&rule, c, prev, half, win.rows, out.cols, parallel);

@@ -203,8 +203,16 @@ pub struct FrameTiming {
     pub last_ms: f64,
     /// The largest of the last 120 frames with an edit.
     pub max_ms: f64,
+    /// CPU milliseconds of all our systems (the model's stages and the
+    /// editor's systems, summed over threads; [`crate::ecs::meter`]) in the
+    /// last frame with an edit.
+    pub ours_last_ms: f64,
+    /// The largest of the last 120 such frames.
+    pub ours_max_ms: f64,
     recent: std::collections::VecDeque<f64>,
+    recent_frames: std::collections::VecDeque<f64>,
     seen: u64,
+    seen_frame: u64,
 }
 
 pub struct PanelPlugin;
@@ -217,6 +225,7 @@ impl Plugin for PanelPlugin {
             .init_resource::<OpenedScene>()
             .add_systems(Update, track_opened.after(crate::ecs::ModelSet::Output))
             .add_systems(Update, track_timing.after(crate::ecs::ModelSet::Output))
+            .add_systems(Last, track_frame)
             .add_systems(Startup, spawn_ui_camera)
             .add_systems(EguiPrimaryContextPass, panel);
     }
@@ -245,7 +254,13 @@ fn spawn_ui_camera(mut commands: Commands, mut settings: ResMut<bevy_egui::EguiG
     ));
 }
 
-fn track_opened(model: Res<Model>, log: Res<EditLog>, mut o: ResMut<OpenedScene>) {
+fn track_opened(
+    meter: Res<crate::ecs::meter::CpuMeter>,
+    model: Res<Model>,
+    log: Res<EditLog>,
+    mut o: ResMut<OpenedScene>,
+) {
+    let _meter = meter.start();
     let opened = log.frame != o.seen
         && log.entries.iter().any(|e| {
             e.as_ref().is_ok_and(|s| {
@@ -258,7 +273,13 @@ fn track_opened(model: Res<Model>, log: Res<EditLog>, mut o: ResMut<OpenedScene>
     o.seen = log.frame;
 }
 
-fn track_timing(stats: Res<Stats>, log: Res<EditLog>, mut t: ResMut<FrameTiming>) {
+fn track_timing(
+    meter: Res<crate::ecs::meter::CpuMeter>,
+    stats: Res<Stats>,
+    log: Res<EditLog>,
+    mut t: ResMut<FrameTiming>,
+) {
+    let _meter = meter.start();
     if log.frame == t.seen {
         return;
     }
@@ -272,7 +293,33 @@ fn track_timing(stats: Res<Stats>, log: Res<EditLog>, mut t: ResMut<FrameTiming>
     t.max_ms = t.recent.iter().copied().fold(0.0, f64::max);
 }
 
-fn panel(mut contexts: EguiContexts, mut p: PanelCtx, mut area: ResMut<ViewArea>) -> Result {
+/// At the end of a frame: the CPU time of all our systems (the model's and
+/// the editor's, with the kernel's helper threads), kept for frames with an edit.
+fn track_frame(
+    log: Res<EditLog>,
+    meter: Res<crate::ecs::meter::CpuMeter>,
+    mut t: ResMut<FrameTiming>,
+) {
+    let ms = meter.take();
+    if log.frame == t.seen_frame {
+        return;
+    }
+    t.seen_frame = log.frame;
+    t.ours_last_ms = ms;
+    t.recent_frames.push_back(ms);
+    while t.recent_frames.len() > 120 {
+        t.recent_frames.pop_front();
+    }
+    t.ours_max_ms = t.recent_frames.iter().copied().fold(0.0, f64::max);
+}
+
+fn panel(
+    meter: Res<crate::ecs::meter::CpuMeter>,
+    mut contexts: EguiContexts,
+    mut p: PanelCtx,
+    mut area: ResMut<ViewArea>,
+) -> Result {
+    let _meter = meter.start();
     let ctx = contexts.ctx_mut()?.clone();
     let mut root = egui::Ui::new(
         ctx.clone(),

@@ -100,6 +100,14 @@ pub fn show(ui: &mut egui::Ui, p: &PanelCtx) {
             format!("{:.2} (max {:.2})", p.timing.last_ms, p.timing.max_ms),
             "CPU time of the model's systems in the last frame with an edit, and the largest of the last 120",
         );
+        row(
+            "our systems (ms)",
+            format!(
+                "{:.2} (max {:.2})",
+                p.timing.ours_last_ms, p.timing.ours_max_ms
+            ),
+            "CPU time (thread CPU clocks, so time lost to other programs is not counted) of all our systems — the model's stages and the editor's: mesh upload, arrows, sphere view, analysis, panels — in the last frame with an edit, summed over threads, and the largest of the last 120",
+        );
     };
     egui::Grid::new("stats_grid")
         .num_columns(2)

@@ -1,5 +1,5 @@
 //! Fine tuning (paper 003, SPEC §6): turn it on, the control values of
-//! `α(s, t)` (rows across the streamlines, columns along them), the
+//! `α(s, t)` as vertical sliders (rows across the streamlines, columns along them), the
 //! constraint, and a plot of `α` along the selected streamline. Every change
 //! is an edit message; the curvature maps show the effect as it happens.
 
@@ -94,15 +94,16 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
                     .on_hover_text(format!("Control value {row} across the streamlines (first row of streamlines = t0)"));
                 for col in 0..along {
                     let mut v = values.get(row, col);
+                    ui.spacing_mut().slider_width = 56.0;
                     let r = ui
                         .add(
-                            egui::DragValue::new(&mut v)
-                                .speed(0.01)
-                                .range(0.0..=VALUE_MAX)
-                                .max_decimals(3),
+                            egui::Slider::new(&mut v, 0.0..=VALUE_MAX)
+                                .vertical()
+                                .max_decimals(2)
+                                .step_by(0.01),
                         )
                         .on_hover_text(format!(
-                            "α control value ({row}, {col}): above 1 the streamlines run longer there (they turn later), below 1 shorter; drag or type"
+                            "α control value ({row}, {col}): above 1 the streamlines run longer there (they turn later), below 1 shorter; drag, or click the number to type"
                         ));
                     if r.changed() && v != values.get(row, col) {
                         let g = p.slider_group("tuning", &r);
