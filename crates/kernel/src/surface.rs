@@ -203,8 +203,40 @@ pub fn refine_cols<T: Refine>(scheme: CurveScheme, g: &Grid<T>) -> Grid<T> {
     out
 }
 
-/// One tensor-product step in the given blend order.
-pub fn refine_grid<T: Refine>(scheme: SurfaceScheme, order: BlendOrder, g: &Grid<T>) -> Grid<T> {
+/// One tensor-product step in the given blend order: the whole grid as one
+/// window ([`crate::window::refine_grid_window`]: rows and columns both
+/// passed row by row, large grids on two threads).
+pub fn refine_grid<T: Refine + Send + Sync>(
+    scheme: SurfaceScheme,
+    order: BlendOrder,
+    g: &Grid<T>,
+) -> Grid<T> {
+    let c = scheme.curve();
+    let (hr, hc) = crate::window::half_shape(scheme, order, g.rows(), g.cols());
+    let mut half = Grid::filled(hr, hc, T::default());
+    let mut next = Grid::filled(
+        c.refined_len(g.rows()),
+        c.refined_len(g.cols()),
+        T::default(),
+    );
+    crate::window::refine_grid_window(
+        scheme,
+        order,
+        g,
+        &mut half,
+        &mut next,
+        crate::window::Window::all(g.rows(), g.cols()),
+    );
+    next
+}
+
+/// The same step computed the plain way, curve by curve (columns gathered
+/// into buffers): the independent reference the windowed path is tested against.
+pub fn refine_grid_gathered<T: Refine>(
+    scheme: SurfaceScheme,
+    order: BlendOrder,
+    g: &Grid<T>,
+) -> Grid<T> {
     let c = scheme.curve();
     match order {
         BlendOrder::SFirst => refine_cols(c, &refine_rows(c, g)),

@@ -274,7 +274,7 @@ pub fn half_shape(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::surface::refine_grid;
+    use crate::surface::refine_grid_gathered;
     use glam::DVec3;
 
     fn net(rows: usize, cols: usize) -> Grid<DVec3> {
@@ -298,7 +298,7 @@ mod tests {
             for (rows, cols) in [(5, 7), (70, 90)] {
                 for order in [BlendOrder::SFirst, BlendOrder::TFirst] {
                     let g = net(rows, cols);
-                    let full = refine_grid(scheme, order, &g);
+                    let full = refine_grid_gathered(scheme, order, &g);
                     let (hr, hc) = half_shape(scheme, order, rows, cols);
                     let mut half = Grid::filled(hr, hc, DVec3::ZERO);
                     let mut next = Grid::filled(full.rows(), full.cols(), DVec3::ZERO);
