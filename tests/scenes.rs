@@ -166,7 +166,26 @@ proptest! {
 fn bad_scenes_have_located_errors() {
     let good = builtin::SCENES[5].1; // minimal.ron
     let dir = tmpdir("bad");
-    let cases: [(&str, String, &str); 9] = [
+    let tuned = |t: &str| {
+        let end = good.trim_end().strip_suffix(')').expect("a scene ends with )");
+        format!("{end}    tuning: {t},\n)\n")
+    };
+    let cases: [(&str, String, &str); 12] = [
+        (
+            "tuning: too few values for the degree",
+            tuned("Some((degree_s: 3, degree_t: 1, values: [[1.0, 1.0], [1.0, 1.0]]))"),
+            "degree 3 needs at least 4 control values",
+        ),
+        (
+            "tuning: ragged values",
+            tuned("Some((degree_s: 1, degree_t: 1, values: [[1.0, 1.0], [1.0]]))"),
+            "row 1 of values has 1 entries",
+        ),
+        (
+            "tuning: NaN value",
+            tuned("Some((degree_s: 1, degree_t: 1, values: [[1.0, NaN], [1.0, 1.0]]))"),
+            "NaN is not a finite number",
+        ),
         (
             "unknown field",
             good.replace("anchor: 0,", "anchor: 0,\n    colour: 3,"),
