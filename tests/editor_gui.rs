@@ -97,6 +97,19 @@ fn screenshots_show_the_surface_panels_and_curvature() {
         black > 0.02 && white > 0.02,
         "black {black:.3}, white {white:.3}"
     );
+    // fine tuning: the panel's sliders and labels, and the plot of α in yellow
+    // (the panel is 300 px wide at 800×600: count only inside it)
+    let (w, h, px) = shot(&dir, "tuning", &["car1-tuned", "--panel", "tuning"]);
+    let in_panel = |f: &dyn Fn([u8; 3]) -> bool| {
+        (0..h * w)
+            .filter(|i| i % w < 280)
+            .filter(|&i| f(px[i as usize]))
+            .count()
+    };
+    let text = in_panel(&|p| p.iter().all(|&c| c > 150));
+    let plot = in_panel(&|[r, g, b]| r > 200 && g > 150 && b < 110);
+    assert!(text > 300, "{text} text pixels in the fine-tuning panel");
+    assert!(plot > 40, "{plot} yellow pixels of the α plot");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
