@@ -167,7 +167,10 @@ fn bad_scenes_have_located_errors() {
     let good = builtin::SCENES[5].1; // minimal.ron
     let dir = tmpdir("bad");
     let tuned = |t: &str| {
-        let end = good.trim_end().strip_suffix(')').expect("a scene ends with )");
+        let end = good
+            .trim_end()
+            .strip_suffix(')')
+            .expect("a scene ends with )");
         format!("{end}    tuning: {t},\n)\n")
     };
     let cases: [(&str, String, &str); 12] = [

@@ -23,7 +23,9 @@ pub mod finetune;
 pub mod grid;
 pub mod incremental;
 pub mod initial_curve;
+pub mod interpolate;
 pub mod limits;
+pub mod loop_subdiv;
 pub mod mesh;
 pub mod multires;
 pub mod parallel;
@@ -35,6 +37,7 @@ pub mod sphere;
 pub mod streamline;
 pub mod surface;
 pub mod tangent;
+pub mod trimesh;
 pub mod window;
 
 pub use curve::CurveScheme;

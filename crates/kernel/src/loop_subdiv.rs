@@ -1,0 +1,178 @@
+//! Loop subdivision with boundary rules, and limit points (paper 002, §2 and §4; SPEC §7).
+//!
+//! - Interior vertex of valence `n`: `(1 − nβ) V + β Σ neighbours`, Loop's
+//!   `β = (5/8 − (3/8 + ¼ cos(2π/n))²)/n` (not Warren's `3/(8n)`).
+//! - Interior edge `(a, b)` with opposite vertices `c, d`: `⅜(a + b) + ⅛(c + d)`.
+//! - Boundary vertex: `¾ V + ⅛ (L + R)`, `L, R` its boundary neighbours.
+//!   A boundary vertex is *regular* when its valence is 4, else *extraordinary*.
+//! - Boundary edge: the midpoint when both ends have the same type, else
+//!   `⅝ regular + ⅜ extraordinary`. New boundary vertices have valence 4
+//!   (regular); old vertices keep their valence, so their type, at every level.
+//!
+//! Limit points. Interior (Eq. 3): `V∞ = β_n V + (1 − β_n) Q̄`, `Q̄` the
+//! neighbours' mean, `β_n = 3/(11 − 8(3/8 + (3/8 + ¼ cos(2π/n))²))` (½ for n = 6).
+//! Boundary (the six masks of 002 Fig. 1 e–j, lost in the text, derived here):
+//! after one step a boundary vertex's boundary neighbours are new, regular
+//! vertices, and the triple (L, C, R) subdivides by itself:
+//! `C' = ⅛L + ¾C + ⅛R`, `R' = ½(C + R)` (C regular) or `⅜C + ⅝R` (C
+//! extraordinary). The left eigenvector of that 3×3 matrix for eigenvalue 1
+//! is `(1/6, 2/3, 1/6)` (regular C) and `(1/5, 3/5, 1/5)` (extraordinary C).
+//! Composing with one step of the level-0 rules, whose edge points depend on
+//! the neighbours' types, gives the mask for each of the 6 configurations
+//! ([`boundary_mask`]).
+
+use crate::trimesh::{MeshError, Topology, TriMesh};
+use glam::DVec3;
+
+/// Loop's vertex weight `β` for an interior vertex of valence `n`.
+pub fn loop_beta(n: usize) -> f64 {
+    let n = n as f64;
+    let c = 0.375 + 0.25 * (std::f64::consts::TAU / n).cos();
+    (0.625 - c * c) / n
+}
+
+/// The limit weight `β_n` of Eq. 3 (the vertex's own weight in its limit point).
+pub fn limit_beta(n: usize) -> f64 {
+    let c = 0.375 + 0.25 * (std::f64::consts::TAU / n as f64).cos();
+    3.0 / (11.0 - 8.0 * (0.375 + c * c))
+}
+
+/// Whether a boundary vertex of valence `n` is regular (valence 4).
+pub fn is_regular_boundary(n: usize) -> bool {
+    n == 4
+}
+
+/// Weights `(w_other, w_self)` of the boundary edge point between a vertex of
+/// type `me_regular` and its neighbour of type `other_regular`.
+fn edge_weights(me_regular: bool, other_regular: bool) -> (f64, f64) {
+    match (me_regular, other_regular) {
+        (a, b) if a == b => (0.5, 0.5),
+        (true, false) => (0.375, 0.625),
+        _ => (0.625, 0.375),
+    }
+}
+
+/// The limit mask `(l, c, r)` of a boundary vertex on `(L, C, R)`: its type and
+/// its boundary neighbours' types (the six configurations of 002 Fig. 1 e–j).
+pub fn boundary_mask(center_regular: bool, left_regular: bool, right_regular: bool) -> [f64; 3] {
+    // level-1 mask of C over (L', C', R'), whose neighbours are regular
+    let (side, mid) = if center_regular {
+        (1.0 / 6.0, 4.0 / 6.0)
+    } else {
+        (0.2, 0.6)
+    };
+    let (wl, wcl) = edge_weights(center_regular, left_regular);
+    let (wr, wcr) = edge_weights(center_regular, right_regular);
+    // L' = wl L + wcl C, C' = ⅛L + ¾C + ⅛R, R' = wr R + wcr C
+    [
+        side * wl + mid * 0.125,
+        side * (wcl + wcr) + mid * 0.75,
+        side * wr + mid * 0.125,
+    ]
+}
+
+/// Limit points of every vertex of a mesh with the given topology.
+pub fn limit_points(positions: &[DVec3], topo: &Topology, out: &mut Vec<DVec3>) {
+    out.clear();
+    out.extend((0..positions.len()).map(|v| limit_point(positions, topo, v)));
+}
+
+/// The limit point of vertex `v`.
+#[inline]
+pub fn limit_point(positions: &[DVec3], topo: &Topology, v: usize) -> DVec3 {
+    let ring = &topo.rings[v];
+    if topo.boundary[v] {
+        let (l, r) = (ring[0] as usize, ring[ring.len() - 1] as usize);
+        let m = boundary_mask(
+            is_regular_boundary(ring.len()),
+            is_regular_boundary(topo.valence(l)),
+            is_regular_boundary(topo.valence(r)),
+        );
+        return positions[l] * m[0] + positions[v] * m[1] + positions[r] * m[2];
+    }
+    let n = ring.len();
+    let b = limit_beta(n);
+    let mut q = DVec3::ZERO;
+    for &u in ring {
+        q += positions[u as usize];
+    }
+    positions[v] * b + q * ((1.0 - b) / n as f64)
+}
+
+/// One step of Loop subdivision with boundary rules. Old vertices keep their
+/// indices; edge `e` of the topology becomes vertex `old + e`; each face
+/// `(a, b, c)` becomes `(a, ab, ca)`, `(b, bc, ab)`, `(c, ca, bc)`, `(ab, bc, ca)`.
+pub fn subdivide(mesh: &TriMesh, topo: &Topology) -> Result<TriMesh, MeshError> {
+    let nv = mesh.positions.len();
+    let total = nv + topo.edges.len();
+    if total > crate::trimesh::MAX_VERTICES {
+        return Err(MeshError::TooLarge {
+            what: "vertices after subdivision",
+            count: total,
+            cap: crate::trimesh::MAX_VERTICES,
+        });
+    }
+    let p = &mesh.positions;
+    let mut out = Vec::with_capacity(total);
+    for v in 0..nv {
+        let ring = &topo.rings[v];
+        if topo.boundary[v] {
+            let (l, r) = (ring[0] as usize, ring[ring.len() - 1] as usize);
+            out.push(p[v] * 0.75 + (p[l] + p[r]) * 0.125);
+        } else {
+            let n = ring.len();
+            let b = loop_beta(n);
+            let mut s = DVec3::ZERO;
+            for &u in ring {
+                s += p[u as usize];
+            }
+            out.push(p[v] * (1.0 - n as f64 * b) + s * b);
+        }
+    }
+    for &([a, b], [c, d]) in &topo.edges {
+        let (pa, pb) = (p[a as usize], p[b as usize]);
+        if d == u32::MAX {
+            let ra = is_regular_boundary(topo.valence(a as usize));
+            let rb = is_regular_boundary(topo.valence(b as usize));
+            let (wb, wa) = edge_weights(ra, rb);
+            out.push(pa * wa + pb * wb);
+        } else {
+            out.push((pa + pb) * 0.375 + (p[c as usize] + p[d as usize]) * 0.125);
+        }
+    }
+    let mut faces = Vec::with_capacity(mesh.faces.len() * 4);
+    for (f, fe) in mesh.faces.iter().zip(&topo.face_edges) {
+        let [a, b, c] = *f;
+        let [ab, bc, ca] = fe.map(|e| nv as u32 + e);
+        faces.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+    }
+    Ok(TriMesh {
+        positions: out,
+        faces,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn limit_weights_regular_valence() {
+        assert!((limit_beta(6) - 0.5).abs() < 1e-15, "β₆ = 1/2 (002 Eq. 3)");
+        assert!(
+            (loop_beta(6) - 1.0 / 16.0).abs() < 1e-15,
+            "Loop's β₆ = 1/16"
+        );
+        for cfg in 0..8 {
+            let m = boundary_mask(cfg & 1 == 1, cfg & 2 == 2, cfg & 4 == 4);
+            assert!((m.iter().sum::<f64>() - 1.0).abs() < 1e-15, "{cfg}: {m:?}");
+            assert!(m[1] > m[0] + m[2], "strictly diagonally dominant (002 §4)");
+        }
+        let m = boundary_mask(true, true, true);
+        let want = [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0];
+        assert!(
+            m.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-15),
+            "{m:?}"
+        );
+    }
+}

@@ -1,0 +1,385 @@
+//! Triangle meshes for Loop subdivision (paper 002; SPEC §7): positions and
+//! faces, their topology built once (each vertex's ring of neighbours in fan
+//! order, boundary loops), and validation that names the offending element.
+
+use glam::DVec3;
+use std::collections::HashMap;
+use std::fmt;
+
+/// A triangle mesh: positions and counter-clockwise faces (0-based indices).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TriMesh {
+    /// Vertex positions.
+    pub positions: Vec<DVec3>,
+    /// Triangles.
+    pub faces: Vec<[u32; 3]>,
+}
+
+/// What is wrong with a mesh, with the ids of the elements involved.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MeshError {
+    /// The mesh has no faces.
+    Empty,
+    /// A face refers to a vertex that does not exist.
+    IndexOutOfRange {
+        face: usize,
+        index: u32,
+        vertices: usize,
+    },
+    /// A vertex position is NaN or infinite.
+    NonFiniteVertex { vertex: usize },
+    /// A face repeats a vertex (or its corners coincide).
+    DegenerateFace { face: usize },
+    /// More than two faces share an edge.
+    NonManifoldEdge { a: u32, b: u32, faces: usize },
+    /// Two faces use the same directed edge: their windings disagree.
+    InconsistentWinding {
+        a: u32,
+        b: u32,
+        face1: usize,
+        face2: usize,
+    },
+    /// A vertex's faces form more than one fan.
+    NonManifoldVertex { vertex: usize },
+    /// A vertex no face uses.
+    UnreferencedVertex { vertex: usize },
+    /// Too large for the documented cap.
+    TooLarge {
+        what: &'static str,
+        count: usize,
+        cap: usize,
+    },
+}
+
+impl fmt::Display for MeshError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use MeshError::*;
+        match self {
+            Empty => write!(f, "the mesh has no triangles; give a mesh with `f` lines"),
+            IndexOutOfRange {
+                face,
+                index,
+                vertices,
+            } => write!(
+                f,
+                "face {face} uses vertex {} but there are {vertices} vertices; fix the face's indices (1-based in OBJ)",
+                index + 1
+            ),
+            NonFiniteVertex { vertex } => write!(
+                f,
+                "vertex {} has a NaN or infinite coordinate; give finite coordinates",
+                vertex + 1
+            ),
+            DegenerateFace { face } => write!(
+                f,
+                "face {face} is degenerate (a repeated vertex or zero area); remove it"
+            ),
+            NonManifoldEdge { a, b, faces } => write!(
+                f,
+                "edge {}–{} is shared by {faces} faces (a manifold edge has 1 or 2); split the mesh there",
+                a + 1,
+                b + 1
+            ),
+            InconsistentWinding { a, b, face1, face2 } => write!(
+                f,
+                "faces {face1} and {face2} both run edge {}→{}: their orientations disagree; flip one of them",
+                a + 1,
+                b + 1
+            ),
+            NonManifoldVertex { vertex } => write!(
+                f,
+                "vertex {} joins separate fans of faces (non-manifold); duplicate it for each fan",
+                vertex + 1
+            ),
+            UnreferencedVertex { vertex } => {
+                write!(f, "vertex {} is used by no face; remove it", vertex + 1)
+            }
+            TooLarge { what, count, cap } => write!(
+                f,
+                "{count} {what} is over the limit of {cap}; use a smaller mesh"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for MeshError {}
+
+/// The most vertices a mesh may have (and so a subdivision may produce).
+pub const MAX_VERTICES: usize = 20_000_000;
+
+/// The topology of a valid mesh, built once.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Topology {
+    /// For each vertex, its neighbours in fan order; for a boundary vertex the
+    /// first and the last are its boundary neighbours.
+    pub rings: Vec<Vec<u32>>,
+    /// Whether each vertex lies on the boundary.
+    pub boundary: Vec<bool>,
+    /// Undirected edges `(a, b)`, `a < b`, each once, with its one or two
+    /// opposite vertices (`u32::MAX` for the missing one of a boundary edge).
+    pub edges: Vec<([u32; 2], [u32; 2])>,
+    /// Each face's edges, as indices into `edges`: edge `(v0,v1)`, `(v1,v2)`, `(v2,v0)`.
+    pub face_edges: Vec<[u32; 3]>,
+    /// Boundary loops, as vertex sequences.
+    pub loops: Vec<Vec<u32>>,
+}
+
+impl Topology {
+    /// The valence of vertex `v` (number of neighbours).
+    pub fn valence(&self, v: usize) -> usize {
+        self.rings[v].len()
+    }
+}
+
+impl TriMesh {
+    /// Validates `positions` and `faces` and builds the topology.
+    pub fn new(positions: Vec<DVec3>, faces: Vec<[u32; 3]>) -> Result<(Self, Topology), MeshError> {
+        let m = TriMesh { positions, faces };
+        let t = m.topology()?;
+        Ok((m, t))
+    }
+
+    /// The axis-aligned bounding box's largest side (the error scale of 002 Table 1).
+    pub fn scale(&self) -> f64 {
+        let (lo, hi) = self.positions.iter().fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), &p| (lo.min(p), hi.max(p)),
+        );
+        let d = hi - lo;
+        d.x.max(d.y).max(d.z)
+    }
+
+    /// Checks the mesh and builds its topology; the first problem found is the error.
+    pub fn topology(&self) -> Result<Topology, MeshError> {
+        let nv = self.positions.len();
+        if self.faces.is_empty() {
+            return Err(MeshError::Empty);
+        }
+        if nv > MAX_VERTICES {
+            return Err(MeshError::TooLarge {
+                what: "vertices",
+                count: nv,
+                cap: MAX_VERTICES,
+            });
+        }
+        if let Some(v) = self.positions.iter().position(|p| !p.is_finite()) {
+            return Err(MeshError::NonFiniteVertex { vertex: v });
+        }
+        let mut used = vec![false; nv];
+        for (fi, f) in self.faces.iter().enumerate() {
+            for &i in f {
+                if i as usize >= nv {
+                    return Err(MeshError::IndexOutOfRange {
+                        face: fi,
+                        index: i,
+                        vertices: nv,
+                    });
+                }
+                used[i as usize] = true;
+            }
+            let [a, b, c] = f.map(|i| self.positions[i as usize]);
+            if f[0] == f[1]
+                || f[1] == f[2]
+                || f[0] == f[2]
+                || (b - a).cross(c - a).length_squared() == 0.0
+            {
+                return Err(MeshError::DegenerateFace { face: fi });
+            }
+        }
+        if let Some(v) = used.iter().position(|u| !u) {
+            return Err(MeshError::UnreferencedVertex { vertex: v });
+        }
+        // directed edges: each at most once (consistent winding); undirected: ≤ 2 faces
+        let mut directed: HashMap<(u32, u32), usize> = HashMap::with_capacity(self.faces.len() * 3);
+        for (fi, f) in self.faces.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (f[k], f[(k + 1) % 3]);
+                if let Some(&other) = directed.get(&(a, b)) {
+                    // a third face on the edge is the clearer message
+                    let twins = directed.contains_key(&(b, a)) as usize;
+                    if twins > 0 {
+                        return Err(MeshError::NonManifoldEdge {
+                            a: a.min(b),
+                            b: a.max(b),
+                            faces: 3,
+                        });
+                    }
+                    return Err(MeshError::InconsistentWinding {
+                        a,
+                        b,
+                        face1: other,
+                        face2: fi,
+                    });
+                }
+                directed.insert((a, b), fi);
+            }
+        }
+        let mut edge_index: HashMap<(u32, u32), u32> = HashMap::with_capacity(directed.len());
+        let mut edges: Vec<([u32; 2], [u32; 2])> = Vec::with_capacity(directed.len() / 2 + 8);
+        let mut face_edges = Vec::with_capacity(self.faces.len());
+        for f in &self.faces {
+            let mut fe = [0u32; 3];
+            for k in 0..3 {
+                let (a, b) = (f[k], f[(k + 1) % 3]);
+                let opp = f[(k + 2) % 3];
+                let key = (a.min(b), a.max(b));
+                let e = *edge_index.entry(key).or_insert_with(|| {
+                    edges.push(([key.0, key.1], [u32::MAX, u32::MAX]));
+                    (edges.len() - 1) as u32
+                });
+                let slot = &mut edges[e as usize].1;
+                if slot[0] == u32::MAX {
+                    slot[0] = opp;
+                } else {
+                    slot[1] = opp;
+                }
+                fe[k] = e;
+            }
+            face_edges.push(fe);
+        }
+        // rings in fan order: next[(v, a)] = b for each face (v, a, b) counter-clockwise
+        let mut out_of: Vec<Vec<(u32, u32)>> = vec![Vec::new(); nv];
+        for f in &self.faces {
+            for k in 0..3 {
+                out_of[f[k] as usize].push((f[(k + 1) % 3], f[(k + 2) % 3]));
+            }
+        }
+        let mut rings = Vec::with_capacity(nv);
+        let mut boundary = vec![false; nv];
+        for (v, fan) in out_of.iter().enumerate() {
+            // the fan's start: a neighbour that is no face's `b` (a boundary edge), if any
+            let start = fan
+                .iter()
+                .find(|(a, _)| !fan.iter().any(|(_, b)| b == a))
+                .map(|&(a, _)| a);
+            boundary[v] = start.is_some();
+            let mut ring = Vec::with_capacity(fan.len() + 1);
+            let mut cur = start.unwrap_or(fan[0].0);
+            ring.push(cur);
+            while let Some(&(_, b)) = fan.iter().find(|(a, _)| *a == cur) {
+                if ring.len() > fan.len() || b == ring[0] {
+                    break;
+                }
+                ring.push(b);
+                cur = b;
+            }
+            let expect = fan.len() + usize::from(boundary[v]);
+            if ring.len() != expect {
+                return Err(MeshError::NonManifoldVertex { vertex: v });
+            }
+            rings.push(ring);
+        }
+        // boundary loops: follow boundary edges (a → b where (a, b) has no twin)
+        let mut loops = Vec::new();
+        let mut seen = vec![false; nv];
+        for v in 0..nv {
+            if !boundary[v] || seen[v] {
+                continue;
+            }
+            let mut lp = vec![v as u32];
+            seen[v] = true;
+            let mut cur = v;
+            loop {
+                // the boundary edge leaving `cur`: the last neighbour of its ring
+                let next = *rings[cur].last().expect("non-empty ring") as usize;
+                if next == v || seen[next] {
+                    break;
+                }
+                seen[next] = true;
+                lp.push(next as u32);
+                cur = next;
+            }
+            loops.push(lp);
+        }
+        Ok(Topology {
+            rings,
+            boundary,
+            edges,
+            face_edges,
+            loops,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tetra() -> (Vec<DVec3>, Vec<[u32; 3]>) {
+        (
+            vec![
+                DVec3::new(1.0, 1.0, 1.0),
+                DVec3::new(1.0, -1.0, -1.0),
+                DVec3::new(-1.0, 1.0, -1.0),
+                DVec3::new(-1.0, -1.0, 1.0),
+            ],
+            vec![[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]],
+        )
+    }
+
+    #[test]
+    fn trimesh_topology_of_a_tetrahedron_and_a_disk() {
+        let (p, f) = tetra();
+        let (_, t) = TriMesh::new(p.clone(), f.clone()).unwrap();
+        assert!(t.boundary.iter().all(|b| !b) && t.loops.is_empty());
+        assert!(t.rings.iter().all(|r| r.len() == 3));
+        assert_eq!(t.edges.len(), 6);
+        // drop one face: a disk with one boundary loop of 3
+        let (_, t) = TriMesh::new(p, f[..3].to_vec()).unwrap();
+        assert_eq!(t.loops.len(), 1);
+        assert_eq!(t.loops[0].len(), 3);
+        assert_eq!(t.valence(0), 3);
+        assert!(t.boundary[1] && !t.boundary[0]);
+    }
+
+    #[test]
+    fn trimesh_errors_name_the_element() {
+        let (p, f) = tetra();
+        let mut bad = f.clone();
+        bad[3] = [1, 2, 3]; // flipped
+        let e = TriMesh::new(p.clone(), bad).unwrap_err();
+        assert!(matches!(e, MeshError::InconsistentWinding { .. }), "{e}");
+        let mut bad = f.clone();
+        bad[0] = [0, 0, 2];
+        assert_eq!(
+            TriMesh::new(p.clone(), bad).unwrap_err(),
+            MeshError::DegenerateFace { face: 0 }
+        );
+        let mut bad = f.clone();
+        bad[1] = [0, 9, 1];
+        assert!(matches!(
+            TriMesh::new(p.clone(), bad).unwrap_err(),
+            MeshError::IndexOutOfRange {
+                face: 1,
+                index: 9,
+                ..
+            }
+        ));
+        let mut pp = p.clone();
+        pp.push(DVec3::ZERO);
+        assert_eq!(
+            TriMesh::new(pp, f.clone()).unwrap_err().to_string(),
+            "vertex 5 is used by no face; remove it"
+        );
+        // two tetrahedra sharing only vertex 0: a non-manifold vertex
+        let mut pp = p.clone();
+        pp.extend([
+            DVec3::new(3.0, 1.0, 1.0),
+            DVec3::new(3.0, 3.0, 1.0),
+            DVec3::new(3.0, 1.0, 3.0),
+        ]);
+        let mut ff = f.clone();
+        ff.extend([[0, 4, 5], [0, 6, 4], [0, 5, 6], [4, 6, 5]]);
+        assert!(matches!(
+            TriMesh::new(pp, ff).unwrap_err(),
+            MeshError::NonManifoldVertex { vertex: 0 }
+        ));
+        // three faces on one edge
+        let mut pp = p.clone();
+        pp.push(DVec3::new(0.0, 0.0, 5.0));
+        let mut ff = f[..3].to_vec();
+        ff.push([1, 0, 4]);
+        ff.push([0, 1, 4]);
+        assert!(TriMesh::new(pp, ff).is_err());
+    }
+}
