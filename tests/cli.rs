@@ -190,7 +190,16 @@ fn cli_bench_json_rows() {
 
 #[test]
 fn cli_help_on_every_subcommand() {
-    for sub in ["curve", "surface", "integrate", "bench"] {
+    for sub in [
+        "curve",
+        "surface",
+        "integrate",
+        "bench",
+        "play",
+        "build",
+        "screenshot",
+        "interpolate",
+    ] {
         let (code, out, _) = run(&[sub, "--help"], "");
         assert_eq!(code, 0);
         assert!(out.contains("Usage"), "{sub} --help");
@@ -244,5 +253,75 @@ fn cli_build_prints_stats_and_exports() {
     // Depth past the cap: exit 2.
     let (code, _, err) = run(&["build", "car1", "--depth", "13"], "");
     assert_eq!(code, 2, "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `interpolate` (paper 002): JSON report, the control mesh written with the
+/// input's vertex count and faces, a surface by subdivision, bad meshes exit 2.
+#[test]
+fn cli_interpolate_writes_the_control_mesh() {
+    let dir = std::env::temp_dir().join(format!("streamline-cli-pi-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let input = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/meshes/snail.obj");
+    let out = dir.join("ctrl.obj");
+    let surf = dir.join("surf.obj");
+    let (code, stdout, stderr) = run(
+        &[
+            "interpolate",
+            input,
+            "--method",
+            "fast",
+            "--tolerance",
+            "1e-6",
+            "--out",
+            out.to_str().unwrap(),
+            "--subdivide",
+            "1",
+            "--surface",
+            surf.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{stderr}");
+    let j: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+    assert_eq!(j["vertices"], 871);
+    assert_eq!(j["faces"], 1653);
+    assert_eq!(j["boundary_loops"], 1);
+    assert_eq!(j["converged"], true);
+    assert!(j["max_error"].as_f64().unwrap() < 1e-6, "{j}");
+    for key in ["method", "iterations", "avg_error", "seconds"] {
+        assert!(j.get(key).is_some(), "{key} in {j}");
+    }
+    // the control mesh keeps the input's faces, line for line
+    let faces = |p: &std::path::Path| -> Vec<String> {
+        std::fs::read_to_string(p)
+            .unwrap()
+            .lines()
+            .filter(|l| l.starts_with("f "))
+            .map(str::to_string)
+            .collect()
+    };
+    let given: Vec<String> = faces(std::path::Path::new(input));
+    assert_eq!(faces(&out), given, "same faces in the same order");
+    let v = std::fs::read_to_string(&out)
+        .unwrap()
+        .lines()
+        .filter(|l| l.starts_with("v "))
+        .count();
+    assert_eq!(v, 871);
+    assert_eq!(faces(&surf).len(), 4 * 1653, "one level of subdivision");
+    // bad meshes: exit 2, one line naming the file and the element
+    let bad = dir.join("bad.obj");
+    std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nf 1 2 3\n").unwrap();
+    let (code, _, stderr) = run(&["interpolate", bad.to_str().unwrap()], "");
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("bad.obj")
+            && stderr.contains("vertex 4 is used by no face")
+            && stderr.lines().count() == 1,
+        "{stderr}"
+    );
+    let (code, _, stderr) = run(&["interpolate", input, "--tolerance", "-1"], "");
+    assert_eq!(code, 2, "{stderr}");
     let _ = std::fs::remove_dir_all(&dir);
 }

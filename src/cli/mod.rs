@@ -6,6 +6,7 @@ mod build;
 mod editor;
 mod geometry;
 mod input;
+mod interpolate;
 mod play;
 
 use clap::{Parser, Subcommand};
@@ -45,6 +46,8 @@ pub enum Command {
     Build(build::BuildArgs),
     /// Open the editor, render, save a PNG of the window and exit.
     Screenshot(editor::ScreenshotArgs),
+    /// Make a Loop surface interpolate a triangle mesh's vertices (paper 002); one JSON line.
+    Interpolate(interpolate::InterpolateArgs),
 }
 
 /// Runs the binary; returns the process exit code.
@@ -81,5 +84,6 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Some(Command::Screenshot(a)) => editor::screenshot(a),
         Some(Command::Play(a)) => play::play(a),
         Some(Command::Build(a)) => build::build(a),
+        Some(Command::Interpolate(a)) => interpolate::run(a),
     }
 }

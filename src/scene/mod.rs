@@ -1,5 +1,5 @@
 //! The model layer: scene files (RON, versioned), their validation with
-//! located errors, atomic saving, scripts, and mesh export. Depends on the
+//! located errors, atomic saving, scripts, mesh export, and OBJ triangle meshes. Depends on the
 //! kernel and serde/ron only (no Bevy).
 
 pub mod builtin;
@@ -8,6 +8,7 @@ pub mod export;
 pub mod format;
 pub mod io;
 pub mod model;
+pub mod obj;
 pub mod script;
 
 pub use error::SceneError;

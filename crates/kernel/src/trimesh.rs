@@ -15,7 +15,8 @@ pub struct TriMesh {
     pub faces: Vec<[u32; 3]>,
 }
 
-/// What is wrong with a mesh, with the ids of the elements involved.
+/// What is wrong with a mesh, with the ids of the elements involved (0-based
+/// here; the messages count from 1, as OBJ files do).
 #[derive(Debug, Clone, PartialEq)]
 pub enum MeshError {
     /// The mesh has no faces.
@@ -62,7 +63,8 @@ impl fmt::Display for MeshError {
                 vertices,
             } => write!(
                 f,
-                "face {face} uses vertex {} but there are {vertices} vertices; fix the face's indices (1-based in OBJ)",
+                "face {} uses vertex {} but there are {vertices} vertices; fix the face's indices (1-based, as in OBJ)",
+                face + 1,
                 index + 1
             ),
             NonFiniteVertex { vertex } => write!(
@@ -72,7 +74,8 @@ impl fmt::Display for MeshError {
             ),
             DegenerateFace { face } => write!(
                 f,
-                "face {face} is degenerate (a repeated vertex or zero area); remove it"
+                "face {} is degenerate (a repeated vertex or zero area); remove it",
+                face + 1
             ),
             NonManifoldEdge { a, b, faces } => write!(
                 f,
@@ -82,7 +85,9 @@ impl fmt::Display for MeshError {
             ),
             InconsistentWinding { a, b, face1, face2 } => write!(
                 f,
-                "faces {face1} and {face2} both run edge {}→{}: their orientations disagree; flip one of them",
+                "faces {} and {} both run edge {}→{}: their orientations disagree (or one repeats the other); flip or remove one",
+                face1 + 1,
+                face2 + 1,
                 a + 1,
                 b + 1
             ),
