@@ -95,7 +95,94 @@ pub fn all() -> Vec<Workload> {
     rows.extend(car_surface([3, 5]));
     rows.extend(incremental());
     rows.extend(fine_tuning());
+    rows.extend(loop_rows());
     rows
+}
+
+/// The test meshes, where the checkout keeps them (rows that need one are
+/// left out when it is missing, e.g. for an installed binary).
+fn test_mesh(name: &str) -> Option<streamline_kernel::trimesh::TriMesh> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/meshes")
+        .join(format!("{name}.obj"));
+    crate::scene::obj::read(&path).ok().map(|(m, _)| m)
+}
+
+/// Loop subdivision (topology and one step per level) of a small, a medium
+/// and the largest test mesh, 1–3 levels (`loop/subdivide/<mesh>/d<k>`), and
+/// progressive interpolation to 1e-3 of a 1,151,994-vertex mesh (fertility
+/// subdivided 4 times, every vertex then moved by up to 2 mean edge lengths),
+/// topology included (`pi/1m/<plain|fast>`) — issue 5.
+pub fn loop_rows() -> Vec<Workload> {
+    use streamline_kernel::interpolate::{Method, Options, interpolate};
+    use streamline_kernel::loop_subdiv::subdivide;
+    use streamline_kernel::trimesh::TriMesh;
+    let mut out = Vec::new();
+    for name in ["knight", "spot", "camelhead"] {
+        let Some(mesh) = test_mesh(name) else {
+            continue;
+        };
+        for depth in 1..=3 {
+            let mesh = mesh.clone();
+            out.push(Workload {
+                name: format!("loop/subdivide/{name}/d{depth}"),
+                run: Box::new(move || {
+                    let mut m = mesh.clone();
+                    for _ in 0..depth {
+                        let t = m.topology().expect("valid test mesh");
+                        m = subdivide(&m, &t).expect("within the cap");
+                    }
+                    m.positions[m.positions.len() / 2].x
+                }),
+            });
+        }
+    }
+    if let Some(mut m) = test_mesh("fertility") {
+        for _ in 0..4 {
+            let t = m.topology().expect("valid test mesh");
+            m = subdivide(&m, &t).expect("within the cap");
+        }
+        rough_up(&mut m, 4.0);
+        for method in [Method::Plain, Method::Fast] {
+            let m: TriMesh = m.clone();
+            out.push(Workload {
+                name: format!("pi/1m/{}", method.name()),
+                run: Box::new(move || {
+                    let t = m.topology().expect("valid mesh");
+                    let opts = Options {
+                        method,
+                        ..Options::DEFAULT
+                    };
+                    let (ctrl, rep) = interpolate(&m, &t, &opts);
+                    assert!(rep.converged, "{rep:?}");
+                    ctrl[0].x + rep.max_error
+                }),
+            });
+        }
+    }
+    out
+}
+
+/// Moves every vertex by a deterministic pseudo-random offset of up to
+/// `amount` × the mean edge length over 2 in each coordinate.
+pub fn rough_up(m: &mut streamline_kernel::trimesh::TriMesh, amount: f64) {
+    let t = m.topology().expect("valid mesh");
+    let mean = t
+        .edges
+        .iter()
+        .map(|&([a, b], _)| (m.positions[a as usize] - m.positions[b as usize]).length())
+        .sum::<f64>()
+        / t.edges.len().max(1) as f64;
+    let mut x: u64 = 88_172_645_463_325_252;
+    let mut r = move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    for p in m.positions.iter_mut() {
+        *p += DVec3::new(r(), r(), r()) * (amount * mean);
+    }
 }
 
 /// One fine-tuning control-value edit on the car at depth 3 (3×3 quadratic

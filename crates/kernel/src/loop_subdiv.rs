@@ -32,7 +32,17 @@ pub fn loop_beta(n: usize) -> f64 {
 }
 
 /// The limit weight `β_n` of Eq. 3 (the vertex's own weight in its limit point).
+#[inline]
 pub fn limit_beta(n: usize) -> f64 {
+    static TABLE: std::sync::OnceLock<[f64; 64]> = std::sync::OnceLock::new();
+    let table = TABLE.get_or_init(|| std::array::from_fn(limit_beta_formula));
+    match table.get(n) {
+        Some(&b) if n > 0 => b,
+        _ => limit_beta_formula(n),
+    }
+}
+
+fn limit_beta_formula(n: usize) -> f64 {
     let c = 0.375 + 0.25 * (std::f64::consts::TAU / n as f64).cos();
     3.0 / (11.0 - 8.0 * (0.375 + c * c))
 }
@@ -80,7 +90,7 @@ pub fn limit_points(positions: &[DVec3], topo: &Topology, out: &mut Vec<DVec3>) 
 /// The limit point of vertex `v`.
 #[inline]
 pub fn limit_point(positions: &[DVec3], topo: &Topology, v: usize) -> DVec3 {
-    let ring = &topo.rings[v];
+    let ring = topo.ring(v);
     if topo.boundary[v] {
         let (l, r) = (ring[0] as usize, ring[ring.len() - 1] as usize);
         let m = boundary_mask(
@@ -115,7 +125,7 @@ pub fn subdivide(mesh: &TriMesh, topo: &Topology) -> Result<TriMesh, MeshError> 
     let p = &mesh.positions;
     let mut out = Vec::with_capacity(total);
     for v in 0..nv {
-        let ring = &topo.rings[v];
+        let ring = topo.ring(v);
         if topo.boundary[v] {
             let (l, r) = (ring[0] as usize, ring[ring.len() - 1] as usize);
             out.push(p[v] * 0.75 + (p[l] + p[r]) * 0.125);

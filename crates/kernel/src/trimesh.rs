@@ -3,7 +3,6 @@
 //! order, boundary loops), and validation that names the offending element.
 
 use glam::DVec3;
-use std::collections::HashMap;
 use std::fmt;
 
 /// A triangle mesh: positions and counter-clockwise faces (0-based indices).
@@ -112,12 +111,13 @@ impl std::error::Error for MeshError {}
 /// The most vertices a mesh may have (and so a subdivision may produce).
 pub const MAX_VERTICES: usize = 20_000_000;
 
-/// The topology of a valid mesh, built once.
+/// The topology of a valid mesh, built once (flat arrays: a million-vertex
+/// mesh builds in a fraction of a second).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Topology {
-    /// For each vertex, its neighbours in fan order; for a boundary vertex the
-    /// first and the last are its boundary neighbours.
-    pub rings: Vec<Vec<u32>>,
+    /// `ring_data[ring_start[v] .. ring_start[v + 1]]` is vertex `v`'s ring.
+    ring_start: Vec<u32>,
+    ring_data: Vec<u32>,
     /// Whether each vertex lies on the boundary.
     pub boundary: Vec<bool>,
     /// Undirected edges `(a, b)`, `a < b`, each once, with its one or two
@@ -130,9 +130,22 @@ pub struct Topology {
 }
 
 impl Topology {
+    /// Vertex `v`'s neighbours in fan order; for a boundary vertex the first
+    /// and the last are its boundary neighbours.
+    #[inline]
+    pub fn ring(&self, v: usize) -> &[u32] {
+        &self.ring_data[self.ring_start[v] as usize..self.ring_start[v + 1] as usize]
+    }
+
     /// The valence of vertex `v` (number of neighbours).
+    #[inline]
     pub fn valence(&self, v: usize) -> usize {
-        self.rings[v].len()
+        (self.ring_start[v + 1] - self.ring_start[v]) as usize
+    }
+
+    /// Number of vertices.
+    pub fn vertices(&self) -> usize {
+        self.boundary.len()
     }
 }
 
@@ -194,99 +207,151 @@ impl TriMesh {
         if let Some(v) = used.iter().position(|u| !u) {
             return Err(MeshError::UnreferencedVertex { vertex: v });
         }
-        // directed edges: each at most once (consistent winding); undirected: ≤ 2 faces
-        let mut directed: HashMap<(u32, u32), usize> = HashMap::with_capacity(self.faces.len() * 3);
+        // per vertex v, its corners: faces (v, a, b) counter-clockwise, with
+        // the face and the corner's index in it (a flat list, offsets per vertex)
+        let nf = self.faces.len();
+        let mut count = vec![0u32; nv + 1];
+        for f in &self.faces {
+            for &v in f {
+                count[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..nv {
+            count[v + 1] += count[v];
+        }
+        let corner_start = count.clone();
+        let mut fill = count;
+        let mut corners = vec![(0u32, 0u32, 0u32); nf * 3];
+        let mut corner_face = vec![(0u32, 0u8); nf * 3];
         for (fi, f) in self.faces.iter().enumerate() {
             for k in 0..3 {
-                let (a, b) = (f[k], f[(k + 1) % 3]);
-                if let Some(&other) = directed.get(&(a, b)) {
-                    // a third face on the edge is the clearer message
-                    let twins = directed.contains_key(&(b, a)) as usize;
-                    if twins > 0 {
-                        return Err(MeshError::NonManifoldEdge {
-                            a: a.min(b),
-                            b: a.max(b),
-                            faces: 3,
-                        });
+                let v = f[k] as usize;
+                let slot = fill[v] as usize;
+                corners[slot] = (f[(k + 1) % 3], f[(k + 2) % 3], 0);
+                corner_face[slot] = (fi as u32, k as u8);
+                fill[v] += 1;
+            }
+        }
+        // edges, found at their lower vertex: v → a in face (v, a, b) is the
+        // face's edge k (opposite b); b → v is its edge k+2 (opposite a)
+        let mut edges: Vec<([u32; 2], [u32; 2])> = Vec::with_capacity(nf * 3 / 2 + 8);
+        let mut face_edges = vec![[u32::MAX; 3]; nf];
+        // (other vertex, out faces, in faces, opposite out, opposite in, slots)
+        let mut local: Vec<(u32, u8, u8, u32, u32, [(u32, u8); 2])> = Vec::new();
+        for v in 0..nv {
+            local.clear();
+            let range = corner_start[v] as usize..corner_start[v + 1] as usize;
+            for i in range {
+                let (a, b, _) = corners[i];
+                let (fi, k) = corner_face[i];
+                for (u, out, opp, slot) in [(a, true, b, (fi, k)), (b, false, a, (fi, (k + 2) % 3))]
+                {
+                    if (u as usize) < v {
+                        continue;
                     }
+                    let e = match local.iter_mut().position(|x| x.0 == u) {
+                        Some(j) => &mut local[j],
+                        None => {
+                            local.push((u, 0, 0, u32::MAX, u32::MAX, [(u32::MAX, 0); 2]));
+                            local.last_mut().expect("just pushed")
+                        }
+                    };
+                    let n = (e.1 + e.2) as usize;
+                    if n < 2 {
+                        e.5[n] = slot;
+                    }
+                    if out {
+                        e.1 += 1;
+                        e.3 = opp;
+                    } else {
+                        e.2 += 1;
+                        e.4 = opp;
+                    }
+                }
+            }
+            for &(u, out, inn, oo, oi, slots) in &local {
+                let faces = (out + inn) as usize;
+                if faces > 2 {
+                    return Err(MeshError::NonManifoldEdge {
+                        a: v as u32,
+                        b: u,
+                        faces,
+                    });
+                }
+                if out > 1 || inn > 1 {
+                    let (a, b) = if out > 1 {
+                        (v as u32, u)
+                    } else {
+                        (u, v as u32)
+                    };
                     return Err(MeshError::InconsistentWinding {
                         a,
                         b,
-                        face1: other,
-                        face2: fi,
+                        face1: slots[0].0 as usize,
+                        face2: slots[1].0 as usize,
                     });
                 }
-                directed.insert((a, b), fi);
-            }
-        }
-        let mut edge_index: HashMap<(u32, u32), u32> = HashMap::with_capacity(directed.len());
-        let mut edges: Vec<([u32; 2], [u32; 2])> = Vec::with_capacity(directed.len() / 2 + 8);
-        let mut face_edges = Vec::with_capacity(self.faces.len());
-        for f in &self.faces {
-            let mut fe = [0u32; 3];
-            for k in 0..3 {
-                let (a, b) = (f[k], f[(k + 1) % 3]);
-                let opp = f[(k + 2) % 3];
-                let key = (a.min(b), a.max(b));
-                let e = *edge_index.entry(key).or_insert_with(|| {
-                    edges.push(([key.0, key.1], [u32::MAX, u32::MAX]));
-                    (edges.len() - 1) as u32
-                });
-                let slot = &mut edges[e as usize].1;
-                if slot[0] == u32::MAX {
-                    slot[0] = opp;
-                } else {
-                    slot[1] = opp;
+                let e = edges.len() as u32;
+                let opp = match (out, inn) {
+                    (1, 1) => [oo, oi],
+                    (1, 0) => [oo, u32::MAX],
+                    _ => [oi, u32::MAX],
+                };
+                edges.push(([v as u32, u], opp));
+                for &(fi, k) in &slots[..faces] {
+                    face_edges[fi as usize][k as usize] = e;
                 }
-                fe[k] = e;
-            }
-            face_edges.push(fe);
-        }
-        // rings in fan order: next[(v, a)] = b for each face (v, a, b) counter-clockwise
-        let mut out_of: Vec<Vec<(u32, u32)>> = vec![Vec::new(); nv];
-        for f in &self.faces {
-            for k in 0..3 {
-                out_of[f[k] as usize].push((f[(k + 1) % 3], f[(k + 2) % 3]));
             }
         }
-        let mut rings = Vec::with_capacity(nv);
+        let corners: Vec<(u32, u32)> = corners.iter().map(|&(a, b, _)| (a, b)).collect();
+        let mut ring_start = Vec::with_capacity(nv + 1);
+        let mut ring_data = Vec::with_capacity(nf * 3 + nv);
         let mut boundary = vec![false; nv];
-        for (v, fan) in out_of.iter().enumerate() {
-            // the fan's start: a neighbour that is no face's `b` (a boundary edge), if any
+        ring_start.push(0u32);
+        for v in 0..nv {
+            let fan = &corners[corner_start[v] as usize..corner_start[v + 1] as usize];
+            // the fan's start: a neighbour that is no corner's `b` (a boundary edge), if any
             let start = fan
                 .iter()
                 .find(|(a, _)| !fan.iter().any(|(_, b)| b == a))
                 .map(|&(a, _)| a);
             boundary[v] = start.is_some();
-            let mut ring = Vec::with_capacity(fan.len() + 1);
+            let first = ring_data.len();
             let mut cur = start.unwrap_or(fan[0].0);
-            ring.push(cur);
+            ring_data.push(cur);
             while let Some(&(_, b)) = fan.iter().find(|(a, _)| *a == cur) {
-                if ring.len() > fan.len() || b == ring[0] {
+                if ring_data.len() - first > fan.len() || b == ring_data[first] {
                     break;
                 }
-                ring.push(b);
+                ring_data.push(b);
                 cur = b;
             }
             let expect = fan.len() + usize::from(boundary[v]);
-            if ring.len() != expect {
+            if ring_data.len() - first != expect {
                 return Err(MeshError::NonManifoldVertex { vertex: v });
             }
-            rings.push(ring);
+            ring_start.push(ring_data.len() as u32);
         }
-        // boundary loops: follow boundary edges (a → b where (a, b) has no twin)
-        let mut loops = Vec::new();
+        let mut topo = Topology {
+            ring_start,
+            ring_data,
+            boundary,
+            edges,
+            face_edges,
+            loops: Vec::new(),
+        };
+        // boundary loops: from each unvisited boundary vertex, follow the
+        // boundary edge to its ring's last neighbour
         let mut seen = vec![false; nv];
         for v in 0..nv {
-            if !boundary[v] || seen[v] {
+            if !topo.boundary[v] || seen[v] {
                 continue;
             }
             let mut lp = vec![v as u32];
             seen[v] = true;
             let mut cur = v;
             loop {
-                // the boundary edge leaving `cur`: the last neighbour of its ring
-                let next = *rings[cur].last().expect("non-empty ring") as usize;
+                let next = *topo.ring(cur).last().expect("non-empty ring") as usize;
                 if next == v || seen[next] {
                     break;
                 }
@@ -294,15 +359,9 @@ impl TriMesh {
                 lp.push(next as u32);
                 cur = next;
             }
-            loops.push(lp);
+            topo.loops.push(lp);
         }
-        Ok(Topology {
-            rings,
-            boundary,
-            edges,
-            face_edges,
-            loops,
-        })
+        Ok(topo)
     }
 }
 
@@ -327,7 +386,7 @@ mod tests {
         let (p, f) = tetra();
         let (_, t) = TriMesh::new(p.clone(), f.clone()).unwrap();
         assert!(t.boundary.iter().all(|b| !b) && t.loops.is_empty());
-        assert!(t.rings.iter().all(|r| r.len() == 3));
+        assert!((0..4).all(|v| t.ring(v).len() == 3));
         assert_eq!(t.edges.len(), 6);
         // drop one face: a disk with one boundary loop of 3
         let (_, t) = TriMesh::new(p, f[..3].to_vec()).unwrap();

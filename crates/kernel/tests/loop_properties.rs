@@ -152,7 +152,7 @@ fn boundary_limit_masks_match_subdivision() {
     ] {
         let m = boundary_case(n_c, n_l, n_r);
         let t = m.topology().unwrap();
-        let ring = &t.rings[0];
+        let ring = t.ring(0);
         let (l, r) = (ring[0] as usize, ring[ring.len() - 1] as usize);
         let reg = |v: usize| t.valence(v) == 4;
         let (a, b) = (reg(l), reg(r));
