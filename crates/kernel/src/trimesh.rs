@@ -108,6 +108,19 @@ impl fmt::Display for MeshError {
 
 impl std::error::Error for MeshError {}
 
+/// An edge seen from its lower vertex while the topology is built.
+struct EdgeAt {
+    other: u32,
+    /// Faces running lower → other, and other → lower.
+    out: u8,
+    inn: u8,
+    /// The vertex opposite the edge in each of those faces.
+    opp_out: u32,
+    opp_in: u32,
+    /// (face, edge index in the face) of the first two faces.
+    slots: [(u32, u8); 2],
+}
+
 /// The most vertices a mesh may have (and so a subdivision may produce).
 pub const MAX_VERTICES: usize = 20_000_000;
 
@@ -236,8 +249,7 @@ impl TriMesh {
         // face's edge k (opposite b); b → v is its edge k+2 (opposite a)
         let mut edges: Vec<([u32; 2], [u32; 2])> = Vec::with_capacity(nf * 3 / 2 + 8);
         let mut face_edges = vec![[u32::MAX; 3]; nf];
-        // (other vertex, out faces, in faces, opposite out, opposite in, slots)
-        let mut local: Vec<(u32, u8, u8, u32, u32, [(u32, u8); 2])> = Vec::new();
+        let mut local: Vec<EdgeAt> = Vec::new();
         for v in 0..nv {
             local.clear();
             let range = corner_start[v] as usize..corner_start[v + 1] as usize;
@@ -249,28 +261,36 @@ impl TriMesh {
                     if (u as usize) < v {
                         continue;
                     }
-                    let e = match local.iter_mut().position(|x| x.0 == u) {
+                    let e = match local.iter_mut().position(|x| x.other == u) {
                         Some(j) => &mut local[j],
                         None => {
-                            local.push((u, 0, 0, u32::MAX, u32::MAX, [(u32::MAX, 0); 2]));
+                            local.push(EdgeAt {
+                                other: u,
+                                out: 0,
+                                inn: 0,
+                                opp_out: u32::MAX,
+                                opp_in: u32::MAX,
+                                slots: [(u32::MAX, 0); 2],
+                            });
                             local.last_mut().expect("just pushed")
                         }
                     };
-                    let n = (e.1 + e.2) as usize;
+                    let n = (e.out + e.inn) as usize;
                     if n < 2 {
-                        e.5[n] = slot;
+                        e.slots[n] = slot;
                     }
                     if out {
-                        e.1 += 1;
-                        e.3 = opp;
+                        e.out += 1;
+                        e.opp_out = opp;
                     } else {
-                        e.2 += 1;
-                        e.4 = opp;
+                        e.inn += 1;
+                        e.opp_in = opp;
                     }
                 }
             }
-            for &(u, out, inn, oo, oi, slots) in &local {
-                let faces = (out + inn) as usize;
+            for e in &local {
+                let u = e.other;
+                let faces = (e.out + e.inn) as usize;
                 if faces > 2 {
                     return Err(MeshError::NonManifoldEdge {
                         a: v as u32,
@@ -278,8 +298,8 @@ impl TriMesh {
                         faces,
                     });
                 }
-                if out > 1 || inn > 1 {
-                    let (a, b) = if out > 1 {
+                if e.out > 1 || e.inn > 1 {
+                    let (a, b) = if e.out > 1 {
                         (v as u32, u)
                     } else {
                         (u, v as u32)
@@ -287,19 +307,19 @@ impl TriMesh {
                     return Err(MeshError::InconsistentWinding {
                         a,
                         b,
-                        face1: slots[0].0 as usize,
-                        face2: slots[1].0 as usize,
+                        face1: e.slots[0].0 as usize,
+                        face2: e.slots[1].0 as usize,
                     });
                 }
-                let e = edges.len() as u32;
-                let opp = match (out, inn) {
-                    (1, 1) => [oo, oi],
-                    (1, 0) => [oo, u32::MAX],
-                    _ => [oi, u32::MAX],
+                let id = edges.len() as u32;
+                let opp = match (e.out, e.inn) {
+                    (1, 1) => [e.opp_out, e.opp_in],
+                    (1, 0) => [e.opp_out, u32::MAX],
+                    _ => [e.opp_in, u32::MAX],
                 };
                 edges.push(([v as u32, u], opp));
-                for &(fi, k) in &slots[..faces] {
-                    face_edges[fi as usize][k as usize] = e;
+                for &(fi, k) in &e.slots[..faces] {
+                    face_edges[fi as usize][k as usize] = id;
                 }
             }
         }
