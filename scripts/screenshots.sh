@@ -21,3 +21,6 @@ shot analysis-mean car1 --panel analysis --analysis mean
 shot analysis-zebra car1 --panel analysis --analysis zebra
 shot analysis-comb car1 --panel analysis --comb
 shot editor-qi-side qi-side --select 1,2
+for m in snail fertility camelhead; do
+  shot "mesh-$m" car1 --mesh "tests/data/meshes/$m.obj" --panel mesh
+done

@@ -110,6 +110,16 @@ fn screenshots_show_the_surface_panels_and_curvature() {
     let plot = in_panel(&|[r, g, b]| r > 200 && g > 150 && b < 110);
     assert!(text > 300, "{text} text pixels in the fine-tuning panel");
     assert!(plot > 40, "{plot} yellow pixels of the α plot");
+    // mesh mode (paper 002): the interpolating Loop surface (tan) under the
+    // given mesh's edges (blue), and the panel's figures
+    let knight = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/meshes/knight.obj");
+    let (w, h, px) = shot(&dir, "mesh", &["--mesh", knight, "--panel", "mesh"]);
+    let tan = share(w, h, &px, |[r, g, b]| {
+        r > 150 && (r as i32) > b as i32 + 40 && g as i32 > b as i32 + 10
+    });
+    let edges = share(w, h, &px, |[r, _, b]| b as i32 > r as i32 + 80);
+    assert!(tan > 0.02, "Loop surface covers {tan:.3} of the view");
+    assert!(edges > 0.002, "given mesh edges cover {edges:.4} of the view");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

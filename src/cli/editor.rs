@@ -41,7 +41,7 @@ pub struct ScreenshotArgs {
     /// Window size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x800")]
     size: String,
-    /// Open only this panel section: file, subdivision, selection, display, analysis, stats.
+    /// Open only this panel section: file, subdivision, selection, display, tuning, analysis, mesh, stats.
     #[arg(long)]
     panel: Option<String>,
     /// Surface display: shaded, gaussian, mean, zebra.
@@ -56,6 +56,9 @@ pub struct ScreenshotArgs {
     /// For GUI tests: write a JSON report here on exit.
     #[arg(long, hide = true)]
     report: Option<PathBuf>,
+    /// Open this triangle mesh (OBJ) in mesh mode: its interpolating Loop surface.
+    #[arg(long)]
+    mesh: Option<PathBuf>,
 }
 
 /// `screenshot`.
@@ -83,7 +86,7 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
         None => None,
         Some(p) => Some(PanelName::parse(p).ok_or_else(|| {
             CliError::Usage(format!(
-                "--panel '{p}': choose file, subdivision, selection, display, analysis or stats"
+                "--panel '{p}': choose file, subdivision, selection, display, tuning, analysis, mesh or stats"
             ))
         })?),
     };
@@ -108,6 +111,7 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
     let _ = std::fs::remove_file(&a.out);
     let mut req = ScreenshotRequest::new(a.out.clone());
     req.panel = panel;
+    req.mesh = a.mesh.clone();
     req.analysis = analysis;
     req.comb = a.comb;
     req.select = select;

@@ -94,8 +94,16 @@ impl Plugin for HandlesPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<HandleArrows>()
             .init_resource::<HandleSettings>()
-            .add_systems(Update, (rebuild, draw).chain().after(ModelSet::Output))
-            .add_systems(EguiPrimaryContextPass, labels);
+            .add_systems(
+                Update,
+                (rebuild, draw.run_if(super::mesh_mode::streamline_mode))
+                    .chain()
+                    .after(ModelSet::Output),
+            )
+            .add_systems(
+                EguiPrimaryContextPass,
+                labels.run_if(super::mesh_mode::streamline_mode),
+            );
     }
 }
 

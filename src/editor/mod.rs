@@ -9,6 +9,7 @@ mod camera;
 mod coords;
 mod files;
 mod handles;
+pub mod mesh_mode;
 mod overlay;
 mod panels;
 mod picking;
@@ -57,6 +58,7 @@ impl Plugin for EditorPlugin {
             panels::PanelPlugin,
             files::FilesPlugin,
             autosave::AutosavePlugin,
+            mesh_mode::MeshModePlugin,
             screenshot::ScreenshotPlugin,
         ));
     }

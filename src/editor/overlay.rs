@@ -31,8 +31,11 @@ pub struct OverlayPlugin;
 
 impl Plugin for OverlayPlugin {
     fn build(&self, app: &mut App) {
-        app.init_resource::<OverlaySettings>()
-            .add_systems(Update, draw.after(ModelSet::Output));
+        app.init_resource::<OverlaySettings>().add_systems(
+            Update,
+            draw.after(ModelSet::Output)
+                .run_if(super::mesh_mode::streamline_mode),
+        );
     }
 }
 

@@ -109,8 +109,14 @@ impl Plugin for PickingPlugin {
             .add_systems(
                 Update,
                 (
-                    hover.run_if(not(egui_wants_any_pointer_input)),
-                    press.run_if(not(egui_wants_any_pointer_input)),
+                    hover.run_if(
+                        not(egui_wants_any_pointer_input)
+                            .and_then(super::mesh_mode::streamline_mode),
+                    ),
+                    press.run_if(
+                        not(egui_wants_any_pointer_input)
+                            .and_then(super::mesh_mode::streamline_mode),
+                    ),
                     drag_move,
                     release_or_cancel,
                     keep_selection_valid,

@@ -37,6 +37,8 @@ pub struct ScreenshotRequest {
     /// Take the picture only once this file exists (GUI tests create it when
     /// their pointer and keys are done); from `STREAMLINE_STUDIO_SHOT_WAIT`.
     pub wait_for: Option<PathBuf>,
+    /// Open this OBJ in mesh mode.
+    pub mesh: Option<PathBuf>,
 }
 
 impl ScreenshotRequest {
@@ -54,6 +56,7 @@ impl ScreenshotRequest {
             select: None,
             report: None,
             wait_for: std::env::var_os("STREAMLINE_STUDIO_SHOT_WAIT").map(PathBuf::from),
+            mesh: None,
         }
     }
 }
@@ -82,6 +85,7 @@ impl Plugin for ScreenshotPlugin {
 
 fn set_up_view(
     req: Res<ScreenshotRequest>,
+    mut mesh: ResMut<super::mesh_mode::MeshView>,
     mut ui: ResMut<UiState>,
     mut analysis: ResMut<AnalysisSettings>,
     mut selection: ResMut<Selection>,
@@ -96,6 +100,10 @@ fn set_up_view(
     analysis.comb |= req.comb;
     if req.select.is_some() {
         selection.handle = req.select;
+    }
+    if let Some(path) = &req.mesh {
+        mesh.input = path.display().to_string();
+        mesh.open(path.clone());
     }
 }
 

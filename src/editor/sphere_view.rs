@@ -77,11 +77,21 @@ impl Plugin for SphereViewPlugin {
             .add_systems(
                 Update,
                 press
-                    .run_if(not(egui_wants_any_pointer_input))
+                    .run_if(
+                        not(egui_wants_any_pointer_input)
+                            .and_then(super::mesh_mode::streamline_mode),
+                    )
                     .before(ModelSet::Edit),
             )
             .add_systems(Update, drag_move.before(ModelSet::Edit))
-            .add_systems(Update, (update_points, draw).after(ModelSet::Output))
+            .add_systems(
+                Update,
+                (
+                    update_points,
+                    draw.run_if(super::mesh_mode::streamline_mode),
+                )
+                    .after(ModelSet::Output),
+            )
             .add_systems(PostUpdate, place_camera);
     }
 }
@@ -134,6 +144,7 @@ fn setup(
 
 /// Places the inset in the lower right corner of the 3D view and turns its
 /// camera like the main one.
+#[allow(clippy::too_many_arguments)]
 fn place_camera(
     meter: Res<crate::ecs::meter::CpuMeter>,
     settings: Res<SphereSettings>,
@@ -142,6 +153,7 @@ fn place_camera(
     main: Query<&OrbitCamera, With<MainCamera>>,
     mut cam: Query<(&mut Camera, &mut Transform), With<SphereCamera>>,
     mut sphere_area: ResMut<SphereArea>,
+    mesh: Res<super::mesh_mode::MeshView>,
 ) {
     let _meter = meter.start();
     let Ok((mut camera, mut tf)) = cam.single_mut() else {
@@ -158,8 +170,11 @@ fn place_camera(
         view.max.x - margin,
         view.max.y - margin,
     );
-    let show =
-        settings.show && view.width() > side + 2.0 * margin && view.height() > side + 2.0 * margin;
+    // the inset belongs to the streamline surface: hidden in mesh mode
+    let show = settings.show
+        && !mesh.active()
+        && view.width() > side + 2.0 * margin
+        && view.height() > side + 2.0 * margin;
     if camera.is_active != show {
         camera.is_active = show;
     }

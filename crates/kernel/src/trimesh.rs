@@ -170,12 +170,34 @@ impl TriMesh {
         Ok((m, t))
     }
 
-    /// The axis-aligned bounding box's largest side (the error scale of 002 Table 1).
-    pub fn scale(&self) -> f64 {
-        let (lo, hi) = self.positions.iter().fold(
+    /// Unit vertex normals: the area-weighted sum of the adjacent faces'
+    /// normals (a vertex whose sum vanishes gets `+z`, never NaN).
+    pub fn vertex_normals(&self) -> Vec<DVec3> {
+        let mut n = vec![DVec3::ZERO; self.positions.len()];
+        for f in &self.faces {
+            let [a, b, c] = f.map(|i| self.positions[i as usize]);
+            let w = (b - a).cross(c - a); // twice the area, along the normal
+            for &i in f {
+                n[i as usize] += w;
+            }
+        }
+        for v in n.iter_mut() {
+            *v = v.try_normalize().unwrap_or(DVec3::Z);
+        }
+        n
+    }
+
+    /// The bounding box `(min, max)`.
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        self.positions.iter().fold(
             (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
             |(lo, hi), &p| (lo.min(p), hi.max(p)),
-        );
+        )
+    }
+
+    /// The axis-aligned bounding box's largest side (the error scale of 002 Table 1).
+    pub fn scale(&self) -> f64 {
+        let (lo, hi) = self.bounds();
         let d = hi - lo;
         d.x.max(d.y).max(d.z)
     }

@@ -1,12 +1,13 @@
 //! The egui panels: a toolbar (undo, redo, frame) and a side panel of
 //! sections (File, Subdivision, Selection, Display, Fine tuning, Analysis,
-//! Stats). Panels
+//! Loop mesh, Stats). Panels
 //! are thin views: they read resources and send edit messages (or change
 //! display settings); they never compute geometry.
 
 mod analysis;
 mod display;
 mod file;
+mod mesh;
 mod selection;
 mod stats;
 mod subdivision;
@@ -39,19 +40,22 @@ pub enum PanelName {
     Tuning,
     /// Curvature comb, Gaussian and mean maps, zebra stripes.
     Analysis,
+    /// Loop mesh: open an OBJ and interpolate it with a Loop surface.
+    Mesh,
     /// Sizes and the cost of the last edit.
     Stats,
 }
 
 impl PanelName {
     /// All sections in panel order.
-    pub const ALL: [PanelName; 7] = [
+    pub const ALL: [PanelName; 8] = [
         PanelName::File,
         PanelName::Subdivision,
         PanelName::Selection,
         PanelName::Display,
         PanelName::Tuning,
         PanelName::Analysis,
+        PanelName::Mesh,
         PanelName::Stats,
     ];
 
@@ -64,6 +68,7 @@ impl PanelName {
             PanelName::Display => "display",
             PanelName::Tuning => "tuning",
             PanelName::Analysis => "analysis",
+            PanelName::Mesh => "mesh",
             PanelName::Stats => "stats",
         }
     }
@@ -80,6 +85,9 @@ impl PanelName {
             PanelName::Analysis => {
                 "Curvature comb, Gaussian and mean curvature maps, zebra stripes"
             }
+            PanelName::Mesh => {
+                "Open a triangle mesh (OBJ) and make a Loop surface pass through its vertices"
+            }
             PanelName::Stats => "Sizes, and what the last edit cost stage by stage",
         }
     }
@@ -92,6 +100,7 @@ impl PanelName {
             PanelName::Display => "Display",
             PanelName::Tuning => "Fine tuning",
             PanelName::Analysis => "Analysis",
+            PanelName::Mesh => "Loop mesh",
             PanelName::Stats => "Stats",
         }
     }
@@ -148,6 +157,7 @@ pub struct PanelCtx<'w> {
     pub timing: Res<'w, FrameTiming>,
     pub slider_groups: ResMut<'w, SliderGroups>,
     pub opened: Res<'w, OpenedScene>,
+    pub mesh: ResMut<'w, super::mesh_mode::MeshView>,
 }
 
 /// The control net as the scene was opened (the Selection panel's reset).
@@ -351,6 +361,7 @@ fn panel(
                         PanelName::Display => display::show(ui, &mut p),
                         PanelName::Tuning => tuning::show(ui, &mut p),
                         PanelName::Analysis => analysis::show(ui, &mut p),
+                        PanelName::Mesh => mesh::show(ui, &mut p),
                         PanelName::Stats => stats::show(ui, &p),
                     });
                     shown.header_response.on_hover_text(name.tooltip());

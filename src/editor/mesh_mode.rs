@@ -1,0 +1,358 @@
+//! Mesh mode (paper 002): open a triangle mesh (OBJ), see it as a wireframe
+//! with its vertices, and the Loop surface that interpolates every vertex
+//! (progressive interpolation, plain or fast) at a chosen subdivision depth,
+//! with the iteration count and errors; export the surface or its control
+//! mesh. While a mesh is open the streamline surface and its handles step
+//! aside. The geometry comes from the kernel (`trimesh`, `loop_subdiv`,
+//! `interpolate`); this plugin only shows it.
+
+use super::camera::FrameRequest;
+use super::coords::kernel_to_view;
+use super::surface::SurfaceEntity;
+use crate::scene::obj;
+use bevy::asset::RenderAssetUsages;
+use bevy::mesh::{Indices, PrimitiveTopology};
+use bevy::prelude::*;
+use std::path::PathBuf;
+use std::time::Instant;
+use streamline_kernel::DVec3;
+use streamline_kernel::interpolate::{Method, Options, Report, interpolate};
+use streamline_kernel::loop_subdiv::subdivide;
+use streamline_kernel::trimesh::{Topology, TriMesh};
+
+/// The deepest subdivision shown (each level multiplies the faces by 4).
+pub const MAX_DEPTH: u32 = 4;
+/// Surfaces are not subdivided past this many faces.
+const MAX_SHOWN_FACES: usize = 4_000_000;
+
+/// The mesh shown, the settings of its interpolation, and the outcome.
+#[derive(Resource)]
+pub struct MeshView {
+    /// The file opened.
+    pub path: Option<PathBuf>,
+    /// The given mesh and its topology.
+    pub given: Option<(TriMesh, Topology)>,
+    /// The interpolating control mesh's positions (same faces as the given mesh).
+    pub control: Vec<DVec3>,
+    /// The subdivided control mesh shown.
+    pub surface: Option<TriMesh>,
+    /// What the interpolation did.
+    pub report: Option<Report>,
+    /// Seconds it took.
+    pub seconds: f64,
+    /// Plain or fast.
+    pub method: Method,
+    /// Stop at this error (bounding box's largest side = 1).
+    pub tolerance: f64,
+    /// Subdivision depth shown.
+    pub depth: u32,
+    /// Show the given mesh's wireframe and vertices.
+    pub show_given: bool,
+    /// The last failure (open or export), shown in the panel.
+    pub error: Option<String>,
+    /// The path typed in the panel.
+    pub input: String,
+    /// Interpolate and rebuild the view in the next frame.
+    pub dirty: bool,
+    /// Frame the camera on the mesh in the next frame.
+    pub frame: bool,
+}
+
+impl Default for MeshView {
+    fn default() -> Self {
+        MeshView {
+            path: None,
+            given: None,
+            control: Vec::new(),
+            surface: None,
+            report: None,
+            seconds: 0.0,
+            method: Method::Fast,
+            tolerance: 1e-3,
+            depth: 3,
+            show_given: true,
+            error: None,
+            input: "tests/data/meshes/snail.obj".into(),
+            dirty: false,
+            frame: false,
+        }
+    }
+}
+
+impl MeshView {
+    /// Whether a mesh is open (the streamline surface steps aside).
+    pub fn active(&self) -> bool {
+        self.given.is_some()
+    }
+
+    /// Opens an OBJ file; on failure the current state stays and the error is kept.
+    pub fn open(&mut self, path: PathBuf) {
+        match obj::read(&path) {
+            Ok(m) => {
+                self.given = Some(m);
+                self.path = Some(path);
+                self.error = None;
+                self.dirty = true;
+                self.frame = true;
+            }
+            Err(e) => self.error = Some(format!("{e} (nothing was opened)")),
+        }
+    }
+
+    /// Leaves mesh mode.
+    pub fn close(&mut self) {
+        self.given = None;
+        self.surface = None;
+        self.report = None;
+        self.control.clear();
+        self.dirty = true;
+    }
+
+    /// Writes the shown surface (`control == false`) or the control mesh as OBJ.
+    pub fn export(&mut self, to: PathBuf, control: bool) {
+        let result = match (&self.given, &self.surface) {
+            (Some((m, _)), _) if control => obj::write(
+                &to,
+                &self.control,
+                &m.faces,
+                "control mesh of an interpolating Loop surface",
+            ),
+            (_, Some(s)) => obj::write(&to, &s.positions, &s.faces, "Loop surface"),
+            _ => {
+                self.error = Some("nothing to export: open a mesh first".into());
+                return;
+            }
+        };
+        self.error = result.err().map(|e| e.to_string());
+    }
+}
+
+/// Marks the mesh mode's entities.
+#[derive(Component)]
+struct MeshModeSurface;
+#[derive(Component)]
+struct MeshModeWire;
+
+pub struct MeshModePlugin;
+
+impl Plugin for MeshModePlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<MeshView>()
+            .add_systems(Startup, setup)
+            .add_systems(Update, (recompute, show).chain());
+    }
+}
+
+/// Run condition: no mesh is open (the streamline editing systems run).
+pub fn streamline_mode(view: Res<MeshView>) -> bool {
+    !view.active()
+}
+
+fn setup(
+    mut commands: Commands,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+    mut gizmos: ResMut<Assets<GizmoAsset>>,
+) {
+    let material = materials.add(StandardMaterial {
+        base_color: Color::srgb(0.86, 0.72, 0.55),
+        perceptual_roughness: 0.5,
+        double_sided: true,
+        cull_mode: None,
+        ..default()
+    });
+    commands.spawn((
+        MeshModeSurface,
+        Mesh3d(meshes.add(empty_mesh())),
+        MeshMaterial3d(material),
+        Transform::from_rotation(kernel_to_view()),
+        Visibility::Hidden,
+    ));
+    commands.spawn((
+        MeshModeWire,
+        Gizmo {
+            handle: gizmos.add(GizmoAsset::new()),
+            line_config: GizmoLineConfig {
+                width: 1.0,
+                ..default()
+            },
+            depth_bias: -0.002,
+        },
+        Transform::from_rotation(kernel_to_view()),
+        Visibility::Hidden,
+    ));
+}
+
+fn empty_mesh() -> Mesh {
+    Mesh::new(
+        PrimitiveTopology::TriangleList,
+        RenderAssetUsages::default(),
+    )
+    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, Vec::<[f32; 3]>::new())
+    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, Vec::<[f32; 3]>::new())
+    .with_inserted_indices(Indices::U32(Vec::new()))
+}
+
+/// Interpolates and subdivides when the mesh or a setting changed.
+fn recompute(meter: Res<crate::ecs::meter::CpuMeter>, mut view: ResMut<MeshView>) {
+    let _meter = meter.start();
+    if !view.dirty {
+        return;
+    }
+    view.dirty = false;
+    let Some((mesh, topo)) = view.given.clone() else {
+        return;
+    };
+    let opts = Options {
+        tolerance: view.tolerance,
+        max_iterations: 10_000,
+        method: view.method,
+    };
+    let t0 = Instant::now();
+    let (control, report) = interpolate(&mesh, &topo, &opts);
+    view.seconds = t0.elapsed().as_secs_f64();
+    let mut s = TriMesh {
+        positions: control.clone(),
+        faces: mesh.faces.clone(),
+    };
+    for _ in 0..view.depth {
+        if s.faces.len() * 4 > MAX_SHOWN_FACES {
+            break;
+        }
+        let Ok(t) = s.topology() else { break };
+        match subdivide(&s, &t) {
+            Ok(next) => s = next,
+            Err(_) => break,
+        }
+    }
+    view.control = control;
+    view.report = Some(report);
+    view.surface = Some(s);
+}
+
+/// The wireframe's entity.
+type WireQuery<'w, 's> = Single<
+    'w,
+    's,
+    (&'static Gizmo, &'static mut Visibility),
+    (With<MeshModeWire>, Without<MeshModeSurface>),
+>;
+/// The streamline surface's entity (hidden while a mesh is open).
+type StreamlineSurface<'w, 's> = Query<
+    'w,
+    's,
+    &'static mut Visibility,
+    (
+        With<SurfaceEntity>,
+        Without<MeshModeSurface>,
+        Without<MeshModeWire>,
+    ),
+>;
+
+/// Mirrors the view state into the entities; hides the streamline surface while active.
+#[allow(clippy::too_many_arguments)]
+fn show(
+    meter: Res<crate::ecs::meter::CpuMeter>,
+    mut view: ResMut<MeshView>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut gizmo_assets: ResMut<Assets<GizmoAsset>>,
+    mut frame: ResMut<FrameRequest>,
+    surface: Single<(&Mesh3d, &mut Visibility), With<MeshModeSurface>>,
+    wire: WireQuery,
+    mut streamline: StreamlineSurface,
+    mut shown: Local<Option<(usize, u32, bool, u64)>>,
+) {
+    let _meter = meter.start();
+    let (mesh3d, mut surf_vis) = surface.into_inner();
+    let (gizmo, mut wire_vis) = wire.into_inner();
+    let active = view.active();
+    let set = |v: &mut Visibility, on: bool| {
+        let want = if on {
+            Visibility::Inherited
+        } else {
+            Visibility::Hidden
+        };
+        if *v != want {
+            *v = want;
+        }
+    };
+    set(&mut surf_vis, active);
+    set(&mut wire_vis, active && view.show_given);
+    for mut v in &mut streamline {
+        set(&mut v, !active);
+    }
+
+    let Some(s) = &view.surface else {
+        *shown = None;
+        return;
+    };
+    // rebuild the GPU meshes only when the surface itself changed
+    let key = (
+        s.positions.len(),
+        view.depth,
+        view.show_given,
+        view.report.map_or(0, |r| r.max_error.to_bits()),
+    );
+    if *shown != Some(key) {
+        *shown = Some(key);
+        if let Some(mut m) = meshes.get_mut(&mesh3d.0) {
+            *m = surface_mesh(s);
+        }
+        if let (Some(mut g), Some((given, topo))) =
+            (gizmo_assets.get_mut(&gizmo.handle), &view.given)
+        {
+            *g = wireframe(given, topo);
+        }
+    }
+    if view.frame {
+        view.frame = false;
+        if let Some((m, _)) = &view.given {
+            let (lo, hi) = m.bounds();
+            frame.0 = Some(((lo + hi) * 0.5, 0.6 * (hi - lo).max_element()));
+        }
+    }
+}
+
+fn surface_mesh(s: &TriMesh) -> Mesh {
+    let pos: Vec<[f32; 3]> = s.positions.iter().map(|p| p.as_vec3().to_array()).collect();
+    let nrm: Vec<[f32; 3]> = s
+        .vertex_normals()
+        .iter()
+        .map(|n| n.as_vec3().to_array())
+        .collect();
+    Mesh::new(
+        PrimitiveTopology::TriangleList,
+        RenderAssetUsages::default(),
+    )
+    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, pos)
+    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, nrm)
+    .with_inserted_indices(Indices::U32(s.faces.iter().flatten().copied().collect()))
+}
+
+/// The given mesh's edges, and a small cross at each vertex.
+fn wireframe(m: &TriMesh, topo: &Topology) -> GizmoAsset {
+    let mut g = GizmoAsset::new();
+    let edge = Color::srgb(0.15, 0.35, 0.9);
+    let dot = Color::srgb(0.95, 0.2, 0.15);
+    let mean = topo
+        .edges
+        .iter()
+        .map(|&([a, b], _)| (m.positions[a as usize] - m.positions[b as usize]).length())
+        .sum::<f64>()
+        / topo.edges.len().max(1) as f64;
+    let r = (0.12 * mean) as f32;
+    for &([a, b], _) in &topo.edges {
+        g.line(
+            m.positions[a as usize].as_vec3(),
+            m.positions[b as usize].as_vec3(),
+            edge,
+        );
+    }
+    for p in &m.positions {
+        let c = p.as_vec3();
+        for d in [Vec3::X, Vec3::Y, Vec3::Z] {
+            g.line(c - d * r, c + d * r, dot);
+        }
+    }
+    g
+}

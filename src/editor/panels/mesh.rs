@@ -1,0 +1,138 @@
+//! Loop mesh (paper 002): open an OBJ, interpolate its vertices with a Loop
+//! surface (method, tolerance, depth shown), read the iteration count and the
+//! errors, export the surface or its control mesh, close.
+
+use super::PanelCtx;
+use bevy_egui::egui;
+use std::path::PathBuf;
+use streamline_kernel::interpolate::Method;
+
+pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
+    let v = &mut *p.mesh;
+    ui.horizontal(|ui| {
+        ui.add(egui::TextEdit::singleline(&mut v.input).desired_width(170.0))
+            .on_hover_text("A triangle mesh (OBJ); polygons are split into fans of triangles");
+        if ui
+            .button("Open OBJ")
+            .on_hover_text("Open the mesh and make a Loop surface pass through every vertex")
+            .clicked()
+        {
+            let path = PathBuf::from(v.input.trim());
+            v.open(path);
+        }
+    });
+    if let Some(e) = &v.error {
+        ui.colored_label(egui::Color32::from_rgb(240, 110, 90), e)
+            .on_hover_text("The last open or export failed; nothing else changed");
+    }
+    let Some((mesh, topo)) = &v.given else {
+        ui.label(egui::RichText::new("No mesh open: the streamline surface is shown.").weak());
+        return;
+    };
+    let (nv, nf, loops) = (mesh.positions.len(), mesh.faces.len(), topo.loops.len());
+    ui.label(format!(
+        "{nv} vertices, {nf} triangles, {}",
+        if loops == 0 {
+            "closed".to_string()
+        } else {
+            format!("{loops} boundary loops")
+        }
+    ))
+    .on_hover_text(
+        v.path
+            .as_ref()
+            .map_or(String::new(), |p| p.display().to_string()),
+    );
+    let mut method = v.method;
+    ui.horizontal(|ui| {
+        ui.radio_value(&mut method, Method::Plain, "plain")
+            .on_hover_text("002's progressive iteration: V += V⁰ − V∞, boundary first");
+        ui.radio_value(&mut method, Method::Fast, "fast")
+            .on_hover_text("Conjugate gradients (interior) and BiCGSTAB (boundary) on the same system: fewer iterations");
+    });
+    if method != v.method {
+        v.method = method;
+        v.dirty = true;
+    }
+    let mut exp = -v.tolerance.log10();
+    if ui
+        .add(egui::Slider::new(&mut exp, 2.0..=9.0).step_by(1.0).text("tolerance 10^-n"))
+        .on_hover_text("Stop when every vertex is this close to its limit point (bounding box's largest side = 1; 002 uses 1e-3)")
+        .changed()
+    {
+        v.tolerance = 10f64.powf(-exp);
+        v.dirty = true;
+    }
+    let mut depth = v.depth;
+    if ui
+        .add(egui::Slider::new(&mut depth, 0..=crate::editor::mesh_mode::MAX_DEPTH).text("depth"))
+        .on_hover_text("Loop subdivision levels of the control mesh shown (each multiplies the triangles by 4)")
+        .changed()
+    {
+        v.depth = depth;
+        v.dirty = true;
+    }
+    ui.checkbox(&mut v.show_given, "given mesh").on_hover_text(
+        "Draw the given mesh's edges (blue) and vertices (red crosses) over the surface",
+    );
+    if let Some(r) = v.report {
+        egui::Grid::new("mesh_stats").num_columns(2).striped(true).show(ui, |ui| {
+            ui.label("iterations");
+            ui.label(if loops > 0 {
+                format!("{} ({} boundary + {} interior)", r.iterations(), r.boundary_iterations, r.interior_iterations)
+            } else {
+                r.iterations().to_string()
+            })
+            .on_hover_text("Applications of the limit operator");
+            ui.end_row();
+            ui.label("max error");
+            ui.label(format!("{:.3e}", r.max_error))
+                .on_hover_text("Largest distance from a given vertex to the surface's point for it, on the mesh scaled to a unit box");
+            ui.end_row();
+            ui.label("mean error");
+            ui.label(format!("{:.3e}", r.avg_error));
+            ui.end_row();
+            ui.label("time");
+            ui.label(format!("{:.1} ms{}", v.seconds * 1e3, if r.converged { "" } else { " (did not converge)" }));
+            ui.end_row();
+        });
+    }
+    let stem = v
+        .path
+        .as_ref()
+        .and_then(|p| p.file_stem())
+        .map_or("mesh".to_string(), |s| s.to_string_lossy().into_owned());
+    ui.horizontal(|ui| {
+        if ui
+            .button("Export surface")
+            .on_hover_text(format!(
+                "Write the surface shown to {stem}-loop.obj beside the input"
+            ))
+            .clicked()
+        {
+            let to = v.path.as_ref().map_or(PathBuf::from("."), |p| {
+                p.with_file_name(format!("{stem}-loop.obj"))
+            });
+            v.export(to, false);
+        }
+        if ui
+            .button("Export control")
+            .on_hover_text(format!(
+                "Write the control mesh (input's vertex order and faces) to {stem}-control.obj"
+            ))
+            .clicked()
+        {
+            let to = v.path.as_ref().map_or(PathBuf::from("."), |p| {
+                p.with_file_name(format!("{stem}-control.obj"))
+            });
+            v.export(to, true);
+        }
+        if ui
+            .button("Close")
+            .on_hover_text("Back to the streamline surface")
+            .clicked()
+        {
+            v.close();
+        }
+    });
+}
