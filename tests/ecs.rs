@@ -560,3 +560,58 @@ fn tuning_edit_is_local_and_equals_a_fresh_build() {
         "undo restores exactly"
     );
 }
+
+/// SPEC §7, last bullet: with "interpolate control tangents" the level-0 net
+/// the ECS subdivides has limit tangents (Catmull–Clark and Doo–Sabin, both
+/// blend orders) equal to the designer's interior control tangents within
+/// 1e-9 rad; the border is kept; the option survives save → load.
+#[test]
+fn interpolated_control_tangents_are_reached_at_the_limit() {
+    use streamline_kernel::sphere_pi::limit_tangent;
+    use streamline_studio::ecs::components::{LevelData, SubdivisionLevel};
+    for scheme in [SurfaceScheme::CatmullClark, SurfaceScheme::DooSabin] {
+        for order in [BlendOrder::SFirst, BlendOrder::TFirst] {
+            let mut d = presets::car1();
+            d.scheme = scheme;
+            d.order = order;
+            let mut s = Scene::from_design("car", d, 2);
+            s.interpolate_tangents = true;
+            let mut app = ecs::headless_app(s.clone());
+            let w = app.world_mut();
+            let mut q = w.query::<(&SubdivisionLevel, &LevelData)>();
+            let root = q
+                .iter(w)
+                .find(|(l, _)| l.0 == 0)
+                .map(|(_, d)| d.0.tangents.clone())
+                .unwrap();
+            let design = &s.design.net;
+            let mut moved = 0.0f64;
+            for r in 0..design.rows() {
+                for c in 0..design.cols() {
+                    match limit_tangent(scheme, order, &root, r, c) {
+                        Some(l) => {
+                            let a = l.cross(design.get(r, c)).length();
+                            assert!(a < 1e-9, "{scheme:?} {order:?} ({r},{c}): {a:e}");
+                            moved = moved.max((root.get(r, c) - design.get(r, c)).length());
+                        }
+                        None => assert_eq!(root.get(r, c), design.get(r, c), "border kept"),
+                    }
+                }
+            }
+            assert!(
+                moved > 1e-3,
+                "the interior control tangents moved ({moved})"
+            );
+            let dir = std::env::temp_dir().join(format!("streamline-pi-{}", std::process::id()));
+            std::fs::create_dir_all(&dir).unwrap();
+            let path = dir.join("s.ron");
+            streamline_studio::scene::io::save(&s, &path).unwrap();
+            assert!(
+                streamline_studio::scene::io::load(&path)
+                    .unwrap()
+                    .interpolate_tangents
+            );
+            let _ = std::fs::remove_dir_all(&dir);
+        }
+    }
+}

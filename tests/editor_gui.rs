@@ -119,7 +119,10 @@ fn screenshots_show_the_surface_panels_and_curvature() {
     });
     let edges = share(w, h, &px, |[r, _, b]| b as i32 > r as i32 + 80);
     assert!(tan > 0.02, "Loop surface covers {tan:.3} of the view");
-    assert!(edges > 0.002, "given mesh edges cover {edges:.4} of the view");
+    assert!(
+        edges > 0.002,
+        "given mesh edges cover {edges:.4} of the view"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

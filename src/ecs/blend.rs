@@ -76,6 +76,12 @@ pub(crate) fn reblend(
 ) {
     let _meter = meter.start();
     let t0 = Instant::now();
+    // interpolated control tangents depend on the whole net: any change of a
+    // control tangent rebuilds everything from the interpolated net
+    let interpolated = model.scene.interpolates_tangents();
+    if interpolated && seeds.0.first().is_some_and(Option::is_some) {
+        model.full = true;
+    }
     if model.full {
         model.full = false;
         seeds.0.clear();
@@ -86,7 +92,8 @@ pub(crate) fn reblend(
             commands.entity(e).despawn();
         }
         let scene = &model.scene;
-        let built = match build_levels(&scene.design, &scene.details, scene.max_depth()) {
+        let design = scene.effective_design();
+        let built = match build_levels(&design, &scene.details, scene.max_depth()) {
             Ok(b) => b,
             Err(e) => {
                 log.entries.push(Err(format!("rebuild failed: {e}")));

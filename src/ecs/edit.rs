@@ -205,6 +205,17 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
                 .constraint = *c;
             Ok(format!("fine-tuning constraint {}", c.name()))
         }
+        Edit::SetInterpolateTangents(on) => {
+            ctx.model.scene.interpolate_tangents = *on;
+            full(ctx);
+            Ok(
+                if *on && !streamline_kernel::sphere_pi::applies(ctx.model.scene.design.scheme) {
+                    "interpolate control tangents on (Kobbelt interpolates them already)".into()
+                } else {
+                    format!("interpolate control tangents {on}")
+                },
+            )
+        }
         Edit::CancelGroup(g) => {
             let (target, was_unsaved) = ctx
                 .history
@@ -419,6 +430,7 @@ fn restore(ctx: &mut EditCtx, target: Scene) {
         && a.order == b.order
         && a.anchor == b.anchor
         && a.params.t == b.params.t
+        && cur.interpolate_tangents == target.interpolate_tangents
         && cur.initial == target.initial
         && cur.display_depth == target.display_depth
         && cur.edit_depth == target.edit_depth;

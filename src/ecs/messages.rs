@@ -42,6 +42,8 @@ pub enum Edit {
     SetTuningValue { row: usize, col: usize, value: f64 },
     /// What fine-tuned streamlines keep; turns fine tuning on if off.
     SetTuningConstraint(Constraint),
+    /// Interpolate the control tangents (Catmull–Clark, Doo–Sabin) or not.
+    SetInterpolateTangents(bool),
     /// Cancel a drag: restore the scene from before the first edit of `group`
     /// and forget that undo step (no redo). Esc during a drag sends it.
     CancelGroup(u64),
@@ -95,6 +97,7 @@ impl Edit {
                 format!("fine-tuning value ({row}, {col}) = {value}")
             }
             Edit::SetTuningConstraint(c) => format!("fine-tuning constraint {}", c.name()),
+            Edit::SetInterpolateTangents(on) => format!("interpolate control tangents {on}"),
             Edit::CancelGroup(_) => "cancel drag".into(),
             Edit::Undo => "undo".into(),
             Edit::Redo => "redo".into(),

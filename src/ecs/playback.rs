@@ -179,6 +179,7 @@ fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
             value: value.0,
         },
         Step::SetTuningConstraint(c) => Edit::SetTuningConstraint(c.to_kernel()),
+        Step::SetInterpolateTangents(on) => Edit::SetInterpolateTangents(*on),
         Step::Undo => Edit::Undo,
         Step::Redo => Edit::Redo,
         _ => return Err("not an edit".into()),
@@ -288,6 +289,7 @@ fn check(
             can_undo,
             can_redo,
             tuning,
+            interpolate_tangents,
         } => {
             let s = &model.scene;
             let mut bad = Vec::new();
@@ -342,6 +344,11 @@ fn check(
                 "fine tuning on",
                 tuning.map(|x| x.to_string()),
                 s.tuning.is_some().to_string(),
+            );
+            cmp(
+                "interpolate tangents",
+                interpolate_tangents.map(|x| x.to_string()),
+                s.interpolate_tangents.to_string(),
             );
             if bad.is_empty() {
                 Ok(String::new())

@@ -123,7 +123,13 @@ fn level_arrows(model: &Model, l: &LevelState, scale: f64) -> Vec<Arrow> {
     for r in 0..rows {
         place_row_tuned(initial, &l.tangents, &l.params, r, tuning, &mut pts);
         for c in 0..cols {
-            let dir = l.tangents.get(r, c);
+            // control arrows show the designer's tangents (the interpolated
+            // net, when that option is on, is what subdivision starts from)
+            let dir = if l.level == 0 {
+                model.scene.design.net.get(r, c)
+            } else {
+                l.tangents.get(r, c)
+            };
             let base = point_by_fraction(&pts, s.row(r), s.get(r, c));
             out.push(Arrow {
                 level: l.level,

@@ -70,6 +70,10 @@ pub struct SceneFile {
     /// Fine tuning (SPEC §6): absent or `None` when off.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tuning: Option<TuningSpec>,
+    /// Catmull–Clark and Doo–Sabin pass through the interior control
+    /// tangents at the limit (progressive interpolation on the sphere).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub interpolate_tangents: bool,
 }
 
 /// Fine tuning: a tensor B-spline scalar function `α(u, v)` scaling the

@@ -30,6 +30,9 @@ pub struct Scene {
     pub view: ViewSpec,
     /// Fine tuning (SPEC §6), if on.
     pub tuning: Option<SurfaceTuning>,
+    /// Make the approximating schemes pass through the interior control
+    /// tangents at the limit (progressive interpolation on the sphere, SPEC §7).
+    pub interpolate_tangents: bool,
 }
 
 impl SchemeSpec {
@@ -173,7 +176,32 @@ impl Scene {
             edit_depth: 0,
             view: ViewSpec::default(),
             tuning: None,
+            interpolate_tangents: false,
         }
+    }
+
+    /// Whether the control tangents are interpolated (the option is on and
+    /// the scheme approximates: Catmull–Clark or Doo–Sabin).
+    pub fn interpolates_tangents(&self) -> bool {
+        self.interpolate_tangents && streamline_kernel::sphere_pi::applies(self.design.scheme)
+    }
+
+    /// The design the levels are built from: the designer's, or with
+    /// [`Scene::interpolate_tangents`] the net whose limit passes through the
+    /// designer's interior tangents (within 1e-12 rad).
+    pub fn effective_design(&self) -> Design {
+        let mut d = self.design.clone();
+        if self.interpolates_tangents() {
+            d.net = streamline_kernel::sphere_pi::interpolate_net(
+                d.scheme,
+                d.order,
+                &self.design.net,
+                1e-12,
+                2000,
+            )
+            .net;
+        }
+        d
     }
 
     /// The deepest level the scene needs.
@@ -336,6 +364,7 @@ impl Scene {
             edit_depth: f.edit_depth,
             view: f.view,
             tuning,
+            interpolate_tangents: f.interpolate_tangents,
         };
         scene.validate(file, text)?;
         Ok(scene)
@@ -372,6 +401,7 @@ impl Scene {
                 .collect(),
             view: self.view,
             tuning: self.tuning.as_ref().map(TuningSpec::from_kernel),
+            interpolate_tangents: self.interpolate_tangents,
         }
     }
 

@@ -71,6 +71,8 @@ pub enum Step {
     },
     /// What fine-tuned streamlines keep: `Free`, `KeepEnds` or `KeepClosed`.
     SetTuningConstraint(ConstraintSpec),
+    /// Makes Catmull–Clark and Doo–Sabin pass through the interior control tangents, or not.
+    SetInterpolateTangents(bool),
     /// Undoes the last edit.
     Undo,
     /// Redoes the last undone edit.
@@ -113,6 +115,8 @@ pub enum Step {
         can_redo: Option<bool>,
         #[serde(default)]
         tuning: Option<bool>,
+        #[serde(default)]
+        interpolate_tangents: Option<bool>,
     },
     /// The previous step failed with a message containing this text.
     ExpectError(String),

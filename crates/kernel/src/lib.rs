@@ -34,6 +34,7 @@ pub mod presets;
 pub mod qi;
 pub mod scalar;
 pub mod sphere;
+pub mod sphere_pi;
 pub mod streamline;
 pub mod surface;
 pub mod tangent;

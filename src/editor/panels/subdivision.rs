@@ -70,6 +70,19 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
     {
         p.send(Edit::SetEditDepth(edit));
     }
+    let mut interp = p.model.scene.interpolate_tangents;
+    let approximating = streamline_kernel::sphere_pi::applies(p.model.scene.design.scheme);
+    if ui
+        .add_enabled(
+            approximating,
+            egui::Checkbox::new(&mut interp, "interpolate control tangents"),
+        )
+        .on_hover_text("Catmull–Clark and Doo–Sabin pass through your interior control tangents at the limit (progressive interpolation on the Gaussian sphere); the border ones stay as set")
+        .on_disabled_hover_text("Kobbelt interpolates the control tangents already")
+        .changed()
+    {
+        p.send(Edit::SetInterpolateTangents(interp));
+    }
     let details = p.model.scene.details.len();
     ui.label(egui::RichText::new(format!("{details} multiresolution details")).weak())
         .on_hover_text(
