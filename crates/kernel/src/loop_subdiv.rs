@@ -178,6 +178,29 @@ mod tests {
             assert!((m.iter().sum::<f64>() - 1.0).abs() < 1e-15, "{cfg}: {m:?}");
             assert!(m[1] > m[0] + m[2], "strictly diagonally dominant (002 §4)");
         }
+        // the regular interior mask through limit_point itself: a hexagon fan
+        // closed by a second one, centre 1/2 and each neighbour 1/12
+        let mut pos = vec![DVec3::ZERO; 8];
+        let mut faces = Vec::new();
+        for i in 0..6u32 {
+            faces.push([0, 1 + i, 1 + (i + 1) % 6]);
+            faces.push([7, 1 + (i + 1) % 6, 1 + i]);
+        }
+        for (i, p) in pos.iter_mut().enumerate().take(7).skip(1) {
+            let a = std::f64::consts::TAU * i as f64 / 6.0;
+            *p = DVec3::new(a.cos(), a.sin(), 0.0);
+        }
+        pos[7] = DVec3::new(0.0, 0.0, -1.0);
+        let (mesh, topo) = TriMesh::new(pos, faces).unwrap();
+        assert_eq!(topo.valence(0), 6);
+        for probe in 0..7 {
+            let mut p = vec![DVec3::ZERO; 8];
+            p[probe] = DVec3::X;
+            let w = limit_point(&p, &topo, 0).x;
+            let want = if probe == 0 { 0.5 } else { 1.0 / 12.0 };
+            assert!((w - want).abs() < 1e-15, "weight of vertex {probe}: {w}");
+        }
+        let _ = mesh;
         let m = boundary_mask(true, true, true);
         let want = [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0];
         assert!(
