@@ -8,7 +8,7 @@
 set -euo pipefail
 BIN=$1; OUT=$2; REPORT=$3; ESC=${4:-}
 STREAMLINE_STUDIO_SHOT_WAIT="$REPORT.done" STREAMLINE_STUDIO_SHOT_FRAMES=${FRAMES:-30} "$BIN" screenshot "${SCENE:-car1}" --out "$OUT" \
-  --select "${SELECT:-0,8}" --report "$REPORT" --size 900x600 2>"$REPORT.log" &
+  --select "${SELECT:-0,8}" --report "$REPORT" --size "${SIZE:-900x600}" 2>"$REPORT.log" &
 PID=$!
 for _ in $(seq 1 600); do
   [ -s "$REPORT.at" ] && break

@@ -206,6 +206,21 @@ impl PanelCtx<'_> {
     }
 }
 
+/// The last 120 figures of a kind, for their maximum.
+#[derive(Debug, Default)]
+struct Recent(std::collections::VecDeque<f64>);
+
+impl Recent {
+    /// Adds `ms` (dropping the oldest past 120) and returns the largest kept.
+    fn push(&mut self, ms: f64) -> f64 {
+        self.0.push_back(ms);
+        while self.0.len() > 120 {
+            self.0.pop_front();
+        }
+        self.0.iter().copied().fold(0.0, f64::max)
+    }
+}
+
 /// CPU time of the model's systems in recent frames (for the Stats panel).
 #[derive(Resource, Debug, Default)]
 pub struct FrameTiming {
@@ -219,8 +234,8 @@ pub struct FrameTiming {
     pub ours_last_ms: f64,
     /// The largest of the last 120 such frames.
     pub ours_max_ms: f64,
-    recent: std::collections::VecDeque<f64>,
-    recent_frames: std::collections::VecDeque<f64>,
+    recent: Recent,
+    recent_frames: Recent,
     seen: u64,
     seen_frame: u64,
 }
@@ -296,11 +311,7 @@ fn track_timing(
     t.seen = log.frame;
     let ms = stats.last.us_total() / 1000.0;
     t.last_ms = ms;
-    t.recent.push_back(ms);
-    while t.recent.len() > 120 {
-        t.recent.pop_front();
-    }
-    t.max_ms = t.recent.iter().copied().fold(0.0, f64::max);
+    t.max_ms = t.recent.push(ms);
 }
 
 /// At the end of a frame: the CPU time of all our systems (the model's and
@@ -316,11 +327,7 @@ fn track_frame(
     }
     t.seen_frame = log.frame;
     t.ours_last_ms = ms;
-    t.recent_frames.push_back(ms);
-    while t.recent_frames.len() > 120 {
-        t.recent_frames.pop_front();
-    }
-    t.ours_max_ms = t.recent_frames.iter().copied().fold(0.0, f64::max);
+    t.ours_max_ms = t.recent_frames.push(ms);
 }
 
 fn panel(
