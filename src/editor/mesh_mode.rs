@@ -148,12 +148,12 @@ pub fn streamline_mode(view: Res<MeshView>) -> bool {
     !view.active()
 }
 
-fn setup(
-    mut commands: Commands,
-    mut meshes: ResMut<Assets<Mesh>>,
-    mut materials: ResMut<Assets<StandardMaterial>>,
-    mut gizmos: ResMut<Assets<GizmoAsset>>,
-) {
+/// The surface's material (the entities themselves are spawned with the first
+/// mesh: empty meshes and gizmo assets upset the renderer's allocator).
+#[derive(Resource)]
+struct MeshModeMaterial(Handle<StandardMaterial>);
+
+fn setup(mut commands: Commands, mut materials: ResMut<Assets<StandardMaterial>>) {
     let material = materials.add(StandardMaterial {
         base_color: Color::srgb(0.86, 0.72, 0.55),
         perceptual_roughness: 0.5,
@@ -161,36 +161,7 @@ fn setup(
         cull_mode: None,
         ..default()
     });
-    commands.spawn((
-        MeshModeSurface,
-        Mesh3d(meshes.add(empty_mesh())),
-        MeshMaterial3d(material),
-        Transform::from_rotation(kernel_to_view()),
-        Visibility::Hidden,
-    ));
-    commands.spawn((
-        MeshModeWire,
-        Gizmo {
-            handle: gizmos.add(GizmoAsset::new()),
-            line_config: GizmoLineConfig {
-                width: 1.0,
-                ..default()
-            },
-            depth_bias: -0.002,
-        },
-        Transform::from_rotation(kernel_to_view()),
-        Visibility::Hidden,
-    ));
-}
-
-fn empty_mesh() -> Mesh {
-    Mesh::new(
-        PrimitiveTopology::TriangleList,
-        RenderAssetUsages::default(),
-    )
-    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, Vec::<[f32; 3]>::new())
-    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, Vec::<[f32; 3]>::new())
-    .with_inserted_indices(Indices::U32(Vec::new()))
+    commands.insert_resource(MeshModeMaterial(material));
 }
 
 /// Interpolates and subdivides when the mesh or a setting changed.
@@ -230,12 +201,12 @@ fn recompute(meter: Res<crate::ecs::meter::CpuMeter>, mut view: ResMut<MeshView>
     view.surface = Some(s);
 }
 
-/// The wireframe's entity.
-type WireQuery<'w, 's> = Single<
+/// The mesh mode's entities.
+type Shown<'w, 's> = Query<
     'w,
     's,
-    (&'static Gizmo, &'static mut Visibility),
-    (With<MeshModeWire>, Without<MeshModeSurface>),
+    (Entity, &'static mut Visibility, Has<MeshModeWire>),
+    Or<(With<MeshModeSurface>, With<MeshModeWire>)>,
 >;
 /// The streamline surface's entity (hidden while a mesh is open).
 type StreamlineSurface<'w, 's> = Query<
@@ -249,59 +220,82 @@ type StreamlineSurface<'w, 's> = Query<
     ),
 >;
 
-/// Mirrors the view state into the entities; hides the streamline surface while active.
+fn set_visible(v: &mut Visibility, on: bool) {
+    let want = if on {
+        Visibility::Inherited
+    } else {
+        Visibility::Hidden
+    };
+    if *v != want {
+        *v = want;
+    }
+}
+
+/// Mirrors the view state into entities (spawned anew when the surface
+/// changes); hides the streamline surface while a mesh is open.
 #[allow(clippy::too_many_arguments)]
 fn show(
     meter: Res<crate::ecs::meter::CpuMeter>,
+    mut commands: Commands,
     mut view: ResMut<MeshView>,
+    material: Res<MeshModeMaterial>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut gizmo_assets: ResMut<Assets<GizmoAsset>>,
     mut frame: ResMut<FrameRequest>,
-    surface: Single<(&Mesh3d, &mut Visibility), With<MeshModeSurface>>,
-    wire: WireQuery,
+    mut shown_entities: Shown,
     mut streamline: StreamlineSurface,
-    mut shown: Local<Option<(usize, u32, bool, u64)>>,
+    mut shown: Local<Option<(usize, u32, u64)>>,
 ) {
     let _meter = meter.start();
-    let (mesh3d, mut surf_vis) = surface.into_inner();
-    let (gizmo, mut wire_vis) = wire.into_inner();
     let active = view.active();
-    let set = |v: &mut Visibility, on: bool| {
-        let want = if on {
-            Visibility::Inherited
-        } else {
-            Visibility::Hidden
-        };
-        if *v != want {
-            *v = want;
-        }
-    };
-    set(&mut surf_vis, active);
-    set(&mut wire_vis, active && view.show_given);
     for mut v in &mut streamline {
-        set(&mut v, !active);
+        set_visible(&mut v, !active);
     }
-
-    let Some(s) = &view.surface else {
-        *shown = None;
-        return;
-    };
-    // rebuild the GPU meshes only when the surface itself changed
-    let key = (
-        s.positions.len(),
-        view.depth,
-        view.show_given,
-        view.report.map_or(0, |r| r.max_error.to_bits()),
-    );
-    if *shown != Some(key) {
-        *shown = Some(key);
-        if let Some(mut m) = meshes.get_mut(&mesh3d.0) {
-            *m = surface_mesh(s);
+    let key = view.surface.as_ref().map(|s| {
+        (
+            s.positions.len(),
+            view.depth,
+            view.report.map_or(0, |r| r.max_error.to_bits()),
+        )
+    });
+    if !active || key != *shown {
+        // the surface changed (or the mesh closed): replace the entities
+        for (e, ..) in &shown_entities {
+            commands.entity(e).despawn();
         }
-        if let (Some(mut g), Some((given, topo))) =
-            (gizmo_assets.get_mut(&gizmo.handle), &view.given)
-        {
-            *g = wireframe(given, topo);
+        *shown = None;
+        if let (true, Some(s), Some((given, topo))) = (active, &view.surface, &view.given) {
+            commands.spawn((
+                MeshModeSurface,
+                Mesh3d(meshes.add(surface_mesh(s))),
+                MeshMaterial3d(material.0.clone()),
+                Transform::from_rotation(kernel_to_view()),
+            ));
+            commands.spawn((
+                MeshModeWire,
+                Gizmo {
+                    handle: gizmo_assets.add(wireframe(given, topo)),
+                    line_config: GizmoLineConfig {
+                        width: 1.0,
+                        ..default()
+                    },
+                    depth_bias: -0.002,
+                },
+                Transform::from_rotation(kernel_to_view()),
+                if view.show_given {
+                    Visibility::Inherited
+                } else {
+                    Visibility::Hidden
+                },
+            ));
+            *shown = key;
+        }
+    } else {
+        // only the wireframe toggles; the surface is always shown
+        for (_, mut v, wire) in &mut shown_entities {
+            if wire {
+                set_visible(&mut v, view.show_given);
+            }
         }
     }
     if view.frame {
