@@ -60,6 +60,23 @@ pub fn save(scene: &Scene, path: &Path) -> Result<(), SceneError> {
     })
 }
 
+/// Writes `bytes`; with `STREAMLINE_STUDIO_SLOW_SAVE=MS` set (a test hook),
+/// in 64 KiB pieces with a pause of MS milliseconds after each, so that a
+/// test killing the process lands inside the write.
+fn write_slowly_if_asked(f: &mut fs::File, bytes: &[u8]) -> std::io::Result<()> {
+    let pause = std::env::var("STREAMLINE_STUDIO_SLOW_SAVE")
+        .ok()
+        .and_then(|v| v.parse::<u64>().ok());
+    let Some(ms) = pause else {
+        return f.write_all(bytes);
+    };
+    for piece in bytes.chunks(64 << 10) {
+        f.write_all(piece)?;
+        std::thread::sleep(std::time::Duration::from_millis(ms));
+    }
+    Ok(())
+}
+
 /// Writes `bytes` to `path` through a verified temporary file and a rename.
 pub fn write_atomic(
     path: &Path,
@@ -85,7 +102,7 @@ pub fn write_atomic(
     {
         let mut f =
             fs::File::create(&tmp).map_err(|e| fail("cannot create a temporary file", e))?;
-        f.write_all(bytes).map_err(|e| fail("cannot write", e))?;
+        write_slowly_if_asked(&mut f, bytes).map_err(|e| fail("cannot write", e))?;
         f.sync_all().map_err(|e| fail("cannot flush to disk", e))?;
     }
     let back = fs::read(&tmp).map_err(|e| fail("cannot read back", e))?;
