@@ -118,13 +118,32 @@ fn resolve(dir: &Path, p: &str) -> PathBuf {
     dir.join(p)
 }
 
-/// An output path of a script, its folder created (scripts write next to themselves).
-fn output(dir: &Path, p: &str) -> PathBuf {
+/// An output path of a script, its folder created. Scripts are data: they
+/// write only inside their own folder (a relative path that never climbs
+/// above it), so a script cannot overwrite files elsewhere.
+fn output(dir: &Path, p: &str) -> Result<PathBuf, String> {
+    use std::path::Component;
+    let rel = Path::new(p);
+    let mut depth = 0i32;
+    for c in rel.components() {
+        match c {
+            Component::Normal(_) => depth += 1,
+            Component::CurDir => {}
+            Component::ParentDir => depth -= 1,
+            Component::RootDir | Component::Prefix(_) => depth = -1,
+        }
+        if depth < 0 {
+            return Err(format!(
+                "`{p}` would write outside the script's folder ({}); scripts write only there: give a relative path such as \"out/scene.ron\"",
+                dir.display()
+            ));
+        }
+    }
     let path = resolve(dir, p);
     if let Some(parent) = path.parent() {
         let _ = std::fs::create_dir_all(parent);
     }
-    path
+    Ok(path)
 }
 
 fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
@@ -134,8 +153,8 @@ fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
             Some(name) => Edit::Replace(Box::new(builtin::scene(name).map_err(|e| e.to_string())?)),
             None => Edit::Load(resolve(dir, p)),
         },
-        Step::Save(p) => Edit::Save(output(dir, p)),
-        Step::Export(p) => Edit::Export(output(dir, p)),
+        Step::Save(p) => Edit::Save(output(dir, p)?),
+        Step::Export(p) => Edit::Export(output(dir, p)?),
         Step::SetDirection { row, col, dir } => Edit::SetDirection {
             row: *row,
             col: *col,
