@@ -2,7 +2,10 @@
 //! rebuild from scratch; single edits stay local; multiresolution details;
 //! bounded undo.
 
+mod common;
+
 use bevy::prelude::*;
+use common::{max_diff, points, scene};
 use proptest::prelude::*;
 use streamline_kernel::incremental::{place_row, reference_levels};
 use streamline_kernel::multires;
@@ -46,14 +49,6 @@ fn design(rows: usize, cols: usize, scheme: SurfaceScheme, order: BlendOrder, se
     .unwrap()
 }
 
-fn points(app: &App) -> Grid<DVec3> {
-    app.world().resource::<SurfaceData>().points.clone()
-}
-
-fn scene(app: &App) -> Scene {
-    app.world().resource::<ecs::Model>().scene.clone()
-}
-
 /// The surface of `scene` from scratch, by the kernel's plain path.
 fn reference_points(scene: &Scene) -> Grid<DVec3> {
     let levels = reference_levels(&scene.design, &scene.details, scene.display_depth).unwrap();
@@ -65,19 +60,6 @@ fn reference_points(scene: &Scene) -> Grid<DVec3> {
         data.extend_from_slice(&buf);
     }
     Grid::new(l.tangents.rows(), l.tangents.cols() + 1, data).unwrap()
-}
-
-fn max_diff(a: &Grid<DVec3>, b: &Grid<DVec3>) -> f64 {
-    assert_eq!(
-        (a.rows(), a.cols()),
-        (b.rows(), b.cols()),
-        "grid shapes differ"
-    );
-    a.data()
-        .iter()
-        .zip(b.data())
-        .map(|(x, y)| (*x - *y).length())
-        .fold(0.0, f64::max)
 }
 
 #[derive(Debug, Clone)]
@@ -498,120 +480,4 @@ fn bad_edits_are_refused() {
         );
     }
     assert_eq!(app.world().resource::<ecs::History>().undo_len(), 0);
-}
-
-/// Fine tuning (SPEC §6) through the ECS: an edit of one control value
-/// re-blends nothing and re-integrates only the streamlines inside that
-/// value's support across the rows; the result equals a fresh build of the
-/// same scene, and undo gives back the exact surface.
-#[test]
-fn tuning_edit_is_local_and_equals_a_fresh_build() {
-    use streamline_kernel::bspline::TensorBSpline;
-    use streamline_kernel::finetune::{Constraint, SurfaceTuning};
-    let mut s = Scene::from_design("car", presets::car1(), 3);
-    s.tuning = Some(SurfaceTuning {
-        function: TensorBSpline::new(2, 2, Grid::filled(6, 4, 1.0)).unwrap(),
-        constraint: Constraint::Free,
-    });
-    let mut app = ecs::headless_app(s);
-    let before = points(&app);
-    ecs::apply(
-        &mut app,
-        Edit::SetTuningValue {
-            row: 0,
-            col: 1,
-            value: 1.7,
-        },
-    )
-    .unwrap();
-    let stats = app.world().resource::<Stats>().last.clone();
-    let rows = before.rows();
-    // M_0 of a quadratic with 6 values lives on the first of 4 spans: a quarter of the rows
-    assert_eq!(stats.tangents_reblended, 0, "fine tuning re-blends nothing");
-    assert!(
-        stats.streamlines_reintegrated <= rows / 4 + 1 && stats.streamlines_reintegrated > 0,
-        "re-integrated {} of {rows} streamlines",
-        stats.streamlines_reintegrated
-    );
-    let after = points(&app);
-    assert!(
-        max_diff(&before, &after) > 1e-3,
-        "the value changed the surface"
-    );
-    let fresh = ecs::headless_app(scene(&app));
-    assert!(
-        max_diff(&points(&fresh), &after) < 1e-12,
-        "incremental fine tuning equals a fresh build"
-    );
-    ecs::apply(&mut app, Edit::SetTuningConstraint(Constraint::KeepEnds)).unwrap();
-    let kept = points(&app);
-    let last = kept.cols() - 1;
-    for r in 0..rows {
-        for c in [0, last] {
-            let d = (kept.get(r, c) - before.get(r, c)).length();
-            assert!(d < 1e-10, "end ({r}, {c}) moved by {d:e} under keep-ends");
-        }
-    }
-    ecs::apply(&mut app, Edit::Undo).unwrap();
-    ecs::apply(&mut app, Edit::Undo).unwrap();
-    assert_eq!(
-        max_diff(&points(&app), &before),
-        0.0,
-        "undo restores exactly"
-    );
-}
-
-/// SPEC §7, last bullet: with "interpolate control tangents" the level-0 net
-/// the ECS subdivides has limit tangents (Catmull–Clark and Doo–Sabin, both
-/// blend orders) equal to the designer's interior control tangents within
-/// 1e-9 rad; the border is kept; the option survives save → load.
-#[test]
-fn interpolated_control_tangents_are_reached_at_the_limit() {
-    use streamline_kernel::sphere_pi::limit_tangent;
-    use streamline_studio::ecs::components::{LevelData, SubdivisionLevel};
-    for scheme in [SurfaceScheme::CatmullClark, SurfaceScheme::DooSabin] {
-        for order in [BlendOrder::SFirst, BlendOrder::TFirst] {
-            let mut d = presets::car1();
-            d.scheme = scheme;
-            d.order = order;
-            let mut s = Scene::from_design("car", d, 2);
-            s.interpolate_tangents = true;
-            let mut app = ecs::headless_app(s.clone());
-            let w = app.world_mut();
-            let mut q = w.query::<(&SubdivisionLevel, &LevelData)>();
-            let root = q
-                .iter(w)
-                .find(|(l, _)| l.0 == 0)
-                .map(|(_, d)| d.0.tangents.clone())
-                .unwrap();
-            let design = &s.design.net;
-            let mut moved = 0.0f64;
-            for r in 0..design.rows() {
-                for c in 0..design.cols() {
-                    match limit_tangent(scheme, order, &root, r, c) {
-                        Some(l) => {
-                            let a = l.cross(design.get(r, c)).length();
-                            assert!(a < 1e-9, "{scheme:?} {order:?} ({r},{c}): {a:e}");
-                            moved = moved.max((root.get(r, c) - design.get(r, c)).length());
-                        }
-                        None => assert_eq!(root.get(r, c), design.get(r, c), "border kept"),
-                    }
-                }
-            }
-            assert!(
-                moved > 1e-3,
-                "the interior control tangents moved ({moved})"
-            );
-            let dir = std::env::temp_dir().join(format!("streamline-pi-{}", std::process::id()));
-            std::fs::create_dir_all(&dir).unwrap();
-            let path = dir.join("s.ron");
-            streamline_studio::scene::io::save(&s, &path).unwrap();
-            assert!(
-                streamline_studio::scene::io::load(&path)
-                    .unwrap()
-                    .interpolate_tangents
-            );
-            let _ = std::fs::remove_dir_all(&dir);
-        }
-    }
 }

@@ -102,7 +102,7 @@ pub fn fine_tune_closed(
             .map(|i| (d[(i + n - 1) % n] + d[i] * 4.0 + d[(i + 1) % n]) / 6.0)
             .collect();
         let rows: Vec<Vec<f64>> = (0..3).map(|ax| w.iter().map(|v| v[ax]).collect()).collect();
-        a = nearest_meeting(&a, &rows, &[0.0; 3]);
+        a = nearest_meeting(&a, &rows, &vec![0.0; n]);
     }
     let mut q0 = (points[0] + points[1]) * 0.5;
     let mut segments = Vec::with_capacity(n);

@@ -30,22 +30,42 @@ impl Constraint {
     }
 }
 
-/// Relative size below which an eigenvalue of `A Aᵀ` counts as zero.
+/// Relative size below which an eigenvalue of `A Aᵀ` (rows of unit length)
+/// counts as zero: singular values below 1e-6 of the largest are directions
+/// the constraint cannot move.
 pub const RANK_TOLERANCE: f64 = 1e-12;
 
-/// The `c` nearest to `user` (least squares) with `rows · c = b`, each row
-/// of `rows` having `user.len()` entries. When `b` is out of reach the
-/// residual is as small as it can be.
-pub fn nearest_meeting(user: &[f64], rows: &[Vec<f64>], b: &[f64]) -> Vec<f64> {
-    let k = rows.len();
-    let m = user.len();
-    debug_assert!(rows.iter().all(|r| r.len() == m) && b.len() == k);
-    // residual r = A c_u − b, normal matrix M = A Aᵀ
-    let r: Vec<f64> = rows
+/// The `c` nearest to `user` (least squares) with `rows · c = rows · reference`:
+/// the constrained quantities keep the values a known `reference` gives them
+/// (all ones, the identity function, for end points; zeros for a closed
+/// curve's chord). Rows are scaled to unit length first (the same set of
+/// solutions, but a short segment's equations are no longer mistaken for a
+/// rank deficiency); the residual is computed from `user − reference`, so the
+/// reference itself comes back unchanged, bit for bit. When the constraint
+/// cannot be met (a direction `A` cannot move), the change is the
+/// least-squares one.
+pub fn nearest_meeting(user: &[f64], rows: &[Vec<f64>], reference: &[f64]) -> Vec<f64> {
+    let scaled: Vec<Vec<f64>> = rows
         .iter()
-        .zip(b)
-        .map(|(row, bi)| dot(row, user) - bi)
+        .filter_map(|row| {
+            let n = dot(row, row).sqrt();
+            (n > 0.0 && n.is_finite()).then(|| row.iter().map(|x| x / n).collect())
+        })
         .collect();
+    // one projection and one step of iterative refinement
+    let c = project(user, &scaled, reference);
+    project(&c, &scaled, reference)
+}
+
+/// One projection of `user` onto `rows · c = rows · reference`.
+fn project(user: &[f64], rows: &[Vec<f64>], reference: &[f64]) -> Vec<f64> {
+    let k = rows.len();
+    let d: Vec<f64> = user.iter().zip(reference).map(|(u, r)| u - r).collect();
+    if k == 0 || d.iter().all(|&x| x == 0.0) {
+        return user.to_vec();
+    }
+    // residual r = A (c_u − c_ref), normal matrix M = A Aᵀ
+    let r: Vec<f64> = rows.iter().map(|row| dot(row, &d)).collect();
     let mut mat = vec![vec![0.0; k]; k];
     for i in 0..k {
         for j in 0..=i {
@@ -137,9 +157,11 @@ mod tests {
             vec![1.0, 2.0, 0.5, -1.0, 0.3],
             vec![0.0, 1.0, 1.0, 1.0, 2.0],
         ];
-        let b = vec![2.0, -1.0];
+        // a reference meeting the constraint: b = A · reference
+        let reference = vec![0.5, -0.2, 1.0, 2.0, 0.1];
+        let b: Vec<f64> = rows.iter().map(|r| dot(r, &reference)).collect();
         let user = vec![1.0, 1.0, 1.0, 1.0, 1.0];
-        let c = nearest_meeting(&user, &rows, &b);
+        let c = nearest_meeting(&user, &rows, &reference);
         for (row, bi) in rows.iter().zip(&b) {
             assert!(
                 (dot(row, &c) - bi).abs() < 1e-12,
@@ -151,7 +173,7 @@ mod tests {
         for e in 0..5 {
             let mut unit = vec![0.0; 5];
             unit[e] = 1.0;
-            let null = nearest_meeting(&unit, &rows, &[0.0, 0.0]); // unit projected on ker A
+            let null = nearest_meeting(&unit, &rows, &[0.0; 5]); // unit projected on ker A
             let d: f64 = c
                 .iter()
                 .zip(&user)
@@ -172,7 +194,7 @@ mod tests {
         ];
         let one = vec![1.0; 3];
         let b: Vec<f64> = rows.iter().map(|r| dot(r, &one)).collect();
-        let c = nearest_meeting(&[2.0, 0.5, 1.0], &rows, &b);
+        let c = nearest_meeting(&[2.0, 0.5, 1.0], &rows, &one);
         assert!(c.iter().all(|v| v.is_finite()));
         for (row, bi) in rows.iter().zip(&b) {
             assert!((dot(row, &c) - bi).abs() < 1e-12);

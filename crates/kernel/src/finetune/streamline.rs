@@ -118,12 +118,9 @@ pub fn fine_tune_into(
     let mut alpha = alpha.clone();
     if constraint != Constraint::Free {
         let rows = constraint_rows(tangents, s, sigma, &alpha, constraint);
+        // the identity (all ones) gives the original ends
         let ones = vec![1.0; alpha.values().len()];
-        let b: Vec<f64> = rows
-            .iter()
-            .map(|r| r.iter().zip(&ones).map(|(a, o)| a * o).sum())
-            .collect();
-        let c = nearest_meeting(alpha.values(), &rows, &b);
+        let c = nearest_meeting(alpha.values(), &rows, &ones);
         alpha.set_values(&c);
     }
     let anti = alpha.antiderivative();

@@ -1,0 +1,31 @@
+//! Helpers shared by the ECS test files.
+#![allow(dead_code)]
+
+use bevy::prelude::*;
+use streamline_kernel::{DVec3, Grid};
+use streamline_studio::ecs::{self, SurfaceData};
+use streamline_studio::scene::Scene;
+
+/// The surface's streamline points.
+pub fn points(app: &App) -> Grid<DVec3> {
+    app.world().resource::<SurfaceData>().points.clone()
+}
+
+/// The model's scene.
+pub fn scene(app: &App) -> Scene {
+    app.world().resource::<ecs::Model>().scene.clone()
+}
+
+/// The largest distance between two grids of the same shape.
+pub fn max_diff(a: &Grid<DVec3>, b: &Grid<DVec3>) -> f64 {
+    assert_eq!(
+        (a.rows(), a.cols()),
+        (b.rows(), b.cols()),
+        "grid shapes differ"
+    );
+    a.data()
+        .iter()
+        .zip(b.data())
+        .map(|(x, y)| (*x - *y).length())
+        .fold(0.0, f64::max)
+}
