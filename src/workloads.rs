@@ -167,12 +167,7 @@ pub fn loop_rows() -> Vec<Workload> {
 /// `amount` × the mean edge length over 2 in each coordinate.
 pub fn rough_up(m: &mut streamline_kernel::trimesh::TriMesh, amount: f64) {
     let t = m.topology().expect("valid mesh");
-    let mean = t
-        .edges
-        .iter()
-        .map(|&([a, b], _)| (m.positions[a as usize] - m.positions[b as usize]).length())
-        .sum::<f64>()
-        / t.edges.len().max(1) as f64;
+    let mean = m.mean_edge_length(&t);
     let mut x: u64 = 88_172_645_463_325_252;
     let mut r = move || {
         x ^= x << 13;

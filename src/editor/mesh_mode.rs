@@ -328,13 +328,7 @@ fn wireframe(m: &TriMesh, topo: &Topology) -> GizmoAsset {
     let mut g = GizmoAsset::new();
     let edge = Color::srgb(0.15, 0.35, 0.9);
     let dot = Color::srgb(0.95, 0.2, 0.15);
-    let mean = topo
-        .edges
-        .iter()
-        .map(|&([a, b], _)| (m.positions[a as usize] - m.positions[b as usize]).length())
-        .sum::<f64>()
-        / topo.edges.len().max(1) as f64;
-    let r = (0.12 * mean) as f32;
+    let r = (0.12 * m.mean_edge_length(topo)) as f32;
     for &([a, b], _) in &topo.edges {
         g.line(
             m.positions[a as usize].as_vec3(),

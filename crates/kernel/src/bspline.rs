@@ -260,13 +260,6 @@ impl TensorBSpline {
         })
     }
 
-    /// The identity (all ones) of the given degrees and counts.
-    pub fn identity(degree_s: usize, degree_t: usize, count_s: usize, count_t: usize) -> Self {
-        TensorBSpline::new(degree_s, degree_t, Grid::filled(count_t, count_s, 1.0)).unwrap_or_else(
-            |_| TensorBSpline::new(2, 2, Grid::filled(3, 3, 1.0)).expect("3×3 quadratic is valid"),
-        )
-    }
-
     /// Degree along `s`.
     pub fn degree_s(&self) -> usize {
         self.along.degree

@@ -187,6 +187,16 @@ impl TriMesh {
         n
     }
 
+    /// The mean length of the edges of `topo` (this mesh's topology).
+    pub fn mean_edge_length(&self, topo: &Topology) -> f64 {
+        let p = &self.positions;
+        topo.edges
+            .iter()
+            .map(|&([a, b], _)| (p[a as usize] - p[b as usize]).length())
+            .sum::<f64>()
+            / topo.edges.len().max(1) as f64
+    }
+
     /// The bounding box `(min, max)`.
     pub fn bounds(&self) -> (DVec3, DVec3) {
         self.positions.iter().fold(
