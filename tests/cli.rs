@@ -106,7 +106,7 @@ fn cli_bad_input_exit_2_one_line() {
         (
             &["curve", "--scheme", "chaikin", "--depth", "30"],
             FIVE,
-            "over the cap",
+            "past the deepest level allowed (16)",
         ),
         (
             &["curve", "--scheme", "qi", "--order", "9"],
@@ -140,6 +140,11 @@ fn cli_bad_input_exit_2_one_line() {
         ),
         (&["curve", "--scheme", "nope"], "[]", "invalid value"),
     ];
+    // 100 tangents refined 16 times: 6.5 million, over the 4 million cap
+    let hundred = format!("[{}]", vec!["[1,0,0],[0,1,0]"; 50].join(","));
+    let (code, _, err) = run(&["curve", "--scheme", "chaikin", "--depth", "16"], &hundred);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("over the cap of 4000000"), "{err}");
     for (args, input, needle) in cases {
         let (code, out, err) = run(args, input);
         assert_eq!(code, 2, "{args:?} {input}: exit code, stderr {err}");

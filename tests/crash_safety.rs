@@ -95,3 +95,110 @@ fn leftover_temp_files_are_only_of_killed_saves(dir: &Path) {
         );
     }
 }
+
+/// The autosave's writer (`write_recovery`: the recovery scene and its note of
+/// where the scene came from), run by the test below in a child process.
+/// Does nothing unless that test started it.
+#[test]
+#[ignore = "a helper: started by autosave_survives_sigkill"]
+fn autosave_writer_child() {
+    let Some(home) = std::env::var_os("STREAMLINE_AUTOSAVE_CHILD_HOME") else {
+        return;
+    };
+    use streamline_studio::ecs::Model;
+    use streamline_studio::editor::autosave::write_recovery;
+    use streamline_studio::editor::files::EditorDirs;
+    let dirs = EditorDirs { home: home.into() };
+    let (a, b) = two_large_scenes();
+    let mut models = [Model::new(a), Model::new(b)];
+    for m in &mut models {
+        m.path = Some(dirs.home.join("design.ron"));
+    }
+    for i in 0.. {
+        write_recovery(&dirs, &models[i % 2]).unwrap();
+    }
+}
+
+/// Two large scenes that differ in one tangent and their names.
+fn two_large_scenes() -> (Scene, Scene) {
+    let a = Scene::from_design("A", presets::wavy(120, 120), 0);
+    let mut b = a.clone();
+    b.name = "B".into();
+    b.design.net.set(
+        60,
+        60,
+        streamline_kernel::DVec3::new(0.3, 0.9, 0.2).normalize(),
+    );
+    (a, b)
+}
+
+/// Autosave, killed: the editor's recovery writer is killed with SIGKILL at
+/// pseudo-random moments; after each kill the recovery file is version A or
+/// B whole, the editor offers it, and recovering it gives that version.
+#[test]
+fn autosave_survives_sigkill() {
+    use streamline_studio::editor::autosave::pending_recovery;
+    use streamline_studio::editor::files::{Dialog, EditorDirs};
+    let home =
+        std::env::temp_dir().join(format!("streamline-autosave-kill-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&home);
+    std::fs::create_dir_all(&home).unwrap();
+    let dirs = EditorDirs { home: home.clone() };
+    let (a, b) = two_large_scenes();
+    let (want_a, want_b) = (a.to_file(), b.to_file());
+    let (mut seen_a, mut seen_b, mut killed) = (0, 0, 0);
+    let mut x: u64 = 0x2545_F491_4F6C_DD1D;
+    for round in 0..20 {
+        let mut child = Command::new(std::env::current_exe().unwrap())
+            .args([
+                "--exact",
+                "autosave_writer_child",
+                "--ignored",
+                "--test-threads=1",
+            ])
+            .env("STREAMLINE_AUTOSAVE_CHILD_HOME", &home)
+            .env("STREAMLINE_STUDIO_SLOW_SAVE", "2")
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        std::thread::sleep(Duration::from_millis(300 + x % 1200));
+        if child.try_wait().unwrap().is_none() {
+            killed += 1;
+        }
+        child.kill().unwrap();
+        child.wait().unwrap();
+        if !dirs.recovery_file().exists() {
+            continue; // killed before the first autosave landed
+        }
+        let back = io::load(&dirs.recovery_file()).unwrap_or_else(|e| {
+            panic!("round {round}: the recovery file is broken after SIGKILL: {e}")
+        });
+        let f = back.to_file();
+        if f == want_a {
+            seen_a += 1;
+        } else if f == want_b {
+            seen_b += 1;
+        } else {
+            panic!("round {round}: the recovery file is neither version");
+        }
+        match pending_recovery(&dirs, Some(&home.join("design.ron"))) {
+            Some(Dialog::Recover {
+                origin: Some(o), ..
+            }) => assert_eq!(o, home.join("design.ron"), "round {round}: the origin note"),
+            other => panic!("round {round}: recovery not offered whole: {other:?}"),
+        }
+    }
+    assert!(
+        killed >= 15,
+        "the kills landed while writing ({killed} of 20)"
+    );
+    assert!(
+        seen_a > 0 && seen_b > 0,
+        "both versions seen (A {seen_a}, B {seen_b})"
+    );
+    let _ = std::fs::remove_dir_all(&home);
+}

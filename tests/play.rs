@@ -114,3 +114,36 @@ fn play_exit_codes() {
     );
     let _ = std::fs::remove_file(&tmp);
 }
+
+/// Scripts write only inside their own folder, links resolved: a symbolic
+/// link inside the folder that leads elsewhere is refused, and nothing is
+/// written outside (issue 7, item 5).
+#[test]
+fn a_link_out_of_the_script_folder_is_refused() {
+    let base = std::env::temp_dir().join(format!("streamline-link-{}", std::process::id()));
+    let (dir, outside) = (base.join("scripts"), base.join("outside"));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::create_dir_all(&outside).unwrap();
+    std::os::unix::fs::symlink(&outside, dir.join("out")).unwrap();
+    std::os::unix::fs::symlink(outside.join("x.ron"), dir.join("file-link.ron")).unwrap();
+    let text = r#"(steps: [
+        Save("out/scene.ron"),
+        ExpectError("through a symbolic link"),
+        Save("file-link.ron"),
+        ExpectError("through a symbolic link"),
+        Export("inside/ok.obj"),
+    ])"#;
+    let script = Script::parse(text, Path::new("links.ron")).unwrap();
+    let report = playback::play(&script, &dir, builtin::default_scene());
+    assert!(report.passed(), "{}", report.lines.join("\n"));
+    assert_eq!(
+        std::fs::read_dir(&outside).unwrap().count(),
+        0,
+        "nothing was written outside"
+    );
+    assert!(
+        dir.join("inside/ok.obj").is_file(),
+        "a plain path inside works"
+    );
+    let _ = std::fs::remove_dir_all(&base);
+}

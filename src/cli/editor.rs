@@ -59,6 +59,9 @@ pub struct ScreenshotArgs {
     /// Open this triangle mesh (OBJ) in mesh mode: its interpolating Loop surface.
     #[arg(long)]
     mesh: Option<PathBuf>,
+    /// Start running this script (File ▸ Run script); the picture shows its progress.
+    #[arg(long)]
+    script: Option<PathBuf>,
 }
 
 /// `screenshot`.
@@ -112,6 +115,7 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
     let mut req = ScreenshotRequest::new(a.out.clone());
     req.panel = panel;
     req.mesh = a.mesh.clone();
+    req.script = a.script.clone();
     req.analysis = analysis;
     req.comb = a.comb;
     req.select = select;

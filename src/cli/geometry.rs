@@ -1,6 +1,6 @@
 //! `curve`, `surface` and `integrate`: the kernel over JSON.
 
-use super::input::{CliError, read_stdin, write_stdout};
+use super::input::{CliError, parse, read_stdin_text, write_stdout};
 use clap::{Args, ValueEnum};
 use serde::Deserialize;
 use streamline_kernel::curve::{self, CurveScheme, OMEGA_DEFAULT};
@@ -32,19 +32,19 @@ Example: echo '[[1,0,0],[0,1,0],[0,0,1]]' | streamline-studio curve --scheme fou
 pub struct CurveArgs {
     /// Subdivision scheme, or `qi` for the QI curve.
     #[arg(long)]
-    scheme: CurveName,
+    pub scheme: CurveName,
     /// Subdivision steps (subdivision schemes).
     #[arg(long, default_value_t = 1)]
-    depth: u32,
+    pub depth: u32,
     /// 4-point tension ω, 0 ≤ ω < 2(√5−1).
     #[arg(long, default_value_t = OMEGA_DEFAULT)]
-    omega: f64,
+    pub omega: f64,
     /// QI curve order k (degree k−1), 2 ≤ k ≤ number of tangents.
     #[arg(long, default_value_t = 4)]
-    order: usize,
+    pub order: usize,
     /// QI curve samples M ≥ 2.
     #[arg(long, default_value_t = 257)]
-    samples: usize,
+    pub samples: usize,
 }
 
 /// A surface scheme on the command line.
@@ -77,16 +77,16 @@ Example: echo '[[[1,0,0],[1,1,0]],[[1,0,1],[0,1,0]]]' | streamline-studio surfac
 pub struct SurfaceArgs {
     /// Surface scheme.
     #[arg(long)]
-    scheme: SurfaceName,
+    pub scheme: SurfaceName,
     /// Subdivision steps.
     #[arg(long, default_value_t = 1)]
-    depth: u32,
+    pub depth: u32,
     /// Which direction is blended first in each step.
     #[arg(long, default_value = "s-first")]
-    order: OrderName,
+    pub order: OrderName,
     /// Kobbelt tension ω, 0 ≤ ω < 2(√5−1).
     #[arg(long, default_value_t = OMEGA_DEFAULT)]
-    omega: f64,
+    pub omega: f64,
 }
 
 /// Arguments of `integrate`.
@@ -117,9 +117,9 @@ fn to_arrays(v: &[DVec3]) -> Vec<[f64; 3]> {
     v.iter().map(|p| p.to_array()).collect()
 }
 
-/// `curve`.
-pub fn curve(a: CurveArgs) -> Result<(), CliError> {
-    let input: Vec<[f64; 3]> = read_stdin()?;
+/// `curve` on JSON text: the output tangents.
+pub fn curve_json(a: &CurveArgs, text: &str) -> Result<Vec<[f64; 3]>, CliError> {
+    let input: Vec<[f64; 3]> = parse(text)?;
     let t = to_vecs(&input);
     let out = match a.scheme {
         CurveName::Qi => QiCurve::new(&t, a.order)?.sample(a.samples)?,
@@ -129,12 +129,12 @@ pub fn curve(a: CurveArgs) -> Result<(), CliError> {
             curve::subdivide(CurveScheme::FourPoint { omega: a.omega }, &t, a.depth)?
         }
     };
-    write_stdout(&to_arrays(&out))
+    Ok(to_arrays(&out))
 }
 
-/// `surface`.
-pub fn surface(a: SurfaceArgs) -> Result<(), CliError> {
-    let rows: Vec<Vec<[f64; 3]>> = read_stdin()?;
+/// `surface` on JSON text: the refined rows.
+pub fn surface_json(a: &SurfaceArgs, text: &str) -> Result<Vec<Vec<[f64; 3]>>, CliError> {
+    let rows: Vec<Vec<[f64; 3]>> = parse(text)?;
     let rows: Vec<Vec<DVec3>> = rows.iter().map(|r| to_vecs(r)).collect();
     let grid = Grid::from_rows(&rows)?;
     let scheme = match a.scheme {
@@ -147,18 +147,32 @@ pub fn surface(a: SurfaceArgs) -> Result<(), CliError> {
         OrderName::TFirst => BlendOrder::TFirst,
     };
     let out = surface::subdivide(scheme, order, &grid, a.depth)?;
-    let rows: Vec<Vec<[f64; 3]>> = (0..out.rows()).map(|r| to_arrays(out.row(r))).collect();
-    write_stdout(&rows)
+    Ok((0..out.rows()).map(|r| to_arrays(out.row(r))).collect())
 }
 
-/// `integrate`.
-pub fn integrate(_: IntegrateArgs) -> Result<(), CliError> {
-    let input: IntegrateInput = read_stdin()?;
+/// `integrate` on JSON text: the streamline's points.
+pub fn integrate_json(text: &str) -> Result<Vec<[f64; 3]>, CliError> {
+    let input: IntegrateInput = parse(text)?;
     let p = streamline(
         &to_vecs(&input.tangents),
         &input.s,
         input.anchor,
         DVec3::from_array(input.origin),
     )?;
-    write_stdout(&to_arrays(&p))
+    Ok(to_arrays(&p))
+}
+
+/// `curve`.
+pub fn curve(a: CurveArgs) -> Result<(), CliError> {
+    write_stdout(&curve_json(&a, &read_stdin_text()?)?)
+}
+
+/// `surface`.
+pub fn surface(a: SurfaceArgs) -> Result<(), CliError> {
+    write_stdout(&surface_json(&a, &read_stdin_text()?)?)
+}
+
+/// `integrate`.
+pub fn integrate(_: IntegrateArgs) -> Result<(), CliError> {
+    write_stdout(&integrate_json(&read_stdin_text()?)?)
 }

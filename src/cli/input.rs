@@ -63,11 +63,27 @@ impl From<std::io::Error> for CliError {
     }
 }
 
-/// Parses all of stdin as `T`.
-pub fn read_stdin<T: DeserializeOwned>() -> Result<T, CliError> {
-    let mut s = String::new();
-    std::io::stdin().read_to_string(&mut s)?;
-    parse(&s)
+/// The most bytes read from stdin (larger input is refused, not read into memory).
+pub const MAX_STDIN_BYTES: u64 = 256 << 20;
+
+/// All of stdin as text (at most [`MAX_STDIN_BYTES`]).
+pub fn read_stdin_text() -> Result<String, CliError> {
+    let mut bytes = Vec::new();
+    std::io::stdin()
+        .lock()
+        .take(MAX_STDIN_BYTES + 1)
+        .read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > MAX_STDIN_BYTES {
+        return Err(CliError::Usage(format!(
+            "stdin: the input is over {MAX_STDIN_BYTES} bytes; split it into smaller inputs"
+        )));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        CliError::Usage(format!(
+            "stdin: byte {} is not UTF-8 text; the input is JSON",
+            e.utf8_error().valid_up_to()
+        ))
+    })
 }
 
 /// Parses a JSON document as `T`.

@@ -5,7 +5,15 @@
 //! The kernel's helper threads count their own time with the same clock
 //! ([`streamline_kernel::parallel::helper_nanos`]).
 
+//!
+//! With `STREAMLINE_STUDIO_METER_DETAIL=1` the meter also keeps each
+//! system's share (keyed by where it started the meter), which the
+//! screenshot report lists: how the frame budget of issue 4 was found.
+
 use bevy::prelude::*;
+use std::collections::HashMap;
+use std::panic::Location;
+use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Nanoseconds of CPU spent in our systems since the last [`CpuMeter::take`].
@@ -13,6 +21,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 pub struct CpuMeter {
     ns: AtomicU64,
     helper_seen: AtomicU64,
+    /// Per call site (`file:line`), when asked for.
+    detail: Option<Mutex<HashMap<&'static Location<'static>, u64>>>,
 }
 
 /// The calling thread's CPU time in nanoseconds.
@@ -34,17 +44,38 @@ pub fn thread_cpu_ns() -> u64 {
 impl FromWorld for CpuMeter {
     fn from_world(_: &mut World) -> Self {
         streamline_kernel::parallel::set_helper_clock(thread_cpu_ns);
+        let detail = std::env::var_os("STREAMLINE_STUDIO_METER_DETAIL")
+            .is_some_and(|v| v == "1")
+            .then(|| Mutex::new(HashMap::new()));
         CpuMeter {
             ns: AtomicU64::new(0),
             helper_seen: AtomicU64::new(streamline_kernel::parallel::helper_nanos()),
+            detail,
         }
     }
 }
 
 impl CpuMeter {
     /// Counts the thread's CPU time until the guard is dropped.
+    #[track_caller]
     pub fn start(&self) -> MeterGuard<'_> {
-        MeterGuard(&self.ns, thread_cpu_ns())
+        let caller = Location::caller();
+        let at = self.detail.as_ref().map(|_| caller);
+        MeterGuard(self, thread_cpu_ns(), at)
+    }
+
+    /// Each call site's nanoseconds since the last call (empty unless
+    /// `STREAMLINE_STUDIO_METER_DETAIL=1`); starts again from 0.
+    pub fn take_detail(&self) -> Vec<(String, u64)> {
+        let Some(m) = &self.detail else {
+            return Vec::new();
+        };
+        let Ok(mut m) = m.lock() else {
+            return Vec::new();
+        };
+        m.drain()
+            .map(|(at, ns)| (format!("{}:{}", at.file(), at.line()), ns))
+            .collect()
     }
 
     /// Milliseconds counted since the last call (with the kernel's helper
@@ -58,11 +89,16 @@ impl CpuMeter {
 }
 
 /// Adds its thread's CPU time to the meter when dropped.
-pub struct MeterGuard<'a>(&'a AtomicU64, u64);
+pub struct MeterGuard<'a>(&'a CpuMeter, u64, Option<&'static Location<'static>>);
 
 impl Drop for MeterGuard<'_> {
     fn drop(&mut self) {
-        self.0
-            .fetch_add(thread_cpu_ns().saturating_sub(self.1), Ordering::Relaxed);
+        let d = thread_cpu_ns().saturating_sub(self.1);
+        self.0.ns.fetch_add(d, Ordering::Relaxed);
+        if let (Some(at), Some(m)) = (self.2, &self.0.detail)
+            && let Ok(mut m) = m.lock()
+        {
+            *m.entry(at).or_default() += d;
+        }
     }
 }

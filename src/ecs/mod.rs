@@ -14,6 +14,7 @@ pub mod meter;
 mod output;
 pub mod playback;
 pub mod resources;
+pub mod runner;
 
 use crate::scene::Scene;
 use bevy::prelude::*;

@@ -118,35 +118,15 @@ fn resolve(dir: &Path, p: &str) -> PathBuf {
     dir.join(p)
 }
 
-/// An output path of a script, its folder created. Scripts are data: they
-/// write only inside their own folder (a relative path that never climbs
-/// above it), so a script cannot overwrite files elsewhere.
+/// An output path of a script, its folder created: inside the script's
+/// folder, links resolved ([`crate::scene::script::output_path`], [`crate::scene::script::confine`]).
 fn output(dir: &Path, p: &str) -> Result<PathBuf, String> {
-    use std::path::Component;
-    let rel = Path::new(p);
-    let mut depth = 0i32;
-    for c in rel.components() {
-        match c {
-            Component::Normal(_) => depth += 1,
-            Component::CurDir => {}
-            Component::ParentDir => depth -= 1,
-            Component::RootDir | Component::Prefix(_) => depth = -1,
-        }
-        if depth < 0 {
-            return Err(format!(
-                "`{p}` would write outside the script's folder ({}); scripts write only there: give a relative path such as \"out/scene.ron\"",
-                dir.display()
-            ));
-        }
-    }
-    let path = resolve(dir, p);
-    if let Some(parent) = path.parent() {
-        let _ = std::fs::create_dir_all(parent);
-    }
+    let path = crate::scene::script::output_path(dir, p)?;
+    crate::scene::script::confine(dir, &path)?;
     Ok(path)
 }
 
-fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
+pub(crate) fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
     let v = |d: &Dir| d.vec();
     Ok(match step {
         Step::Load(p) => match p.strip_prefix("builtin:") {

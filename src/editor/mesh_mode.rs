@@ -9,14 +9,16 @@
 use super::camera::FrameRequest;
 use super::coords::kernel_to_view;
 use super::surface::SurfaceEntity;
+use crate::job::{Job, Poll, Progress};
 use crate::scene::obj;
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology};
 use bevy::prelude::*;
 use std::path::PathBuf;
+use std::sync::Arc;
 use std::time::Instant;
 use streamline_kernel::DVec3;
-use streamline_kernel::interpolate::{Method, Options, Report, interpolate};
+use streamline_kernel::interpolate::{Method, Options, Report, interpolate_observed};
 use streamline_kernel::loop_subdiv::subdivide;
 use streamline_kernel::trimesh::{Topology, TriMesh};
 
@@ -25,13 +27,31 @@ pub const MAX_DEPTH: u32 = 4;
 /// Surfaces are not subdivided past this many faces.
 const MAX_SHOWN_FACES: usize = 4_000_000;
 
+/// A mesh with its topology, shared with the worker threads.
+pub type Given = Arc<(TriMesh, Topology)>;
+
+/// What a mesh job hands back: the mesh (when it opened one) and the
+/// interpolation and subdivision of it.
+pub struct Computed {
+    /// The file and mesh opened, when the job opened one.
+    pub opened: Option<(PathBuf, Given)>,
+    /// The interpolating control mesh's positions.
+    pub control: Vec<DVec3>,
+    /// The subdivided control mesh.
+    pub surface: TriMesh,
+    /// What the interpolation did.
+    pub report: Report,
+    /// Seconds it took.
+    pub seconds: f64,
+}
+
 /// The mesh shown, the settings of its interpolation, and the outcome.
 #[derive(Resource)]
 pub struct MeshView {
     /// The file opened.
     pub path: Option<PathBuf>,
     /// The given mesh and its topology.
-    pub given: Option<(TriMesh, Topology)>,
+    pub given: Option<Given>,
     /// The interpolating control mesh's positions (same faces as the given mesh).
     pub control: Vec<DVec3>,
     /// The subdivided control mesh shown.
@@ -56,6 +76,8 @@ pub struct MeshView {
     pub dirty: bool,
     /// Frame the camera on the mesh in the next frame.
     pub frame: bool,
+    /// The reading or interpolation running off the frame, if any.
+    pub job: Option<Job<Result<Computed, String>>>,
 }
 
 impl Default for MeshView {
@@ -75,6 +97,7 @@ impl Default for MeshView {
             input: "tests/data/meshes/snail.obj".into(),
             dirty: false,
             frame: false,
+            job: None,
         }
     }
 }
@@ -85,22 +108,46 @@ impl MeshView {
         self.given.is_some()
     }
 
-    /// Opens an OBJ file; on failure the current state stays and the error is kept.
+    /// Whether a job is running.
+    pub fn busy(&self) -> bool {
+        self.job.is_some()
+    }
+
+    /// Opens an OBJ file off the frame: read, checked, interpolated and
+    /// subdivided on a worker thread; on failure or cancel the current state
+    /// stays and the error is kept.
     pub fn open(&mut self, path: PathBuf) {
-        match obj::read(&path) {
-            Ok(m) => {
-                self.given = Some(m);
-                self.path = Some(path);
-                self.error = None;
-                self.dirty = true;
-                self.frame = true;
-            }
-            Err(e) => self.error = Some(format!("{e} (nothing was opened)")),
+        self.cancel();
+        let (opts, depth) = (self.options(), self.depth);
+        let label = format!("opening {}", path.display());
+        self.job = Some(Job::spawn(&label, move |p| {
+            let given: Given = Arc::new(
+                obj::read_with(&path, p).map_err(|e| format!("{e} (nothing was opened)"))?,
+            );
+            let mut c = compute(&given, &opts, depth, p)?;
+            c.opened = Some((path, given));
+            Ok(c)
+        }));
+    }
+
+    /// Stops the running job (its result is dropped).
+    pub fn cancel(&mut self) {
+        if let Some(j) = self.job.take() {
+            j.cancel();
+        }
+    }
+
+    fn options(&self) -> Options {
+        Options {
+            tolerance: self.tolerance,
+            max_iterations: 10_000,
+            method: self.method,
         }
     }
 
     /// Leaves mesh mode.
     pub fn close(&mut self) {
+        self.cancel();
         self.given = None;
         self.surface = None;
         self.report = None;
@@ -111,10 +158,10 @@ impl MeshView {
     /// Writes the shown surface (`control == false`) or the control mesh as OBJ.
     pub fn export(&mut self, to: PathBuf, control: bool) {
         let result = match (&self.given, &self.surface) {
-            (Some((m, _)), _) if control => obj::write(
+            (Some(g), _) if control => obj::write(
                 &to,
                 &self.control,
-                &m.faces,
+                &g.0.faces,
                 "control mesh of an interpolating Loop surface",
             ),
             (_, Some(s)) => obj::write(&to, &s.positions, &s.faces, "Loop surface"),
@@ -125,6 +172,49 @@ impl MeshView {
         };
         self.error = result.err().map(|e| e.to_string());
     }
+}
+
+/// Interpolates `given` and subdivides the control mesh `depth` times,
+/// reporting to `p` and stopping when it is cancelled.
+fn compute(given: &Given, opts: &Options, depth: u32, p: &Progress) -> Result<Computed, String> {
+    let (mesh, topo) = (&given.0, &given.1);
+    let cancelled = || Err("cancelled; the mesh shown is unchanged".to_string());
+    p.stage("interpolating", opts.max_iterations as u64);
+    let t0 = Instant::now();
+    let (control, report) = interpolate_observed(mesh, topo, opts, &|k| {
+        p.set(k as u64);
+        !p.cancelled()
+    });
+    if p.cancelled() {
+        return cancelled();
+    }
+    let seconds = t0.elapsed().as_secs_f64();
+    p.stage("subdividing", u64::from(depth));
+    let mut s = TriMesh {
+        positions: control.clone(),
+        faces: mesh.faces.clone(),
+    };
+    for level in 0..depth {
+        if s.faces.len() * 4 > MAX_SHOWN_FACES {
+            break;
+        }
+        let Ok(t) = s.topology() else { break };
+        match subdivide(&s, &t) {
+            Ok(next) => s = next,
+            Err(_) => break,
+        }
+        p.set(u64::from(level) + 1);
+        if p.cancelled() {
+            return cancelled();
+        }
+    }
+    Ok(Computed {
+        opened: None,
+        control,
+        surface: s,
+        report,
+        seconds,
+    })
 }
 
 /// Marks the mesh mode's entities.
@@ -164,41 +254,44 @@ fn setup(mut commands: Commands, mut materials: ResMut<Assets<StandardMaterial>>
     commands.insert_resource(MeshModeMaterial(material));
 }
 
-/// Interpolates and subdivides when the mesh or a setting changed.
+/// Starts a job when a setting changed, and takes a finished job's result.
 fn recompute(meter: Res<crate::ecs::meter::CpuMeter>, mut view: ResMut<MeshView>) {
     let _meter = meter.start();
-    if !view.dirty {
-        return;
-    }
-    view.dirty = false;
-    let Some((mesh, topo)) = view.given.clone() else {
-        return;
-    };
-    let opts = Options {
-        tolerance: view.tolerance,
-        max_iterations: 10_000,
-        method: view.method,
-    };
-    let t0 = Instant::now();
-    let (control, report) = interpolate(&mesh, &topo, &opts);
-    view.seconds = t0.elapsed().as_secs_f64();
-    let mut s = TriMesh {
-        positions: control.clone(),
-        faces: mesh.faces.clone(),
-    };
-    for _ in 0..view.depth {
-        if s.faces.len() * 4 > MAX_SHOWN_FACES {
-            break;
-        }
-        let Ok(t) = s.topology() else { break };
-        match subdivide(&s, &t) {
-            Ok(next) => s = next,
-            Err(_) => break,
+    if view.dirty {
+        view.dirty = false;
+        if let Some(given) = view.given.clone() {
+            // a newer setting replaces a running interpolation
+            view.cancel();
+            let (opts, depth) = (view.options(), view.depth);
+            view.job = Some(Job::spawn("interpolating", move |p| {
+                compute(&given, &opts, depth, p)
+            }));
         }
     }
-    view.control = control;
-    view.report = Some(report);
-    view.surface = Some(s);
+    let Some(job) = &view.job else {
+        return;
+    };
+    let result = match job.poll() {
+        Poll::Running => return,
+        Poll::Done(r) => r,
+        Poll::Lost => Err("the worker stopped without a result (a bug; please report it)".into()),
+    };
+    view.job = None;
+    match result {
+        Ok(c) => {
+            if let Some((path, given)) = c.opened {
+                view.path = Some(path);
+                view.given = Some(given);
+                view.frame = true;
+            }
+            view.error = None;
+            view.control = c.control;
+            view.report = Some(c.report);
+            view.seconds = c.seconds;
+            view.surface = Some(c.surface);
+        }
+        Err(e) => view.error = Some(e),
+    }
 }
 
 /// The mesh mode's entities.
@@ -264,7 +357,8 @@ fn show(
             commands.entity(e).despawn();
         }
         *shown = None;
-        if let (true, Some(s), Some((given, topo))) = (active, &view.surface, &view.given) {
+        if let (true, Some(s), Some(g)) = (active, &view.surface, &view.given) {
+            let (given, topo) = (&g.0, &g.1);
             commands.spawn((
                 MeshModeSurface,
                 Mesh3d(meshes.add(surface_mesh(s))),
@@ -300,8 +394,8 @@ fn show(
     }
     if view.frame {
         view.frame = false;
-        if let Some((m, _)) = &view.given {
-            let (lo, hi) = m.bounds();
+        if let Some(g) = &view.given {
+            let (lo, hi) = g.0.bounds();
             frame.0 = Some(((lo + hi) * 0.5, 0.6 * (hi - lo).max_element()));
         }
     }

@@ -4,10 +4,10 @@
 //! top-level [`EditorPlugin`] only composes one plugin per feature.
 
 mod analysis;
-mod autosave;
+pub mod autosave;
 mod camera;
 mod coords;
-mod files;
+pub mod files;
 mod handles;
 pub mod mesh_mode;
 mod overlay;
@@ -128,6 +128,7 @@ pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
     .add_plugins(bevy_egui::EguiPlugin::default())
     .insert_resource(ClearColor(Color::srgb(0.16, 0.17, 0.19)))
     .add_plugins(ModelPlugin::new(opts.scene))
+    .add_plugins(crate::ecs::runner::ScriptRunPlugin)
     .insert_resource(opts.dirs)
     .add_plugins(EditorPlugin);
     app.world_mut().resource_mut::<Model>().path = opts.path;

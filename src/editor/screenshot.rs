@@ -39,6 +39,8 @@ pub struct ScreenshotRequest {
     pub wait_for: Option<PathBuf>,
     /// Open this OBJ in mesh mode.
     pub mesh: Option<PathBuf>,
+    /// Start running this script (the picture does not wait for it).
+    pub script: Option<PathBuf>,
 }
 
 impl ScreenshotRequest {
@@ -57,6 +59,7 @@ impl ScreenshotRequest {
             report: None,
             wait_for: std::env::var_os("STREAMLINE_STUDIO_SHOT_WAIT").map(PathBuf::from),
             mesh: None,
+            script: None,
         }
     }
 }
@@ -89,7 +92,12 @@ fn set_up_view(
     mut ui: ResMut<UiState>,
     mut analysis: ResMut<AnalysisSettings>,
     mut selection: ResMut<Selection>,
+    mut script: ResMut<crate::ecs::runner::ScriptRun>,
 ) {
+    if let Some(path) = &req.script {
+        script.input = path.display().to_string();
+        script.start(path.clone());
+    }
     if let Some(p) = req.panel {
         ui.open = vec![p];
         ui.force = true;
@@ -123,6 +131,9 @@ struct Report {
     ours_ms: (f64, f64),
     /// Display depth.
     depth: u32,
+    /// Per system over frames with an edit: total ms, largest ms, frames
+    /// (`STREAMLINE_STUDIO_METER_DETAIL=1`).
+    detail: Vec<(String, f64, f64, u32)>,
 }
 
 fn write_report(path: &std::path::Path, r: &Report) {
@@ -183,13 +194,13 @@ fn drive(
     arrows: Res<HandleArrows>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
     sphere: Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
+    mesh: Res<super::mesh_mode::MeshView>,
 ) {
     p.frame += 1;
-    // GUI tests: hold the capture until their script says it is done
-    let waiting = req
-        .wait_for
-        .as_ref()
-        .is_some_and(|f| !f.exists() && p.frame < 20_000);
+    // GUI tests: hold the capture until their script says it is done, and
+    // until work off the frame (opening a mesh) has finished
+    let waiting =
+        (req.wait_for.as_ref().is_some_and(|f| !f.exists()) || mesh.busy()) && p.frame < 20_000;
     if waiting {
         p.held += 1;
     }
@@ -231,6 +242,11 @@ fn drive(
                     model_ms: (timing.last_ms, timing.max_ms),
                     ours_ms: (timing.ours_last_ms, timing.ours_max_ms),
                     depth: model.scene.display_depth,
+                    detail: timing
+                        .detail
+                        .iter()
+                        .map(|(k, v)| (k.clone(), v.0, v.1, v.2))
+                        .collect(),
                 },
             );
         }

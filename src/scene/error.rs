@@ -42,7 +42,11 @@ impl SceneError {
         let last_line = trimmed.lines().count().max(1);
         let last_col = trimmed.lines().last().map_or(0, |l| l.chars().count());
         let at_end = line > last_line || (line == last_line && col >= last_col);
-        if at_end && !matches!(e.code, ron::Error::Eof) {
+        let about_content = matches!(
+            e.code,
+            ron::Error::Eof | ron::Error::MissingStructField { .. }
+        );
+        if at_end && !about_content {
             msg = format!(
                 "the file ends too early ({msg}); it looks truncated — check that every bracket is closed"
             );
@@ -89,7 +93,9 @@ fn explain(code: &ron::Error) -> String {
             expected.join(", ")
         ),
         E::MissingStructField { field, .. } => {
-            format!("missing field `{field}`; add it (see scenes/car1.ron for an example)")
+            format!(
+                "the record that ends here has no field `{field}`; add it (see scenes/car1.ron for an example)"
+            )
         }
         E::NoSuchEnumVariant {
             expected, found, ..

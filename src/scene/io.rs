@@ -24,6 +24,12 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
 pub fn read_text(path: &Path, cap: u64) -> Result<String, SceneError> {
     let meta = fs::metadata(path)
         .map_err(|e| SceneError::file(path, format!("cannot open: {e}; check the path")))?;
+    if meta.is_dir() {
+        return Err(SceneError::file(
+            path,
+            "is a folder, not a file; give the path of a file",
+        ));
+    }
     if meta.len() > cap {
         return Err(SceneError::file(
             path,
@@ -35,12 +41,23 @@ pub fn read_text(path: &Path, cap: u64) -> Result<String, SceneError> {
     }
     let bytes = fs::read(path)
         .map_err(|e| SceneError::file(path, format!("cannot read: {e}; check the permissions")))?;
+    utf8(path, bytes, "scene and script files are RON text")
+}
+
+/// `bytes` as text, or an error at the line and column of the first byte
+/// that is not UTF-8; `kind` says what the file should be.
+pub fn utf8(path: &Path, bytes: Vec<u8>, kind: &str) -> Result<String, SceneError> {
     String::from_utf8(bytes).map_err(|e| {
-        SceneError::file(
+        let good = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let line = good.iter().filter(|&&b| b == b'\n').count() + 1;
+        let start = good.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+        let col = String::from_utf8_lossy(&good[start..]).chars().count() + 1;
+        SceneError::at(
             path,
+            line,
+            col,
             format!(
-                "byte {} is not UTF-8 text; scene files are RON text",
-                e.utf8_error().valid_up_to()
+                "this byte is not UTF-8 text ({kind}); save the file as UTF-8 or check it is the right file"
             ),
         )
     })

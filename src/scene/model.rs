@@ -308,7 +308,7 @@ impl Scene {
         let initial = f
             .initial
             .to_kernel()
-            .map_err(|e| at("initial", format!("initial curve: {e}")))?;
+            .map_err(|e| at("initial", e.to_string()))?;
         let net = Grid::new(
             rows,
             cols,
@@ -407,6 +407,14 @@ impl Scene {
 
     /// Parses RON text.
     pub fn parse(text: &str, file: &Path) -> Result<Self, SceneError> {
+        if text.trim().is_empty() {
+            return Err(SceneError::at(
+                file,
+                1,
+                1,
+                "the file is empty; a scene is a RON record `( version: 1, tangents: …, … )` — start from scenes/car1.ron",
+            ));
+        }
         let f: SceneFile = ron::Options::default()
             .from_str(text)
             .map_err(|e| SceneError::ron(file, text, &e))?;

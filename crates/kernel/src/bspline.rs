@@ -18,6 +18,11 @@ pub const MAX_DEGREE: usize = 5;
 /// The most control values accepted in one direction.
 pub const MAX_VALUES: usize = 64;
 
+/// The largest magnitude of a control value. `α` scales arc length, so a
+/// value of 1000 already stretches a streamline a thousandfold; larger
+/// values only overflow the integrated points to infinity (found by fuzzing).
+pub const MAX_VALUE_ABS: f64 = 1e3;
+
 /// A scalar B-spline function on `[0, 1]` (arguments outside are clamped).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BSpline {
@@ -44,6 +49,18 @@ fn check(degree: usize, values: &[f64], what: &'static str) -> Result<(), Kernel
                 "degree {degree} needs at least {} control values, got {}; add values or lower the degree",
                 degree + 1,
                 values.len()
+            ),
+        });
+    }
+    if let Some(i) = values
+        .iter()
+        .position(|v| v.is_finite() && v.abs() > MAX_VALUE_ABS)
+    {
+        return Err(KernelError::BadFunction {
+            what,
+            problem: format!(
+                "control value {i} is {}, outside -{MAX_VALUE_ABS} ..= {MAX_VALUE_ABS}; give a smaller value (1 everywhere changes nothing)",
+                values[i]
             ),
         });
     }
@@ -292,6 +309,14 @@ impl TensorBSpline {
             return Err(KernelError::BadFunction {
                 what: "fine-tuning function",
                 problem: format!("control value ({row}, {col}) is {v}; give a finite number"),
+            });
+        }
+        if v.abs() > MAX_VALUE_ABS {
+            return Err(KernelError::BadFunction {
+                what: "fine-tuning function",
+                problem: format!(
+                    "control value ({row}, {col}) is {v}, outside -{MAX_VALUE_ABS} ..= {MAX_VALUE_ABS}; give a smaller value"
+                ),
             });
         }
         self.values.set(row, col, v);

@@ -69,6 +69,8 @@ pub enum KernelError {
     NotPositive { what: &'static str, value: f64 },
     /// A fine-tuning (scalar B-spline) function is not usable; `problem` says why and what to do.
     BadFunction { what: &'static str, problem: String },
+    /// A coordinate or parameter is beyond [`crate::limits::MAX_COORDINATE`].
+    TooLargeValue { what: &'static str, value: f64 },
 }
 
 impl fmt::Display for KernelError {
@@ -103,9 +105,19 @@ impl fmt::Display for KernelError {
                 depth,
                 tangents,
                 cap,
+            } if *tangents == usize::MAX => write!(
+                f,
+                "depth {depth} is past the deepest level allowed ({}); choose a smaller depth",
+                crate::limits::MAX_DEPTH
+            ),
+            DepthTooLarge {
+                depth,
+                tangents,
+                cap,
             } => write!(
                 f,
-                "depth {depth} would produce {tangents} tangents per level, over the cap of {cap}; choose a smaller depth"
+                "depth {depth} would produce {tangents} tangents per level, over the cap of {cap} (what the {} MB memory cap affords); choose a smaller depth",
+                crate::limits::MEMORY_CAP_BYTES >> 20
             ),
             RaggedGrid { row, len, expected } => write!(
                 f,
@@ -139,6 +151,11 @@ impl fmt::Display for KernelError {
                 write!(f, "{what} is {value}; it must be a positive finite number")
             }
             BadFunction { what, problem } => write!(f, "{what}: {problem}"),
+            TooLargeValue { what, value } => write!(
+                f,
+                "{what} is {value:e}, beyond ±{:e}, the largest coordinate the kernel works with; scale the model down",
+                crate::limits::MAX_COORDINATE
+            ),
         }
     }
 }

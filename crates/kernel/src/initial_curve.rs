@@ -67,6 +67,22 @@ impl InitialCurve {
                 at: Place::Curve(0),
             });
         }
+        if !crate::limits::in_range(length) {
+            return Err(KernelError::TooLargeValue {
+                what: "initial curve length",
+                value: length,
+            });
+        }
+        if let Some(v) = origin
+            .to_array()
+            .into_iter()
+            .find(|v| !crate::limits::in_range(*v))
+        {
+            return Err(KernelError::TooLargeValue {
+                what: "initial curve origin",
+                value: v,
+            });
+        }
         let qi = QiCurve::new(tangents, order)?;
         Ok(Self::from_qi(qi, length, origin, Self::PANELS_PER_SPAN))
     }

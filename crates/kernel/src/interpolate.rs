@@ -79,6 +79,8 @@ pub struct Report {
     pub avg_error: f64,
     /// Whether the tolerance was reached.
     pub converged: bool,
+    /// The observer stopped it ([`interpolate_observed`]) before it converged.
+    pub stopped: bool,
 }
 
 impl Report {
@@ -91,6 +93,18 @@ impl Report {
 /// The control mesh positions whose Loop limit points are `mesh`'s vertices
 /// (to `opts.tolerance`), and what it took.
 pub fn interpolate(mesh: &TriMesh, topo: &Topology, opts: &Options) -> (Vec<DVec3>, Report) {
+    interpolate_observed(mesh, topo, opts, &|_| true)
+}
+
+/// [`interpolate`], calling `go(iterations so far)` before every iteration
+/// and stopping (`Report::stopped`) when it returns `false`: an editor shows
+/// progress and cancels through it, off the frame.
+pub fn interpolate_observed(
+    mesh: &TriMesh,
+    topo: &Topology,
+    opts: &Options,
+    go: &dyn Fn(usize) -> bool,
+) -> (Vec<DVec3>, Report) {
     let v0 = &mesh.positions;
     let scale = mesh.scale().max(f64::MIN_POSITIVE);
     let tol = opts.tolerance * scale;
@@ -98,11 +112,25 @@ pub fn interpolate(mesh: &TriMesh, topo: &Topology, opts: &Options) -> (Vec<DVec
     let int: Vec<usize> = (0..v0.len()).filter(|&v| !topo.boundary[v]).collect();
     let mut x = v0.clone();
     let mut report = Report::default();
-    let (bi, bc) = solve(&mut x, v0, topo, &bnd, tol, opts, false);
-    let (ii, ic) = solve(&mut x, v0, topo, &int, tol, opts, true);
+    let stopped = std::cell::Cell::new(false);
+    let observe = |k: usize| {
+        let on = go(k);
+        if !on {
+            stopped.set(true);
+        }
+        on
+    };
+    let (bi, bc) = solve(&mut x, v0, topo, &bnd, tol, opts, false, &observe);
+    let (ii, ic) = if stopped.get() {
+        (0, false)
+    } else {
+        let go_int = |k: usize| observe(bi + k);
+        solve(&mut x, v0, topo, &int, tol, opts, true, &go_int)
+    };
     report.boundary_iterations = bi;
     report.interior_iterations = ii;
     report.converged = bc && ic;
+    report.stopped = stopped.get() && !report.converged;
     let all: Vec<usize> = (0..v0.len()).collect();
     let mut r = vec![DVec3::ZERO; v0.len()];
     residuals(&x, v0, topo, &all, &mut r);
@@ -112,7 +140,9 @@ pub fn interpolate(mesh: &TriMesh, topo: &Topology, opts: &Options) -> (Vec<DVec
     (x, report)
 }
 
-/// Solves for the vertices `set` (others fixed), returning iterations and convergence.
+/// Solves for the vertices `set` (others fixed), returning iterations and
+/// convergence; stops early when `go(k)` is false.
+#[allow(clippy::too_many_arguments)]
 fn solve(
     x: &mut [DVec3],
     v0: &[DVec3],
@@ -121,14 +151,16 @@ fn solve(
     tol: f64,
     opts: &Options,
     symmetric: bool,
+    go: &dyn Fn(usize) -> bool,
 ) -> (usize, bool) {
     if set.is_empty() {
         return (0, true);
     }
+    let cap = opts.max_iterations;
     match opts.method {
-        Method::Plain => plain(x, v0, topo, set, tol, opts.max_iterations),
-        Method::Fast if symmetric => cg(x, v0, topo, set, tol, opts.max_iterations),
-        Method::Fast => bicgstab(x, v0, topo, set, tol, opts.max_iterations),
+        Method::Plain => plain(x, v0, topo, set, tol, cap, go),
+        Method::Fast if symmetric => cg(x, v0, topo, set, tol, cap, go),
+        Method::Fast => bicgstab(x, v0, topo, set, tol, cap, go),
     }
 }
 
@@ -163,6 +195,7 @@ fn plain(
     set: &[usize],
     tol: f64,
     cap: usize,
+    go: &dyn Fn(usize) -> bool,
 ) -> (usize, bool) {
     let mut r = vec![DVec3::ZERO; set.len()];
     for k in 0..=cap {
@@ -170,8 +203,8 @@ fn plain(
         if max_len(&r) < tol {
             return (k, true);
         }
-        if k == cap {
-            break;
+        if k == cap || !go(k) {
+            return (k, false);
         }
         for (ri, &v) in r.iter().zip(set) {
             x[v] += *ri;
@@ -234,6 +267,7 @@ fn cg(
     set: &[usize],
     tol: f64,
     cap: usize,
+    go: &dyn Fn(usize) -> bool,
 ) -> (usize, bool) {
     let (rhs, mut y, mut scratch) = system(x, v0, topo, set);
     let n = set.len();
@@ -269,7 +303,7 @@ fn cg(
             done = true;
             break;
         }
-        if k == cap {
+        if k == cap || !go(k) {
             break;
         }
         apply_on(&p, topo, set, &mut scratch, &mut ap);
@@ -305,6 +339,7 @@ fn bicgstab(
     set: &[usize],
     tol: f64,
     cap: usize,
+    go: &dyn Fn(usize) -> bool,
 ) -> (usize, bool) {
     let (rhs, mut y, mut scratch) = system(x, v0, topo, set);
     let n = set.len();
@@ -324,7 +359,7 @@ fn bicgstab(
             done = true;
             break;
         }
-        if used + 2 > cap {
+        if used + 2 > cap || !go(used) {
             break;
         }
         let rho_new = dot3(&r0, &r);

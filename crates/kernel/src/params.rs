@@ -45,6 +45,22 @@ impl ParamGrid {
                     at: Place::Grid { row: r, col: 0 },
                 });
             }
+            if !crate::limits::in_range(tv) {
+                return Err(KernelError::TooLargeValue {
+                    what: "row parameter t",
+                    value: tv,
+                });
+            }
+        }
+        if let Some(&v) = s
+            .data()
+            .iter()
+            .find(|v| v.is_finite() && !crate::limits::in_range(**v))
+        {
+            return Err(KernelError::TooLargeValue {
+                what: "arc-length parameter s",
+                value: v,
+            });
         }
         let sigma = (0..s.rows()).map(|r| s.get(r, anchor)).collect();
         let p = ParamGrid { s, t, sigma };

@@ -128,6 +128,14 @@ pub fn streamline(
             at: Place::Curve(0),
         });
     }
+    let too_large = s
+        .iter()
+        .map(|&v| ("arc-length parameter s", v))
+        .chain(origin.to_array().map(|v| ("origin", v)))
+        .find(|(_, v)| !crate::limits::in_range(*v));
+    if let Some((what, value)) = too_large {
+        return Err(KernelError::TooLargeValue { what, value });
+    }
     let mut out = Vec::with_capacity(t.len() + 2);
     place_into(&t, s, s[anchor], origin, &mut out);
     Ok(out)

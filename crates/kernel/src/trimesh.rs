@@ -28,6 +28,8 @@ pub enum MeshError {
     },
     /// A vertex position is NaN or infinite.
     NonFiniteVertex { vertex: usize },
+    /// A vertex coordinate is beyond [`crate::limits::MAX_COORDINATE`].
+    VertexTooFar { vertex: usize },
     /// A face repeats a vertex (or its corners coincide).
     DegenerateFace { face: usize },
     /// More than two faces share an edge.
@@ -70,6 +72,12 @@ impl fmt::Display for MeshError {
                 f,
                 "vertex {} has a NaN or infinite coordinate; give finite coordinates",
                 vertex + 1
+            ),
+            VertexTooFar { vertex } => write!(
+                f,
+                "vertex {} has a coordinate beyond ±{:e}, the largest the kernel works with; scale the mesh down",
+                vertex + 1,
+                crate::limits::MAX_COORDINATE
             ),
             DegenerateFace { face } => write!(
                 f,
@@ -227,6 +235,10 @@ impl TriMesh {
         }
         if let Some(v) = self.positions.iter().position(|p| !p.is_finite()) {
             return Err(MeshError::NonFiniteVertex { vertex: v });
+        }
+        let far = |p: &DVec3| p.to_array().iter().any(|&x| !crate::limits::in_range(x));
+        if let Some(v) = self.positions.iter().position(far) {
+            return Err(MeshError::VertexTooFar { vertex: v });
         }
         let mut used = vec![false; nv];
         for (fi, f) in self.faces.iter().enumerate() {

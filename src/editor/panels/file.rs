@@ -107,4 +107,68 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
             }
         }
     }
+    ui.separator();
+    script(ui, p);
+}
+
+/// Run script: a script's edits played into the open scene, off the frame's
+/// budget (a batch of steps a frame), with progress and Cancel.
+fn script(ui: &mut egui::Ui, p: &mut PanelCtx) {
+    use crate::ecs::runner::RunState;
+    let run = &mut *p.script;
+    let busy = run.busy();
+    ui.horizontal(|ui| {
+        ui.add_enabled(
+            !busy,
+            egui::TextEdit::singleline(&mut run.input)
+                .hint_text("script.ron")
+                .desired_width(170.0),
+        )
+        .on_hover_text("A script file (RON steps, see tests/scripts); its paths are relative to it");
+        if ui
+            .add_enabled(!busy, egui::Button::new("Run script"))
+            .on_hover_text("Play the script's edits into this scene (one undo step each); expectations are skipped")
+            .clicked()
+        {
+            let path = std::path::PathBuf::from(run.input.trim());
+            run.start(path);
+        }
+    });
+    let mut cancel = false;
+    match &run.state {
+        RunState::Idle => {}
+        RunState::Parsing(path, _) => {
+            ui.add(
+                egui::ProgressBar::new(0.0)
+                    .animate(true)
+                    .text(format!("reading {}", path.display())),
+            )
+            .on_hover_text("The file is read and parsed off the frame");
+            cancel = ui
+                .button("Cancel")
+                .on_hover_text("Stop; nothing is run")
+                .clicked();
+            ui.ctx().request_repaint();
+        }
+        RunState::Running { .. } => {
+            let (done, all) = run.progress().unwrap_or((0, 1));
+            ui.add(
+                egui::ProgressBar::new(done as f32 / all.max(1) as f32)
+                    .text(format!("step {done} of {all}")),
+            )
+            .on_hover_text("Steps go out a batch a frame, sized to keep the frame light");
+            cancel = ui
+                .button("Cancel")
+                .on_hover_text("Stop after the steps already sent; undo takes them back")
+                .clicked();
+            ui.ctx().request_repaint();
+        }
+        RunState::Done(line) => {
+            ui.label(egui::RichText::new(line).small())
+                .on_hover_text("How the last script run ended");
+        }
+    }
+    if cancel {
+        run.cancel();
+    }
 }

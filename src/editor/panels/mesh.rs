@@ -21,14 +21,36 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
             v.open(path);
         }
     });
+    if let Some(job) = &v.job {
+        let (done, total) = job.progress.counts();
+        let stage = job.progress.stage_name();
+        ui.label(&job.label);
+        let text = if total > 0 {
+            format!("{stage}: {done} of {total}")
+        } else {
+            format!("{stage}…")
+        };
+        ui.add(egui::ProgressBar::new(job.progress.fraction()).text(text))
+            .on_hover_text("Work runs off the frame: the editor stays responsive");
+        let cancel = ui
+            .button("Cancel")
+            .on_hover_text("Stop it; what is shown stays as it was")
+            .clicked();
+        ui.ctx().request_repaint();
+        if cancel {
+            v.cancel();
+            v.error = Some("cancelled; nothing changed".into());
+        }
+    }
     if let Some(e) = &v.error {
         ui.colored_label(egui::Color32::from_rgb(240, 110, 90), e)
             .on_hover_text("The last open or export failed; nothing else changed");
     }
-    let Some((mesh, topo)) = &v.given else {
+    let Some(g) = &v.given else {
         ui.label(egui::RichText::new("No mesh open: the streamline surface is shown.").weak());
         return;
     };
+    let (mesh, topo) = (&g.0, &g.1);
     let (nv, nf, loops) = (mesh.positions.len(), mesh.faces.len(), topo.loops.len());
     ui.label(format!(
         "{nv} vertices, {nf} triangles, {}",

@@ -158,6 +158,7 @@ pub struct PanelCtx<'w> {
     pub slider_groups: ResMut<'w, SliderGroups>,
     pub opened: Res<'w, OpenedScene>,
     pub mesh: ResMut<'w, super::mesh_mode::MeshView>,
+    pub script: ResMut<'w, crate::ecs::runner::ScriptRun>,
 }
 
 /// The control net as the scene was opened (the Selection panel's reset).
@@ -234,6 +235,9 @@ pub struct FrameTiming {
     pub ours_last_ms: f64,
     /// The largest of the last 120 such frames.
     pub ours_max_ms: f64,
+    /// With `STREAMLINE_STUDIO_METER_DETAIL=1`: per system (where it starts
+    /// the meter), over frames with an edit: total and largest ms, frames.
+    pub detail: std::collections::BTreeMap<String, (f64, f64, u32)>,
     recent: Recent,
     recent_frames: Recent,
     seen: u64,
@@ -322,10 +326,18 @@ fn track_frame(
     mut t: ResMut<FrameTiming>,
 ) {
     let ms = meter.take();
+    let detail = meter.take_detail();
     if log.frame == t.seen_frame {
         return;
     }
     t.seen_frame = log.frame;
+    for (at, ns) in detail {
+        let e = t.detail.entry(at).or_default();
+        let ms = ns as f64 * 1e-6;
+        e.0 += ms;
+        e.1 = e.1.max(ms);
+        e.2 += 1;
+    }
     t.ours_last_ms = ms;
     t.ours_max_ms = t.recent_frames.push(ms);
 }
