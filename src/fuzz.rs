@@ -225,7 +225,12 @@ pub fn cli_json(data: &[u8]) {
                 depth,
                 omega,
                 order: usize::from(knob % 7),
-                samples: usize::from(knob / 7) % 40,
+                // mostly small; now and then past the cap (refused, never allocated)
+                samples: if knob >= 250 {
+                    usize::MAX >> (knob - 250)
+                } else {
+                    usize::from(knob / 7) % 40
+                },
             };
             if let Ok(out) = curve_json(&a, &text) {
                 unit("curve", &to_vecs(&out));

@@ -145,6 +145,13 @@ fn cli_bad_input_exit_2_one_line() {
     let (code, _, err) = run(&["curve", "--scheme", "chaikin", "--depth", "16"], &hundred);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("over the cap of 4000000"), "{err}");
+    // a QI curve sampled 10^11 times would need 2.4 TB: refused, not a crash
+    let (code, _, err) = run(
+        &["curve", "--scheme", "qi", "--samples", "100000000000"],
+        "[[1,0,0],[0,1,0],[0,0,1],[1,1,0]]",
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("over the cap of 4000000"), "{err}");
     for (args, input, needle) in cases {
         let (code, out, err) = run(args, input);
         assert_eq!(code, 2, "{args:?} {input}: exit code, stderr {err}");

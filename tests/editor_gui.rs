@@ -289,3 +289,56 @@ fn file_dialogs_open_and_save_as() {
     assert_eq!(saved.to_file(), car2.to_file());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A 1 GiB OBJ does not hang the editor (issue 7, item 3): it is read off the
+/// frame while frames keep coming, refused at the memory cap with the line
+/// where that happened, and the streamline surface stays on screen.
+#[test]
+fn a_1gib_obj_is_opened_off_the_frame_and_refused() {
+    use std::io::Write;
+    let _gui = gui_lock();
+    let dir = temp_dir("huge-obj");
+    let obj = dir.join("huge.obj");
+    {
+        let mut w =
+            std::io::BufWriter::with_capacity(1 << 22, std::fs::File::create(&obj).unwrap());
+        let mut written = 0usize;
+        let mut i = 0u64;
+        while written < 1 << 30 {
+            let line = format!("v {}.5 {}.5 0.25\n", i % 20_000, i / 20_000);
+            w.write_all(line.as_bytes()).unwrap();
+            written += line.len();
+            i += 1;
+        }
+        w.flush().unwrap();
+    }
+    let report = dir.join("report.json");
+    let (w, h, px) = shot(
+        &dir,
+        "huge",
+        &[
+            "--mesh",
+            obj.to_str().unwrap(),
+            "--panel",
+            "mesh",
+            "--report",
+            report.to_str().unwrap(),
+        ],
+    );
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let busy = r["busy_frames"].as_u64().unwrap();
+    assert!(
+        busy >= 2,
+        "frames were drawn while the mesh was read: {busy}"
+    );
+    let e = r["mesh_error"].as_str().unwrap_or_default();
+    assert!(
+        e.contains("over the memory cap of 2048 MB") && e.contains("nothing was opened"),
+        "{e}"
+    );
+    // the car is still shown (its blue-white shading), not a mesh
+    let surface = share(w, h, &px, |[r, g, b]| b > 150 && b >= r && g > 100);
+    assert!(surface > 0.05, "the streamline surface stays: {surface:.3}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

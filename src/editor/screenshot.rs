@@ -71,6 +71,8 @@ struct ShotProgress {
     captured: Option<u32>,
     position_written: bool,
     held: u32,
+    /// Frames drawn while work ran off the frame (opening a mesh).
+    busy_frames: u32,
 }
 
 pub struct ScreenshotPlugin;
@@ -134,6 +136,12 @@ struct Report {
     /// Per system over frames with an edit: total ms, largest ms, frames
     /// (`STREAMLINE_STUDIO_METER_DETAIL=1`).
     detail: Vec<(String, f64, f64, u32)>,
+    /// All our systems in each frame with an edit (ms), oldest first.
+    ours_frames: Vec<f64>,
+    /// Frames drawn while a mesh was being opened off the frame.
+    busy_frames: u32,
+    /// The Loop mesh panel's last error, if any.
+    mesh_error: Option<String>,
 }
 
 fn write_report(path: &std::path::Path, r: &Report) {
@@ -197,6 +205,9 @@ fn drive(
     mesh: Res<super::mesh_mode::MeshView>,
 ) {
     p.frame += 1;
+    if mesh.busy() {
+        p.busy_frames += 1;
+    }
     // GUI tests: hold the capture until their script says it is done, and
     // until work off the frame (opening a mesh) has finished
     let waiting =
@@ -247,6 +258,9 @@ fn drive(
                         .iter()
                         .map(|(k, v)| (k.clone(), v.0, v.1, v.2))
                         .collect(),
+                    ours_frames: timing.recent_frames.0.iter().copied().collect(),
+                    busy_frames: p.busy_frames,
+                    mesh_error: mesh.error.clone(),
                 },
             );
         }

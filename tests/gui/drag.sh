@@ -4,7 +4,7 @@
 # reports where its arrow is, drags that arrow upwards, optionally presses Esc
 # before letting go, and waits for the run to end.
 # With `sphere` it drags the handle's point on the Gaussian sphere view instead.
-# Usage: [SCENE=FILE.ron] [SELECT=ROW,COL] drag.sh BIN OUT.png REPORT.json [esc|sphere]
+# Usage: [SCENE=FILE.ron] [SELECT=ROW,COL] [MOVES=10 STEP_PX=9 PAUSE=0.25] drag.sh BIN OUT.png REPORT.json [esc|sphere]
 set -euo pipefail
 BIN=$1; OUT=$2; REPORT=$3; ESC=${4:-}
 STREAMLINE_STUDIO_SHOT_WAIT="$REPORT.done" STREAMLINE_STUDIO_SHOT_FRAMES=${FRAMES:-30} "$BIN" screenshot "${SCENE:-car1}" --out "$OUT" \
@@ -28,7 +28,7 @@ xdotool windowfocus --sync "$WID"
 xdotool mousemove "$((X - 3))" "$Y"; sleep 0.7
 xdotool mousemove "$X" "$Y"; sleep 1.5
 xdotool mousedown 1; sleep 1.5
-for _ in $(seq 1 10); do xdotool mousemove_relative -- 0 -9; sleep 0.25; done
+for _ in $(seq 1 "${MOVES:-10}"); do xdotool mousemove_relative -- 0 "-${STEP_PX:-9}"; sleep "${PAUSE:-0.25}"; done
 sleep 1.5
 if [ "$ESC" = esc ]; then xdotool key Escape; sleep 1.5; fi
 xdotool mouseup 1

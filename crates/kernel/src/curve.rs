@@ -110,6 +110,13 @@ impl CurveScheme {
         if depth > MAX_DEPTH {
             return Err(too_big(usize::MAX));
         }
+        if n.saturating_mul(rows) > cap {
+            return Err(KernelError::DepthTooLarge {
+                depth: 0,
+                tangents: n.saturating_mul(rows),
+                cap,
+            });
+        }
         let mut m = n;
         for _ in 0..depth {
             if m < self.min_len() {
@@ -358,8 +365,9 @@ pub fn subdivide(
     depth: u32,
 ) -> Result<Vec<DVec3>, KernelError> {
     let scheme = scheme.validate()?;
+    // sizes first: nothing is allocated for a request past the cap
+    scheme.check_depth(tangents.len(), depth, 1)?;
     let mut cur = normalize_all(tangents)?;
-    scheme.check_depth(cur.len(), depth, 1)?;
     let mut next = Vec::new();
     for _ in 0..depth {
         scheme.refine_tangents(&cur, &mut next);

@@ -105,6 +105,15 @@ impl fmt::Display for KernelError {
                 depth,
                 tangents,
                 cap,
+            } if *depth == 0 => write!(
+                f,
+                "{tangents} tangents are asked for, over the cap of {cap} (what the {} MB memory cap affords); use fewer",
+                crate::limits::MEMORY_CAP_BYTES >> 20
+            ),
+            DepthTooLarge {
+                depth,
+                tangents,
+                cap,
             } if *tangents == usize::MAX => write!(
                 f,
                 "depth {depth} is past the deepest level allowed ({}); choose a smaller depth",

@@ -181,13 +181,21 @@ impl QiCurve {
         v.normalize()
     }
 
-    /// `m ≥ 2` tangents at evenly spaced `u = j/(m−1)`.
+    /// `m ≥ 2` tangents at evenly spaced `u = j/(m−1)`, at most
+    /// [`crate::limits::MAX_TANGENTS_PER_LEVEL`].
     pub fn sample(&self, m: usize) -> Result<Vec<DVec3>, KernelError> {
         if m < 2 {
             return Err(KernelError::TooFewTangents {
                 what: "QI sampling",
                 got: m,
                 need: 2,
+            });
+        }
+        if m > crate::limits::MAX_TANGENTS_PER_LEVEL {
+            return Err(KernelError::DepthTooLarge {
+                depth: 0,
+                tangents: m,
+                cap: crate::limits::MAX_TANGENTS_PER_LEVEL,
             });
         }
         Ok((0..m)

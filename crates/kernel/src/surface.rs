@@ -70,6 +70,14 @@ impl SurfaceScheme {
     ) -> Result<(usize, usize), KernelError> {
         let c = self.curve();
         let (mut r, mut k) = (rows, cols);
+        let base = rows.saturating_mul(cols);
+        if base > crate::limits::MAX_TANGENTS_PER_LEVEL {
+            return Err(KernelError::DepthTooLarge {
+                depth: 0,
+                tangents: base,
+                cap: crate::limits::MAX_TANGENTS_PER_LEVEL,
+            });
+        }
         for _ in 0..depth {
             for n in [r, k] {
                 if n < c.min_len() {

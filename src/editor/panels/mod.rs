@@ -209,7 +209,7 @@ impl PanelCtx<'_> {
 
 /// The last 120 figures of a kind, for their maximum.
 #[derive(Debug, Default)]
-struct Recent(std::collections::VecDeque<f64>);
+pub struct Recent(pub std::collections::VecDeque<f64>);
 
 impl Recent {
     /// Adds `ms` (dropping the oldest past 120) and returns the largest kept.
@@ -239,7 +239,8 @@ pub struct FrameTiming {
     /// the meter), over frames with an edit: total and largest ms, frames.
     pub detail: std::collections::BTreeMap<String, (f64, f64, u32)>,
     recent: Recent,
-    recent_frames: Recent,
+    /// "Our systems" of the last 120 frames with an edit (ms), oldest first.
+    pub recent_frames: Recent,
     seen: u64,
     seen_frame: u64,
 }
