@@ -17,14 +17,7 @@ fn sigkill_during_saves_leaves_the_old_or_the_new_file() {
     let dir = std::env::temp_dir().join(format!("streamline-kill-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     // two large scenes (a 120×120 net: about 1.5 MB of RON each)
-    let a = Scene::from_design("A", presets::wavy(120, 120), 0);
-    let mut b = a.clone();
-    b.name = "B".into();
-    b.design.net.set(
-        60,
-        60,
-        streamline_kernel::DVec3::new(0.3, 0.9, 0.2).normalize(),
-    );
+    let (a, b) = two_large_scenes();
     io::save(&a, &dir.join("a.ron")).unwrap();
     io::save(&b, &dir.join("b.ron")).unwrap();
     let target = dir.join("target.ron");

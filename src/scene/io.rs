@@ -20,25 +20,33 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
     Scene::parse(&text, path)
 }
 
-/// Reads a text file, refusing one over `cap` bytes or not UTF-8.
-pub fn read_text(path: &Path, cap: u64) -> Result<String, SceneError> {
+/// The size of the file at `path`, refused with what to do when it cannot be
+/// opened, is a folder (`wanted` names what should be there), or is over
+/// `cap` bytes (`too_big` says what to do).
+pub fn file_size(path: &Path, cap: u64, wanted: &str, too_big: &str) -> Result<u64, SceneError> {
     let meta = fs::metadata(path)
         .map_err(|e| SceneError::file(path, format!("cannot open: {e}; check the path")))?;
     if meta.is_dir() {
         return Err(SceneError::file(
             path,
-            "is a folder, not a file; give the path of a file",
+            format!("is a folder, not a file; give the path of {wanted}"),
         ));
     }
     if meta.len() > cap {
         return Err(SceneError::file(
             path,
             format!(
-                "the file is {} bytes, over the limit of {cap}; this is not a scene or script file",
+                "the file is {} bytes, over the limit of {cap}; {too_big}",
                 meta.len()
             ),
         ));
     }
+    Ok(meta.len())
+}
+
+/// Reads a text file, refusing one over `cap` bytes or not UTF-8.
+pub fn read_text(path: &Path, cap: u64) -> Result<String, SceneError> {
+    file_size(path, cap, "a file", "this is not a scene or script file")?;
     let bytes = fs::read(path)
         .map_err(|e| SceneError::file(path, format!("cannot read: {e}; check the permissions")))?;
     utf8(path, bytes, "scene and script files are RON text")

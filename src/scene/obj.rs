@@ -36,26 +36,15 @@ pub fn read(path: &Path) -> Result<(TriMesh, Topology), SceneError> {
 /// refused as soon as the mesh it describes would need more than the
 /// memory cap ([`MEMORY_CAP_BYTES`]).
 pub fn read_with(path: &Path, progress: &Progress) -> Result<(TriMesh, Topology), SceneError> {
-    let meta = std::fs::metadata(path)
-        .map_err(|e| SceneError::file(path, format!("cannot open: {e}; check the path")))?;
-    if meta.is_dir() {
-        return Err(SceneError::file(
-            path,
-            "is a folder, not a file; give the path of an .obj file",
-        ));
-    }
-    if meta.len() > MAX_OBJ_BYTES {
-        return Err(SceneError::file(
-            path,
-            format!(
-                "the file is {} bytes, over the limit of {MAX_OBJ_BYTES}; simplify the mesh first",
-                meta.len()
-            ),
-        ));
-    }
+    let len = super::io::file_size(
+        path,
+        MAX_OBJ_BYTES,
+        "an .obj file",
+        "simplify the mesh first",
+    )?;
     let f = std::fs::File::open(path)
         .map_err(|e| SceneError::file(path, format!("cannot read: {e}; check the permissions")))?;
-    progress.stage("reading", meta.len());
+    progress.stage("reading", len);
     let mut reader = std::io::BufReader::with_capacity(1 << 20, f);
     let mut tagger = Tagger::new(path, progress);
     let mut line = Vec::new();
