@@ -1,5 +1,6 @@
 //! The paper's Table 1 side by side (subdivision vs QI curves, 5 control tangents)
-//! and full builds of the 9×6 car surface at depths 0–5. The workloads are the
+//! and full builds of the 9×6 car surface at depths 0–5 (fresh, and into a
+//! kept `Builder` on one thread with and without the vector path, and on two). The workloads are the
 //! ones `streamline-studio bench` runs (`src/workloads.rs`); the `incremental`
 //! group times one edit through the ECS against a full rebuild (issue 3), and
 //! one fine-tuning value edit on the car at depth 3 (issue 6).
@@ -27,7 +28,10 @@ fn surface(c: &mut Criterion) {
     g.warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(3))
         .sample_size(20);
-    for mut w in workloads::car_surface(0..=5) {
+    for mut w in workloads::car_surface(0..=5)
+        .into_iter()
+        .chain(workloads::car_builder(5))
+    {
         g.bench_function(&w.name, |b| b.iter(|| black_box((w.run)())));
     }
     g.finish();

@@ -3,7 +3,7 @@
 
 use streamline_kernel::curve::{CurveScheme, subdivide_into};
 use streamline_kernel::qi::QiCurve;
-use streamline_kernel::{DVec3, Design, presets};
+use streamline_kernel::{Builder, DVec3, Design, presets};
 
 /// The five control tangents of the Table 1 rows (a wavy curve on the sphere).
 pub fn table1_tangents() -> Vec<DVec3> {
@@ -89,10 +89,41 @@ pub fn car_surface(depths: impl IntoIterator<Item = u32>) -> Vec<Workload> {
         .collect()
 }
 
+/// Full builds of the car at `depth` into a kept [`Builder`] (buffers
+/// reused, every entry recomputed; issue 2's 0.5 ms target): one thread with
+/// the vector path, one thread scalar, and two threads
+/// (`surface/kobbelt/9x6/d5/builder-1t`, `…/builder-1t-scalar`, `…/builder-2t`).
+pub fn car_builder(depth: u32) -> Vec<Workload> {
+    use streamline_kernel::{parallel, simd};
+    [
+        ("1t", false, true),
+        ("1t-scalar", false, false),
+        ("2t", true, true),
+    ]
+    .into_iter()
+    .map(|(label, threads, vector)| {
+        let design = presets::car1();
+        let mut b = Builder::new();
+        Workload {
+            name: format!("surface/kobbelt/9x6/d{depth}/builder-{label}"),
+            run: Box::new(move || {
+                parallel::set_enabled(threads);
+                simd::set_enabled(vector);
+                b.build(&design, depth).expect("valid");
+                parallel::set_enabled(true);
+                simd::set_enabled(true);
+                b.mesh().positions[b.mesh().positions.len() / 2].x
+            }),
+        }
+    })
+    .collect()
+}
+
 /// Every row `streamline-studio bench` reports.
 pub fn all() -> Vec<Workload> {
     let mut rows = table1();
     rows.extend(car_surface([3, 5]));
+    rows.extend(car_builder(5));
     rows.extend(incremental());
     rows.extend(fine_tuning());
     rows.extend(loop_rows());

@@ -247,6 +247,16 @@ impl FourPointRule {
         })
     }
 
+    /// `blend(·,·,(8+ω)/8)`, the outer blend of an insert.
+    pub(crate) fn outer(&self) -> &FixedBlend {
+        &self.outer
+    }
+
+    /// `blend(·,·,−ω/8)`, the inner blend of an insert.
+    pub(crate) fn inner(&self) -> &FixedBlend {
+        &self.inner
+    }
+
     /// The tangent inserted between `b` and `c` with outer neighbours `a`, `d` (Eq. 61).
     #[inline]
     pub fn interior(&self, a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> DVec3 {
@@ -337,6 +347,11 @@ impl Prepared {
     /// The scheme.
     pub fn scheme(&self) -> CurveScheme {
         self.scheme
+    }
+
+    /// The 4-point rule, when the scheme is the 4-point scheme.
+    pub fn four_point(&self) -> Option<&FourPointRule> {
+        matches!(self.scheme, CurveScheme::FourPoint { .. }).then_some(&self.four)
     }
 
     /// The output of stencil `st`, reading input `j` as `f(j)`.

@@ -1,12 +1,13 @@
 //! A whole streamline surface: control net, parameters, scheme, blend order,
 //! anchor column and initial curve, and its full build (blend → integrate → mesh).
 
+use crate::builder::Builder;
 use crate::error::{KernelError, Place};
 use crate::grid::Grid;
 use crate::initial_curve::InitialCurve;
 use crate::mesh::SurfaceMesh;
 use crate::params::ParamGrid;
-use crate::streamline::place_into;
+use crate::streamline::place_slice;
 use crate::surface::{BlendOrder, SurfaceScheme, normalize_grid, refine_grid};
 use glam::DVec3;
 
@@ -120,8 +121,15 @@ impl Design {
 
     /// Row `r`'s streamline into `out`.
     pub fn streamline_into(&self, level: &Level, r: usize, out: &mut Vec<DVec3>) {
+        out.clear();
+        out.resize(level.tangents.cols() + 1, DVec3::ZERO);
+        self.place_row(level, r, out);
+    }
+
+    /// Row `r`'s streamline into `out`, which holds exactly `cols + 1` points.
+    pub fn place_row(&self, level: &Level, r: usize, out: &mut [DVec3]) {
         let origin = self.initial.point(level.params.t[r]);
-        place_into(
+        place_slice(
             level.tangents.row(r),
             level.params.s.row(r),
             level.params.sigma[r],
@@ -130,16 +138,12 @@ impl Design {
         );
     }
 
-    /// Full build at `depth`: blend, integrate, mesh.
+    /// Full build at `depth`: blend, integrate, mesh (a [`Builder`] used
+    /// once; keep a `Builder` to rebuild without allocating).
     pub fn build(&self, depth: u32) -> Result<Built, KernelError> {
-        let level = self.level(depth)?;
-        let points = self.streamlines(&level);
-        let mesh = SurfaceMesh::from_points(&points);
-        Ok(Built {
-            level,
-            points,
-            mesh,
-        })
+        let mut b = Builder::new();
+        b.build(self, depth)?;
+        Ok(b.into_built().expect("a successful build has a result"))
     }
 
     /// Replaces one control tangent (normalised), for editing.

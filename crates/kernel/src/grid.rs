@@ -54,6 +54,19 @@ impl<T: Copy> Grid<T> {
         })
     }
 
+    /// Gives the grid the shape `rows × cols`, reusing its allocation; entries
+    /// are left as they were (new ones are `fill`) for the caller to overwrite.
+    pub fn reshape(&mut self, rows: usize, cols: usize, fill: T) {
+        self.rows = rows;
+        self.cols = cols;
+        self.data.resize(rows * cols, fill);
+    }
+
+    /// The row-major data.
+    pub fn into_data(self) -> Vec<T> {
+        self.data
+    }
+
     /// Number of rows (streamlines).
     pub fn rows(&self) -> usize {
         self.rows

@@ -16,6 +16,7 @@
 
 pub mod analysis;
 pub mod bspline;
+pub mod builder;
 pub mod curve;
 pub mod design;
 pub mod error;
@@ -33,6 +34,7 @@ pub mod params;
 pub mod presets;
 pub mod qi;
 pub mod scalar;
+pub mod simd;
 pub mod sphere;
 pub mod sphere_pi;
 pub mod streamline;
@@ -41,6 +43,7 @@ pub mod tangent;
 pub mod trimesh;
 pub mod window;
 
+pub use builder::Builder;
 pub use curve::CurveScheme;
 pub use design::{Built, Design, Level};
 pub use error::{KernelError, Place};

@@ -45,31 +45,7 @@ impl SurfaceMesh {
     /// [`PARALLEL_MIN_POINTS`] of them are split over two threads (same
     /// operations per point, so the same bits).
     pub fn update_normals_rows(&mut self, points: &Grid<DVec3>, lo: usize, hi: usize) {
-        let cols = points.cols();
-        if cols == 0 || points.rows() == 0 || hi < lo {
-            return;
-        }
-        let region = &mut self.normals[lo * cols..(hi + 1) * cols];
-        let n = hi - lo + 1;
-        if n * cols < PARALLEL_MIN_POINTS || n < 2 {
-            for (i, out) in region.chunks_mut(cols).enumerate() {
-                normals_row(points, lo + i, out);
-            }
-            return;
-        }
-        let (top, bottom) = region.split_at_mut((n / 2) * cols);
-        crate::parallel::join(
-            || {
-                for (i, out) in top.chunks_mut(cols).enumerate() {
-                    normals_row(points, lo + i, out);
-                }
-            },
-            || {
-                for (i, out) in bottom.chunks_mut(cols).enumerate() {
-                    normals_row(points, lo + n / 2 + i, out);
-                }
-            },
-        );
+        normals_rows(points.data(), points.cols(), lo, hi, &mut self.normals);
     }
 
     /// Recomputes the normals of row `r` (after its points, or a neighbour's, changed).
@@ -81,27 +57,39 @@ impl SurfaceMesh {
 /// Mesh updates of at least this many points run on two threads.
 pub const PARALLEL_MIN_POINTS: usize = 16_384;
 
-/// The normals of row `r` of `points` into `out`.
-fn normals_row(points: &Grid<DVec3>, r: usize, out: &mut [DVec3]) {
-    let (rows, cols) = (points.rows(), points.cols());
-    let (r0, r1) = (r.saturating_sub(1), (r + 1).min(rows - 1));
-    let (above, here, below) = (points.row(r0), points.row(r), points.row(r1));
-    let mut last = DVec3::Z;
-    for c in 0..cols {
-        let (c0, c1) = (c.saturating_sub(1), (c + 1).min(cols - 1));
-        let ds = here[c1] - here[c0];
-        let dt = below[c] - above[c];
-        let n = ds.cross(dt);
-        let len2 = n.length_squared();
-        // a degenerate point takes its neighbour's normal (never NaN)
-        let n = if len2 > 0.0 && len2.is_finite() {
-            n * (1.0 / len2.sqrt())
-        } else {
-            last
-        };
-        last = n;
-        out[c] = n;
+/// The normals of rows `lo ..= hi` of the row-major point grid `points`
+/// (`cols` wide) into the same entries of `normals`; large ranges on two threads.
+pub fn normals_rows(points: &[DVec3], cols: usize, lo: usize, hi: usize, normals: &mut [DVec3]) {
+    if cols == 0 || points.is_empty() || hi < lo {
+        return;
     }
+    let rows = points.len() / cols;
+    let row = |r: usize| &points[r * cols..(r + 1) * cols];
+    let one = |r: usize, out: &mut [DVec3]| {
+        let (r0, r1) = (r.saturating_sub(1), (r + 1).min(rows - 1));
+        crate::simd::normals_row(row(r0), row(r), row(r1), out);
+    };
+    let region = &mut normals[lo * cols..(hi + 1) * cols];
+    let n = hi - lo + 1;
+    if n * cols < PARALLEL_MIN_POINTS || n < 2 {
+        for (i, out) in region.chunks_mut(cols).enumerate() {
+            one(lo + i, out);
+        }
+        return;
+    }
+    let (top, bottom) = region.split_at_mut((n / 2) * cols);
+    crate::parallel::join(
+        || {
+            for (i, out) in top.chunks_mut(cols).enumerate() {
+                one(lo + i, out);
+            }
+        },
+        || {
+            for (i, out) in bottom.chunks_mut(cols).enumerate() {
+                one(lo + n / 2 + i, out);
+            }
+        },
+    );
 }
 
 /// Triangle indices of a `rows × cols` point grid.

@@ -7,7 +7,7 @@
 
 use crate::error::{KernelError, Place};
 use crate::grid::Grid;
-use crate::surface::{BlendOrder, SurfaceScheme, refine_grid};
+use crate::surface::{BlendOrder, SurfaceScheme, refine_grid_into};
 
 /// The parameters of one subdivision level.
 #[derive(Debug, Clone, PartialEq)]
@@ -88,6 +88,15 @@ impl ParamGrid {
 
     /// Every `s` finite and strictly increasing along its row; `t`, `σ` finite.
     pub fn check(&self, level: u32) -> Result<(), KernelError> {
+        // the common case in one branch-free pass; the loop below names the place
+        let ok = self.s.data().iter().all(|v| v.is_finite())
+            && (0..self.s.rows()).all(|r| {
+                let row = self.s.row(r);
+                row.windows(2).fold(true, |ok, w| ok & (w[1] > w[0]))
+            });
+        if ok {
+            return Ok(());
+        }
         for r in 0..self.s.rows() {
             let row = self.s.row(r);
             for (c, &v) in row.iter().enumerate() {
@@ -117,14 +126,29 @@ impl ParamGrid {
         order: BlendOrder,
         level: u32,
     ) -> Result<Self, KernelError> {
+        let mut out = ParamGrid {
+            s: Grid::filled(0, 0, 0.0),
+            t: Vec::new(),
+            sigma: Vec::new(),
+        };
+        self.refine_into(scheme, order, level, &mut Grid::filled(0, 0, 0.0), &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Self::refine`] into buffers kept by the caller (`half` is the `s`
+    /// grid of the first direction); `out` is overwritten.
+    pub fn refine_into(
+        &self,
+        scheme: SurfaceScheme,
+        order: BlendOrder,
+        level: u32,
+        half: &mut Grid<f64>,
+        out: &mut ParamGrid,
+    ) -> Result<(), KernelError> {
         let c = scheme.curve();
-        let s = refine_grid(scheme, order, &self.s);
-        let mut t = Vec::new();
-        c.refine_scalars(&self.t, &mut t);
-        let mut sigma = Vec::new();
-        c.refine_scalars(&self.sigma, &mut sigma);
-        let p = ParamGrid { s, t, sigma };
-        p.check(level)?;
-        Ok(p)
+        refine_grid_into(scheme, order, &self.s, half, &mut out.s);
+        c.refine_scalars(&self.t, &mut out.t);
+        c.refine_scalars(&self.sigma, &mut out.sigma);
+        out.check(level)
     }
 }

@@ -19,6 +19,21 @@ pub fn at(scheme: CurveScheme, p: &[f64], k: usize) -> f64 {
     apply(scheme, scheme.stencil(p.len(), k), |j| p[j])
 }
 
+/// `w = ω/16` of the planar 4-point rule (Eq. 60).
+#[inline(always)]
+pub fn insert_weight(scheme: CurveScheme) -> f64 {
+    match scheme {
+        CurveScheme::FourPoint { omega } => omega / 16.0,
+        _ => 1.0 / 16.0,
+    }
+}
+
+/// The planar 4-point insert between `b` and `c` (Eq. 60).
+#[inline(always)]
+pub fn insert(w: f64, a: f64, b: f64, c: f64, d: f64) -> f64 {
+    -w * a + (0.5 + w) * (b + c) - w * d
+}
+
 /// The planar rule of stencil `st`, reading input `j` as `f(j)`.
 #[inline(always)]
 pub fn apply(scheme: CurveScheme, st: Stencil, f: impl Fn(usize) -> f64) -> f64 {
@@ -28,13 +43,7 @@ pub fn apply(scheme: CurveScheme, st: Stencil, f: impl Fn(usize) -> f64) -> f64 
         Stencil::Quarter(i) => 0.75 * f(i) + 0.25 * f(i + 1),
         Stencil::ThreeQuarters(i) => 0.25 * f(i) + 0.75 * f(i + 1),
         Stencil::Vertex(i) => 0.125 * f(i - 1) + 0.75 * f(i) + 0.125 * f(i + 1),
-        Stencil::Insert(i) => {
-            let w = match scheme {
-                CurveScheme::FourPoint { omega } => omega / 16.0,
-                _ => 1.0 / 16.0,
-            };
-            -w * f(i - 1) + (0.5 + w) * (f(i) + f(i + 1)) - w * f(i + 2)
-        }
+        Stencil::Insert(i) => insert(insert_weight(scheme), f(i - 1), f(i), f(i + 1), f(i + 2)),
         Stencil::End(a, b, c) => 0.375 * f(a) + 0.75 * f(b) - 0.125 * f(c),
     }
 }

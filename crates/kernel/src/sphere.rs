@@ -194,6 +194,11 @@ impl FixedBlend {
         self.u
     }
 
+    /// The series coefficients of `cos(uθ)` and `sin(uθ)/sin θ` in `h`.
+    pub(crate) fn coefficients(&self) -> (&[f64; Self::TERMS], &[f64; Self::TERMS]) {
+        (&self.cos_coef, &self.sin_coef)
+    }
+
     /// `blend(a, b, u)`, to within a few ulps. The result is not renormalised:
     /// its length is 1 to about 1e-15 (callers such as [`mid`] normalise anyway).
     #[inline]
@@ -218,16 +223,25 @@ impl FixedBlend {
     }
 }
 
+/// `TERM_THRESHOLDS[k]`: the smallest `h` whose series uses term `k`
+/// (`terms_for(h) > k` ⇔ `h ≥ TERM_THRESHOLDS[k]`), for the vector path
+/// ([`crate::simd`]), where each lane starts its sum at its own term.
+pub(crate) const TERM_THRESHOLDS: [f64; FixedBlend::TERMS] = [
+    0.0, 0.0, 1e-9, 1e-6, 1e-6, 1e-6, 1e-3, 1e-3, 1e-3, 1e-2, 1e-2, 1e-2, 1e-2, 1e-2, 0.05, 0.05,
+    0.05, 0.05, 0.05, 0.05, 0.05, 0.05, 0.05, 0.05,
+];
+
+/// How many series terms [`FixedBlend::apply`] sums for `h`.
 #[inline]
-fn terms_for(h: f64) -> usize {
+pub(crate) fn terms_for(h: f64) -> usize {
     // h^k < 1e-17 ⇔ k > 17 / -log10(h); a small table avoids the logarithm.
     if h < 1e-9 {
         2
     } else if h < 1e-6 {
         3
-    } else if h < 1e-4 {
-        5
     } else if h < 1e-3 {
+        // one count for the whole band where neighbours of the finer levels
+        // sit (θ ≈ 0.1°–3.6°), so the vector path's lanes mostly agree
         6
     } else if h < 1e-2 {
         9
@@ -391,6 +405,38 @@ mod tests {
                 let x = fb.apply(a, b);
                 let y = blend(a, b, u);
                 assert!((x - y).length() < 4e-15, "u={u} θ={ang}: {x:?} vs {y:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_six_term_band_is_where_the_vector_path_assumes() {
+        // simd::fixed takes [TERM_THRESHOLDS[5], TERM_THRESHOLDS[6]) as 6 terms
+        let (lo, hi) = (TERM_THRESHOLDS[5], TERM_THRESHOLDS[6]);
+        assert_eq!(terms_for(lo), 6);
+        assert_eq!(terms_for(f64::from_bits(hi.to_bits() - 1)), 6);
+        assert_eq!(terms_for(hi), 9);
+        assert_eq!(terms_for(f64::from_bits(lo.to_bits() - 1)), 3);
+    }
+
+    #[test]
+    fn term_thresholds_agree_with_terms_for() {
+        let mut h = 1e-12;
+        while h < 1.0 {
+            for x in [h, h * 0.999_999, h * 1.000_001] {
+                let n = terms_for(x);
+                for (k, &t) in TERM_THRESHOLDS.iter().enumerate() {
+                    assert_eq!(k < n, x >= t, "h = {x}, k = {k}");
+                }
+            }
+            h *= 1.01;
+        }
+        for t in [1e-9f64, 1e-6, 1e-3, 1e-2, 0.05] {
+            for x in [t, f64::from_bits(t.to_bits() - 1)] {
+                let n = terms_for(x);
+                for (k, &th) in TERM_THRESHOLDS.iter().enumerate() {
+                    assert_eq!(k < n, x >= th, "h = {x}, k = {k}");
+                }
             }
         }
     }

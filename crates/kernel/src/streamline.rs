@@ -19,17 +19,30 @@ use glam::DVec3;
 #[inline]
 pub fn integrate_into(tangents: &[DVec3], s: &[f64], out: &mut Vec<DVec3>) {
     out.clear();
+    out.resize(tangents.len() + 1, DVec3::ZERO);
+    integrate_slice(tangents, s, out);
+}
+
+/// Eq. 65 from `p₀ = 0` into `out`, which holds exactly `n+2` points.
+#[inline]
+pub fn integrate_slice(tangents: &[DVec3], s: &[f64], out: &mut [DVec3]) {
     let n = tangents.len() - 1;
+    assert!(s.len() == n + 1 && out.len() == n + 2 && n >= 1);
     let mut p = DVec3::ZERO;
-    out.push(p);
+    out[0] = p;
     p += tangents[0] * (0.5 * (s[1] - s[0]));
-    out.push(p);
-    for i in 1..n {
-        p += tangents[i] * (0.5 * (s[i + 1] - s[i - 1]));
-        out.push(p);
+    out[1] = p;
+    // p_{i+1} = p_i + ½(s_{i+1} − s_{i−1}) t_i, i = 1 … n−1
+    for ((t, w), o) in tangents[1..n]
+        .iter()
+        .zip(s.windows(3))
+        .zip(out[2..=n].iter_mut())
+    {
+        p += *t * (0.5 * (w[2] - w[0]));
+        *o = p;
     }
     p += tangents[n] * (0.5 * (s[n] - s[n - 1]));
-    out.push(p);
+    out[n + 1] = p;
 }
 
 /// Arc length of point `k` of the polyline.
@@ -70,7 +83,14 @@ pub fn point_at(points: &[DVec3], tangents: &[DVec3], s: &[f64], sigma: f64) -> 
 /// Integrates and places one streamline so that its point at arc length
 /// `sigma` is `origin`, writing `n+2` points into `out`.
 pub fn place_into(tangents: &[DVec3], s: &[f64], sigma: f64, origin: DVec3, out: &mut Vec<DVec3>) {
-    integrate_into(tangents, s, out);
+    out.clear();
+    out.resize(tangents.len() + 1, DVec3::ZERO);
+    place_slice(tangents, s, sigma, origin, out);
+}
+
+/// [`place_into`] into a slice of exactly `n+2` points.
+pub fn place_slice(tangents: &[DVec3], s: &[f64], sigma: f64, origin: DVec3, out: &mut [DVec3]) {
+    integrate_slice(tangents, s, out);
     let shift = origin - point_at(out, tangents, s, sigma);
     for p in out.iter_mut() {
         *p += shift;

@@ -11,6 +11,7 @@ use crate::curve::{CurveScheme, OMEGA_DEFAULT, Prepared, Stencil};
 use crate::error::{KernelError, Place};
 use crate::grid::Grid;
 use crate::tangent::normalize_at;
+use crate::window::Span;
 use glam::DVec3;
 
 /// A tensor-product subdivision scheme for regular nets.
@@ -149,6 +150,37 @@ pub trait Refine: Copy + Default {
     /// The output of stencil `st`, reading input `j` as `f(j)`: bit-for-bit
     /// equal to `refine`'s output with that stencil (for windows).
     fn apply(rule: &Self::Rule, st: Stencil, f: impl Fn(usize) -> Self) -> Self;
+
+    /// Entries `cols` of one output row of the step across rows: stencil `st`
+    /// over whole rows of `src` (entry by entry unless a type does better).
+    #[inline]
+    fn apply_across(
+        rule: &Self::Rule,
+        st: Stencil,
+        src: &Grid<Self>,
+        cols: Span,
+        out: &mut [Self],
+    ) {
+        let (data, w) = (src.data(), src.cols());
+        for k in cols.iter() {
+            out[k] = Self::apply(rule, st, |j| data[j * w + k]);
+        }
+    }
+
+    /// Entries `cols` of one row's step along it, from `input`.
+    #[inline]
+    fn apply_along(
+        rule: &Self::Rule,
+        c: CurveScheme,
+        input: &[Self],
+        cols: Span,
+        out: &mut [Self],
+    ) {
+        let n = input.len();
+        for k in cols.iter() {
+            out[k] = Self::apply(rule, c.stencil(n, k), |j| input[j]);
+        }
+    }
 }
 
 impl Refine for DVec3 {
@@ -163,6 +195,53 @@ impl Refine for DVec3 {
     #[inline(always)]
     fn apply(rule: &Prepared, st: Stencil, f: impl Fn(usize) -> Self) -> Self {
         rule.tangent(st, f)
+    }
+
+    /// 4-point inserts go four at a time ([`crate::simd`], same bits).
+    fn apply_across(rule: &Prepared, st: Stencil, src: &Grid<Self>, cols: Span, out: &mut [Self]) {
+        match (rule.four_point(), st) {
+            (Some(four), Stencil::Insert(i)) => {
+                let r = cols.lo..cols.hi + 1;
+                let row = |j: usize| &src.row(j)[r.clone()];
+                crate::simd::interior_across(
+                    four,
+                    [row(i - 1), row(i), row(i + 1), row(i + 2)],
+                    &mut out[r.clone()],
+                );
+            }
+            (_, Stencil::Copy(i)) => {
+                let r = cols.lo..cols.hi + 1;
+                out[r.clone()].copy_from_slice(&src.row(i)[r]);
+            }
+            _ => {
+                let (data, w) = (src.data(), src.cols());
+                for k in cols.iter() {
+                    out[k] = rule.tangent(st, |j| data[j * w + k]);
+                }
+            }
+        }
+    }
+
+    /// 4-point inserts (odd outputs `3 ..= 2n − 5`) go four at a time.
+    fn apply_along(rule: &Prepared, c: CurveScheme, input: &[Self], cols: Span, out: &mut [Self]) {
+        let n = input.len();
+        let (Some(four), true) = (rule.four_point(), n >= 4) else {
+            for k in cols.iter() {
+                out[k] = rule.tangent(c.stencil(n, k), |j| input[j]);
+            }
+            return;
+        };
+        // inserts 2i + 1 with i in [lo, hi] ⊂ [1, n − 3] inside `cols`
+        let lo = (cols.lo.saturating_sub(1)).div_ceil(2).max(1);
+        let hi = ((cols.hi.saturating_sub(1)) / 2).min(n - 3);
+        for k in cols.iter() {
+            if k % 2 == 0 {
+                out[k] = input[k / 2]; // Stencil::Copy
+            } else if (k - 1) / 2 < lo || (k - 1) / 2 > hi {
+                out[k] = rule.tangent(c.stencil(n, k), |j| input[j]);
+            }
+        }
+        crate::simd::interior_along(four, input, lo, hi, out);
     }
 }
 
@@ -179,6 +258,67 @@ impl Refine for f64 {
     #[inline(always)]
     fn apply(scheme: &CurveScheme, st: Stencil, f: impl Fn(usize) -> Self) -> Self {
         crate::scalar::apply(*scheme, st, f)
+    }
+
+    /// Copies and inserts as whole-row loops (the stencil is the same for
+    /// every entry of the row), with the operations of [`crate::scalar::apply`].
+    fn apply_across(
+        scheme: &CurveScheme,
+        st: Stencil,
+        src: &Grid<Self>,
+        cols: Span,
+        out: &mut [Self],
+    ) {
+        let r = cols.lo..cols.hi + 1;
+        let row = |j: usize| &src.row(j)[r.clone()];
+        match st {
+            Stencil::Copy(i) => out[r.clone()].copy_from_slice(row(i)),
+            Stencil::Insert(i) => {
+                let w = crate::scalar::insert_weight(*scheme);
+                let (a, b, c, d) = (row(i - 1), row(i), row(i + 1), row(i + 2));
+                for (k, o) in out[r.clone()].iter_mut().enumerate() {
+                    *o = crate::scalar::insert(w, a[k], b[k], c[k], d[k]);
+                }
+            }
+            _ => {
+                for (k, o) in out[r.clone()].iter_mut().enumerate() {
+                    *o = crate::scalar::apply(*scheme, st, |j| row(j)[k]);
+                }
+            }
+        }
+    }
+
+    /// 4-point rows: copies and interior inserts as plain loops.
+    fn apply_along(
+        scheme: &CurveScheme,
+        c: CurveScheme,
+        input: &[Self],
+        cols: Span,
+        out: &mut [Self],
+    ) {
+        let n = input.len();
+        if !matches!(c, CurveScheme::FourPoint { .. }) || n < 4 {
+            for k in cols.iter() {
+                out[k] = crate::scalar::apply(*scheme, c.stencil(n, k), |j| input[j]);
+            }
+            return;
+        }
+        // inserts 2i + 1 with i in [lo, hi] ⊂ [1, n − 3] inside `cols`
+        let lo = (cols.lo.saturating_sub(1)).div_ceil(2).max(1);
+        let hi = ((cols.hi.saturating_sub(1)) / 2).min(n - 3);
+        let w = crate::scalar::insert_weight(c);
+        for k in cols.iter() {
+            if k % 2 == 0 {
+                out[k] = input[k / 2];
+            } else if (k - 1) / 2 < lo || (k - 1) / 2 > hi {
+                out[k] = crate::scalar::apply(*scheme, c.stencil(n, k), |j| input[j]);
+            }
+        }
+        if lo <= hi {
+            for (i, q) in input[lo - 1..hi + 3].windows(4).enumerate() {
+                out[2 * (lo + i) + 1] = crate::scalar::insert(w, q[0], q[1], q[2], q[3]);
+            }
+        }
     }
 }
 
@@ -219,10 +359,27 @@ pub fn refine_grid<T: Refine + Send + Sync>(
     order: BlendOrder,
     g: &Grid<T>,
 ) -> Grid<T> {
+    let (mut half, mut next) = (
+        Grid::filled(0, 0, T::default()),
+        Grid::filled(0, 0, T::default()),
+    );
+    refine_grid_into(scheme, order, g, &mut half, &mut next);
+    next
+}
+
+/// [`refine_grid`] into buffers kept by the caller: `half` (the grid of the
+/// first direction) and `next` are reshaped and overwritten.
+pub fn refine_grid_into<T: Refine + Send + Sync>(
+    scheme: SurfaceScheme,
+    order: BlendOrder,
+    g: &Grid<T>,
+    half: &mut Grid<T>,
+    next: &mut Grid<T>,
+) {
     let c = scheme.curve();
     let (hr, hc) = crate::window::half_shape(scheme, order, g.rows(), g.cols());
-    let mut half = Grid::filled(hr, hc, T::default());
-    let mut next = Grid::filled(
+    half.reshape(hr, hc, T::default());
+    next.reshape(
         c.refined_len(g.rows()),
         c.refined_len(g.cols()),
         T::default(),
@@ -231,11 +388,10 @@ pub fn refine_grid<T: Refine + Send + Sync>(
         scheme,
         order,
         g,
-        &mut half,
-        &mut next,
+        half,
+        next,
         crate::window::Window::all(g.rows(), g.cols()),
     );
-    next
 }
 
 /// The same step computed the plain way, curve by curve (columns gathered

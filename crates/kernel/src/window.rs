@@ -190,13 +190,9 @@ fn refine_along_rows<T: Refine + Send + Sync>(
     parallel: bool,
 ) {
     let width = dst.cols();
-    let n = src.cols();
     split_rows(dst.data_mut(), width, rows, parallel, |chunk, first| {
         for (i, row) in chunk.chunks_mut(width).enumerate() {
-            let input = src.row(first + i);
-            for k in cols.iter() {
-                row[k] = T::apply(rule, c.stencil(n, k), |j| input[j]);
-            }
+            T::apply_along(rule, c, src.row(first + i), cols, row);
         }
     });
 }
@@ -215,13 +211,9 @@ fn refine_along_cols<T: Refine + Send + Sync>(
 ) {
     let width = dst.cols();
     let n = src.rows();
-    let (data, w) = (src.data(), src.cols());
     split_rows(dst.data_mut(), width, rows, parallel, |chunk, first| {
         for (i, row) in chunk.chunks_mut(width).enumerate() {
-            let st = c.stencil(n, first + i);
-            for k in cols.iter() {
-                row[k] = T::apply(rule, st, |j| data[j * w + k]);
-            }
+            T::apply_across(rule, c.stencil(n, first + i), src, cols, row);
         }
     });
 }

@@ -171,3 +171,38 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    /// The vector path (AVX2 where the CPU has it) gives the scalar rules'
+    /// bits: a step of the windowed path against the curve-by-curve step
+    /// (`FourPointRule::refine`, scalar), on nets from nearly equal to
+    /// antipodal neighbours, including nasty rows spliced in.
+    #[test]
+    fn vector_step_is_bitwise_the_scalar_step(
+        g in net(4..=14, 4..=21, 3.1),
+        spread in prop_oneof![Just(1e-7), Just(1e-4), Just(1e-2), Just(0.3), Just(1.0)],
+        nasty_row in nasty(6..=6),
+        omega in 0.0f64..2.4,
+    ) {
+        // shrink the angles between neighbours so every term band is drawn
+        let c = g.data()[0];
+        let mut data: Vec<DVec3> = g.data().iter().map(|&v| (c + (v - c) * spread).normalize()).collect();
+        let cols = g.cols();
+        // the nasty row's valid tangents (huge, tiny, antipodal pairs), as the
+        // kernel's boundary would normalise them
+        for (k, v) in nasty_row.iter().enumerate().take(cols) {
+            if let Some(u) = v.try_normalize() {
+                data[cols + k] = u;
+            }
+        }
+        let g = Grid::new(g.rows(), cols, data).unwrap();
+        let scheme = SurfaceScheme::Kobbelt { omega };
+        for order in ORDERS {
+            let fast = streamline_kernel::surface::refine_grid(scheme, order, &g);
+            let plain = streamline_kernel::surface::refine_grid_gathered(scheme, order, &g);
+            prop_assert_eq!(&fast, &plain, "{:?}", order);
+        }
+    }
+}
