@@ -257,6 +257,16 @@ impl FourPointRule {
         &self.inner
     }
 
+    /// `blend(·,·,¼)`, the first blend of the end rule.
+    pub(crate) fn quarter(&self) -> &FixedBlend {
+        &self.quarter
+    }
+
+    /// `blend(·,·,−¼)`, the second blend of the end rule.
+    pub(crate) fn minus_quarter(&self) -> &FixedBlend {
+        &self.minus_quarter
+    }
+
     /// The tangent inserted between `b` and `c` with outer neighbours `a`, `d` (Eq. 61).
     #[inline]
     pub fn interior(&self, a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> DVec3 {

@@ -63,32 +63,17 @@ pub fn normals_rows(points: &[DVec3], cols: usize, lo: usize, hi: usize, normals
     if cols == 0 || points.is_empty() || hi < lo {
         return;
     }
-    let rows = points.len() / cols;
-    let row = |r: usize| &points[r * cols..(r + 1) * cols];
-    let one = |r: usize, out: &mut [DVec3]| {
-        let (r0, r1) = (r.saturating_sub(1), (r + 1).min(rows - 1));
-        crate::simd::normals_row(row(r0), row(r), row(r1), out);
-    };
     let region = &mut normals[lo * cols..(hi + 1) * cols];
     let n = hi - lo + 1;
     if n * cols < PARALLEL_MIN_POINTS || n < 2 {
-        for (i, out) in region.chunks_mut(cols).enumerate() {
-            one(lo + i, out);
-        }
+        crate::simd::normals_rows(points, cols, lo, hi, region);
         return;
     }
     let (top, bottom) = region.split_at_mut((n / 2) * cols);
+    let mid = lo + n / 2;
     crate::parallel::join(
-        || {
-            for (i, out) in top.chunks_mut(cols).enumerate() {
-                one(lo + i, out);
-            }
-        },
-        || {
-            for (i, out) in bottom.chunks_mut(cols).enumerate() {
-                one(lo + n / 2 + i, out);
-            }
-        },
+        || crate::simd::normals_rows(points, cols, lo, mid - 1, top),
+        || crate::simd::normals_rows(points, cols, mid, hi, bottom),
     );
 }
 

@@ -223,26 +223,25 @@ impl FixedBlend {
     }
 }
 
+/// Every blend sums at least this many series terms: enough for `h < 1e-3`
+/// (θ < 3.6°, where the neighbours of the finer levels sit), so the vector
+/// path's lanes share their first terms and only wider angles add more.
+pub(crate) const MIN_TERMS: usize = 6;
+
 /// `TERM_THRESHOLDS[k]`: the smallest `h` whose series uses term `k`
 /// (`terms_for(h) > k` ⇔ `h ≥ TERM_THRESHOLDS[k]`), for the vector path
 /// ([`crate::simd`]), where each lane starts its sum at its own term.
 pub(crate) const TERM_THRESHOLDS: [f64; FixedBlend::TERMS] = [
-    0.0, 0.0, 1e-9, 1e-6, 1e-6, 1e-6, 1e-3, 1e-3, 1e-3, 1e-2, 1e-2, 1e-2, 1e-2, 1e-2, 0.05, 0.05,
-    0.05, 0.05, 0.05, 0.05, 0.05, 0.05, 0.05, 0.05,
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1e-3, 1e-3, 1e-3, 1e-2, 1e-2, 1e-2, 1e-2, 1e-2, 0.05, 0.05, 0.05,
+    0.05, 0.05, 0.05, 0.05, 0.05, 0.05, 0.05,
 ];
 
-/// How many series terms [`FixedBlend::apply`] sums for `h`.
+/// How many series terms [`FixedBlend::apply`] sums for `h`: the last term
+/// `h^(n−1)·|coef|` is below 1e-17 (`h^6 ≤ 1e-18` for `h < 1e-3`, …).
 #[inline]
 pub(crate) fn terms_for(h: f64) -> usize {
-    // h^k < 1e-17 ⇔ k > 17 / -log10(h); a small table avoids the logarithm.
-    if h < 1e-9 {
-        2
-    } else if h < 1e-6 {
-        3
-    } else if h < 1e-3 {
-        // one count for the whole band where neighbours of the finer levels
-        // sit (θ ≈ 0.1°–3.6°), so the vector path's lanes mostly agree
-        6
+    if h < 1e-3 {
+        MIN_TERMS
     } else if h < 1e-2 {
         9
     } else if h < 0.05 {
@@ -410,13 +409,11 @@ mod tests {
     }
 
     #[test]
-    fn the_six_term_band_is_where_the_vector_path_assumes() {
-        // simd::fixed takes [TERM_THRESHOLDS[5], TERM_THRESHOLDS[6]) as 6 terms
-        let (lo, hi) = (TERM_THRESHOLDS[5], TERM_THRESHOLDS[6]);
-        assert_eq!(terms_for(lo), 6);
-        assert_eq!(terms_for(f64::from_bits(hi.to_bits() - 1)), 6);
-        assert_eq!(terms_for(hi), 9);
-        assert_eq!(terms_for(f64::from_bits(lo.to_bits() - 1)), 3);
+    fn every_blend_takes_the_minimum_terms() {
+        // simd::kernels sums terms below MIN_TERMS in every lane unmasked
+        assert!(TERM_THRESHOLDS[..MIN_TERMS].iter().all(|&t| t == 0.0));
+        const { assert!(TERM_THRESHOLDS[MIN_TERMS] > 0.0) };
+        assert_eq!(terms_for(0.0), MIN_TERMS);
     }
 
     #[test]
@@ -431,7 +428,7 @@ mod tests {
             }
             h *= 1.01;
         }
-        for t in [1e-9f64, 1e-6, 1e-3, 1e-2, 0.05] {
+        for t in [1e-3f64, 1e-2, 0.05] {
             for x in [t, f64::from_bits(t.to_bits() - 1)] {
                 let n = terms_for(x);
                 for (k, &th) in TERM_THRESHOLDS.iter().enumerate() {

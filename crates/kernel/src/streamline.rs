@@ -65,19 +65,34 @@ pub fn point_at(points: &[DVec3], tangents: &[DVec3], s: &[f64], sigma: f64) -> 
     if sigma >= s[n] {
         return points[n + 1] + tangents[n] * (sigma - s[n]);
     }
-    // Segment k → k+1 has direction t_k and spans [arclen(k), arclen(k+1)].
-    let k = match s.binary_search_by(|x| x.total_cmp(&sigma)) {
+    let k = segment_at(s, sigma);
+    points[k] + tangents[k] * (sigma - point_arclength(s, k))
+}
+
+/// The point whose segment holds arc length `sigma`: 0 at or before `s₀`,
+/// `n+1` at or past `s_n`; between, segment `k → k+1` (direction `t_k`,
+/// spanning `[arclen(k), arclen(k+1)]`).
+fn segment_at(s: &[f64], sigma: f64) -> usize {
+    let n = s.len() - 1;
+    if sigma <= s[0] {
+        return 0;
+    }
+    if sigma >= s[n] {
+        return n + 1;
+    }
+    match s.binary_search_by(|x| x.total_cmp(&sigma)) {
         Ok(i) => i,
         Err(i) => {
-            // sigma in (s[i-1], s[i]): segment i-1 covers up to (s[i-1]+s[i])/2, segment i after.
+            // sigma in (s[i-1], s[i]): segment i-1 covers up to (s[i-1]+s[i])/2,
+            // segment i after (the clamp keeps a NaN inside the row)
+            let i = i.clamp(1, n);
             if sigma < 0.5 * (s[i - 1] + s[i]) {
                 i - 1
             } else {
                 i
             }
         }
-    };
-    points[k] + tangents[k] * (sigma - point_arclength(s, k))
+    }
 }
 
 /// Integrates and places one streamline so that its point at arc length
@@ -88,13 +103,41 @@ pub fn place_into(tangents: &[DVec3], s: &[f64], sigma: f64, origin: DVec3, out:
     place_slice(tangents, s, sigma, origin, out);
 }
 
-/// [`place_into`] into a slice of exactly `n+2` points.
+/// [`place_into`] into a slice of exactly `n+2` points: the points up to the
+/// anchor are summed once to find the shift, then Eq. 65 writes every point
+/// already shifted (the same sums and the same shift, so the same bits as
+/// integrating first and shifting after).
 pub fn place_slice(tangents: &[DVec3], s: &[f64], sigma: f64, origin: DVec3, out: &mut [DVec3]) {
-    integrate_slice(tangents, s, out);
-    let shift = origin - point_at(out, tangents, s, sigma);
-    for p in out.iter_mut() {
-        *p += shift;
+    let n = tangents.len() - 1;
+    assert!(s.len() == n + 1 && out.len() == n + 2 && n >= 1);
+    // the segment that holds σ (as in `point_at`), and its start point p_k
+    let k = segment_at(s, sigma);
+    let mut p = DVec3::ZERO;
+    for i in 0..k {
+        p += tangents[i] * (0.5 * (s[(i + 1).min(n)] - s[i.saturating_sub(1)]));
     }
+    let anchor = if sigma <= s[0] {
+        DVec3::ZERO + tangents[0] * (sigma - s[0])
+    } else if sigma >= s[n] {
+        p + tangents[n] * (sigma - s[n])
+    } else {
+        p + tangents[k] * (sigma - point_arclength(s, k))
+    };
+    let shift = origin - anchor;
+    let mut p = DVec3::ZERO;
+    out[0] = p + shift;
+    p += tangents[0] * (0.5 * (s[1] - s[0]));
+    out[1] = p + shift;
+    for ((t, w), o) in tangents[1..n]
+        .iter()
+        .zip(s.windows(3))
+        .zip(out[2..=n].iter_mut())
+    {
+        p += *t * (0.5 * (w[2] - w[0]));
+        *o = p + shift;
+    }
+    p += tangents[n] * (0.5 * (s[n] - s[n - 1]));
+    out[n + 1] = p + shift;
 }
 
 /// The kernel's boundary for one streamline: validates and normalises the input,
@@ -168,6 +211,33 @@ pub fn polyline_length(points: &[DVec3]) -> f64 {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn placing_in_one_pass_is_integrating_then_shifting() {
+        let t: Vec<DVec3> = (0..9)
+            .map(|i| DVec3::new((i as f64 * 0.4).cos(), (i as f64 * 0.4).sin(), -0.3).normalize())
+            .collect();
+        let s: Vec<f64> = (0..9)
+            .map(|i| i as f64 * 0.7 + (i as f64 * 1.3).sin() * 0.2)
+            .collect();
+        let origin = DVec3::new(-0.0, 2.5, 1e-3);
+        for sigma in [-3.0, s[0], 0.1, 0.35, s[3], 2.9, s[8], 9.0, f64::NAN] {
+            let mut plain = Vec::new();
+            integrate_into(&t, &s, &mut plain);
+            let shift = origin - point_at(&plain, &t, &s, sigma);
+            for p in plain.iter_mut() {
+                *p += shift;
+            }
+            let mut fast = vec![DVec3::ZERO; t.len() + 1];
+            place_slice(&t, &s, sigma, origin, &mut fast);
+            let bits = |v: &[DVec3]| {
+                v.iter()
+                    .map(|p| p.to_array().map(f64::to_bits))
+                    .collect::<Vec<_>>()
+            };
+            assert_eq!(bits(&fast), bits(&plain), "sigma = {sigma}");
+        }
+    }
+
     use super::*;
 
     #[test]

@@ -152,18 +152,20 @@ pub trait Refine: Copy + Default {
     fn apply(rule: &Self::Rule, st: Stencil, f: impl Fn(usize) -> Self) -> Self;
 
     /// Entries `cols` of one output row of the step across rows: stencil `st`
-    /// over whole rows of `src` (entry by entry unless a type does better).
+    /// over whole input rows, row `j` read as `rows(j)` (entry by entry
+    /// unless a type does better).
     #[inline]
-    fn apply_across(
+    fn apply_across<'a>(
         rule: &Self::Rule,
         st: Stencil,
-        src: &Grid<Self>,
+        rows: impl Fn(usize) -> &'a [Self],
         cols: Span,
         out: &mut [Self],
-    ) {
-        let (data, w) = (src.data(), src.cols());
+    ) where
+        Self: 'a,
+    {
         for k in cols.iter() {
-            out[k] = Self::apply(rule, st, |j| data[j * w + k]);
+            out[k] = Self::apply(rule, st, |j| rows(j)[k]);
         }
     }
 
@@ -198,25 +200,35 @@ impl Refine for DVec3 {
     }
 
     /// 4-point inserts go four at a time ([`crate::simd`], same bits).
-    fn apply_across(rule: &Prepared, st: Stencil, src: &Grid<Self>, cols: Span, out: &mut [Self]) {
+    fn apply_across<'a>(
+        rule: &Prepared,
+        st: Stencil,
+        rows: impl Fn(usize) -> &'a [Self],
+        cols: Span,
+        out: &mut [Self],
+    ) {
         match (rule.four_point(), st) {
             (Some(four), Stencil::Insert(i)) => {
                 let r = cols.lo..cols.hi + 1;
-                let row = |j: usize| &src.row(j)[r.clone()];
+                let row = |j: usize| &rows(j)[r.clone()];
                 crate::simd::interior_across(
                     four,
                     [row(i - 1), row(i), row(i + 1), row(i + 2)],
                     &mut out[r.clone()],
                 );
             }
+            (Some(four), Stencil::End(a, b, c)) => {
+                let r = cols.lo..cols.hi + 1;
+                let row = |j: usize| &rows(j)[r.clone()];
+                crate::simd::end_across(four, [row(a), row(b), row(c)], &mut out[r.clone()]);
+            }
             (_, Stencil::Copy(i)) => {
                 let r = cols.lo..cols.hi + 1;
-                out[r.clone()].copy_from_slice(&src.row(i)[r]);
+                out[r.clone()].copy_from_slice(&rows(i)[r]);
             }
             _ => {
-                let (data, w) = (src.data(), src.cols());
                 for k in cols.iter() {
-                    out[k] = rule.tangent(st, |j| data[j * w + k]);
+                    out[k] = rule.tangent(st, |j| rows(j)[k]);
                 }
             }
         }
@@ -231,15 +243,12 @@ impl Refine for DVec3 {
             }
             return;
         };
-        // inserts 2i + 1 with i in [lo, hi] ⊂ [1, n − 3] inside `cols`
-        let lo = (cols.lo.saturating_sub(1)).div_ceil(2).max(1);
+        // copies 2i and inserts 2i + 1 with i in [lo, hi] ⊂ [1, n − 3], both
+        // inside `cols`, go to the vector path; the rest entry by entry
+        let lo = cols.lo.div_ceil(2).max(1);
         let hi = ((cols.hi.saturating_sub(1)) / 2).min(n - 3);
-        for k in cols.iter() {
-            if k % 2 == 0 {
-                out[k] = input[k / 2]; // Stencil::Copy
-            } else if (k - 1) / 2 < lo || (k - 1) / 2 > hi {
-                out[k] = rule.tangent(c.stencil(n, k), |j| input[j]);
-            }
+        for k in outside(cols, 2 * lo, 2 * hi + 1) {
+            out[k] = rule.tangent(c.stencil(n, k), |j| input[j]);
         }
         crate::simd::interior_along(four, input, lo, hi, out);
     }
@@ -262,15 +271,15 @@ impl Refine for f64 {
 
     /// Copies and inserts as whole-row loops (the stencil is the same for
     /// every entry of the row), with the operations of [`crate::scalar::apply`].
-    fn apply_across(
+    fn apply_across<'a>(
         scheme: &CurveScheme,
         st: Stencil,
-        src: &Grid<Self>,
+        rows: impl Fn(usize) -> &'a [Self],
         cols: Span,
         out: &mut [Self],
     ) {
         let r = cols.lo..cols.hi + 1;
-        let row = |j: usize| &src.row(j)[r.clone()];
+        let row = |j: usize| &rows(j)[r.clone()];
         match st {
             Stencil::Copy(i) => out[r.clone()].copy_from_slice(row(i)),
             Stencil::Insert(i) => {
@@ -303,23 +312,27 @@ impl Refine for f64 {
             }
             return;
         }
-        // inserts 2i + 1 with i in [lo, hi] ⊂ [1, n − 3] inside `cols`
-        let lo = (cols.lo.saturating_sub(1)).div_ceil(2).max(1);
+        // copies 2i and inserts 2i + 1 with i in [lo, hi] ⊂ [1, n − 3], both
+        // inside `cols`, as one plain loop; the rest entry by entry
+        let lo = cols.lo.div_ceil(2).max(1);
         let hi = ((cols.hi.saturating_sub(1)) / 2).min(n - 3);
-        let w = crate::scalar::insert_weight(c);
-        for k in cols.iter() {
-            if k % 2 == 0 {
-                out[k] = input[k / 2];
-            } else if (k - 1) / 2 < lo || (k - 1) / 2 > hi {
-                out[k] = crate::scalar::apply(*scheme, c.stencil(n, k), |j| input[j]);
-            }
+        for k in outside(cols, 2 * lo, 2 * hi + 1) {
+            out[k] = crate::scalar::apply(*scheme, c.stencil(n, k), |j| input[j]);
         }
         if lo <= hi {
-            for (i, q) in input[lo - 1..hi + 3].windows(4).enumerate() {
-                out[2 * (lo + i) + 1] = crate::scalar::insert(w, q[0], q[1], q[2], q[3]);
+            let w = crate::scalar::insert_weight(c);
+            let pairs = out[2 * lo..2 * hi + 2].chunks_exact_mut(2);
+            for (o, q) in pairs.zip(input[lo - 1..hi + 3].windows(4)) {
+                o[0] = q[1];
+                o[1] = crate::scalar::insert(w, q[0], q[1], q[2], q[3]);
             }
         }
     }
+}
+
+/// The indices of `cols` before `a` and after `b` (`a ≤ b + 1`).
+fn outside(cols: Span, a: usize, b: usize) -> impl Iterator<Item = usize> {
+    (cols.lo..a.min(cols.hi + 1)).chain((b + 1).max(cols.lo)..=cols.hi)
 }
 
 /// Refines every row of `g`.
@@ -376,6 +389,13 @@ pub fn refine_grid_into<T: Refine + Send + Sync>(
     half: &mut Grid<T>,
     next: &mut Grid<T>,
 ) {
+    if order == BlendOrder::SFirst && scheme.is_interpolatory() && g.rows() >= 2 {
+        // the even rows of `next` are the rows of the first direction
+        // (Stencil::Copy): written there directly, no `half` to copy from
+        half.reshape(0, 0, T::default());
+        refine_interpolatory_s_first(scheme, g, next);
+        return;
+    }
     let c = scheme.curve();
     let (hr, hc) = crate::window::half_shape(scheme, order, g.rows(), g.cols());
     half.reshape(hr, hc, T::default());
@@ -392,6 +412,42 @@ pub fn refine_grid_into<T: Refine + Send + Sync>(
         next,
         crate::window::Window::all(g.rows(), g.cols()),
     );
+}
+
+/// One s-first step of an interpolatory scheme (Kobbelt) into `next` alone:
+/// each row of `g` refined along `s` into the even row `2r` of `next` (the
+/// 4-point rule copies input rows: `Stencil::Copy`), then the odd rows from
+/// the even ones, with the same per-entry operations as
+/// [`crate::window::refine_grid_window`] (bitwise equal; one thread).
+fn refine_interpolatory_s_first<T: Refine + Send + Sync>(
+    scheme: SurfaceScheme,
+    g: &Grid<T>,
+    next: &mut Grid<T>,
+) {
+    let c = scheme.curve();
+    let rule = T::prepare(c);
+    let (n, nr, nc) = (g.rows(), c.refined_len(g.rows()), c.refined_len(g.cols()));
+    next.reshape(nr, nc, T::default());
+    let all = Span::all(nc);
+    for r in 0..n {
+        T::apply_along(&rule, c, g.row(r), all, next.row_mut(2 * r));
+    }
+    for r in (1..nr).step_by(2) {
+        // row j of the first direction is row 2j of `next`: above the output
+        // row in `before`, below it in `after`
+        let (before, rest) = next.data_mut().split_at_mut(r * nc);
+        let (out, after) = rest.split_at_mut(nc);
+        let (before, after) = (&*before, &*after);
+        let rows = |j: usize| {
+            if 2 * j < r {
+                &before[2 * j * nc..(2 * j + 1) * nc]
+            } else {
+                let at = (2 * j - r - 1) * nc;
+                &after[at..at + nc]
+            }
+        };
+        T::apply_across(&rule, c.stencil(n, r), rows, all, out);
+    }
 }
 
 /// The same step computed the plain way, curve by curve (columns gathered

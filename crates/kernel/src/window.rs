@@ -213,7 +213,7 @@ fn refine_along_cols<T: Refine + Send + Sync>(
     let n = src.rows();
     split_rows(dst.data_mut(), width, rows, parallel, |chunk, first| {
         for (i, row) in chunk.chunks_mut(width).enumerate() {
-            T::apply_across(rule, c.stencil(n, first + i), src, cols, row);
+            T::apply_across(rule, c.stencil(n, first + i), |j| src.row(j), cols, row);
         }
     });
 }
