@@ -113,6 +113,11 @@ pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
         return Err(NoDisplay);
     }
     install_adapter_hook();
+    // on a machine whose few cores are shared with a software renderer, the
+    // kernel's second thread only adds CPU time: STREAMLINE_STUDIO_ONE_THREAD=1
+    if std::env::var_os("STREAMLINE_STUDIO_ONE_THREAD").is_some_and(|v| v == "1") {
+        streamline_kernel::parallel::set_enabled(false);
+    }
     let title = format!("Streamline Studio — {}", opts.scene.name);
     let mut app = App::new();
     app.add_plugins(DefaultPlugins.set(WindowPlugin {
