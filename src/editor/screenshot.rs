@@ -136,6 +136,8 @@ struct Report {
     /// Per system over frames with an edit: total ms, largest ms, frames
     /// (`STREAMLINE_STUDIO_METER_DETAIL=1`).
     detail: Vec<(String, f64, f64, u32)>,
+    /// The dearest frame with an edit, system by system (ms), with the detail.
+    worst_frame: Vec<(String, f64)>,
     /// All our systems in each frame with an edit (ms), oldest first.
     ours_frames: Vec<f64>,
     /// Frames drawn while a mesh was being opened off the frame.
@@ -258,6 +260,7 @@ fn drive(
                         .iter()
                         .map(|(k, v)| (k.clone(), v.0, v.1, v.2))
                         .collect(),
+                    worst_frame: timing.worst_frame.clone(),
                     ours_frames: timing.recent_frames.0.iter().copied().collect(),
                     busy_frames: p.busy_frames,
                     mesh_error: mesh.error.clone(),

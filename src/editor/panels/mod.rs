@@ -238,6 +238,8 @@ pub struct FrameTiming {
     /// With `STREAMLINE_STUDIO_METER_DETAIL=1`: per system (where it starts
     /// the meter), over frames with an edit: total and largest ms, frames.
     pub detail: std::collections::BTreeMap<String, (f64, f64, u32)>,
+    /// With the detail: the dearest frame with an edit, system by system (ms).
+    pub worst_frame: Vec<(String, f64)>,
     recent: Recent,
     /// "Our systems" of the last 120 frames with an edit (ms), oldest first.
     pub recent_frames: Recent,
@@ -332,6 +334,16 @@ fn track_frame(
         return;
     }
     t.seen_frame = log.frame;
+    let dearest = ms > t.recent_frames.0.iter().copied().fold(0.0, f64::max);
+    if dearest && !detail.is_empty() {
+        t.worst_frame = detail
+            .iter()
+            .map(|(at, ns)| (at.clone(), *ns as f64 * 1e-6))
+            .collect();
+        t.worst_frame
+            .push(("all, with the kernel's helper thread".into(), ms));
+        t.worst_frame.sort_by(|a, b| b.1.total_cmp(&a.1));
+    }
     for (at, ns) in detail {
         let e = t.detail.entry(at).or_default();
         let ms = ns as f64 * 1e-6;
