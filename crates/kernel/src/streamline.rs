@@ -26,12 +26,19 @@ pub fn integrate_into(tangents: &[DVec3], s: &[f64], out: &mut Vec<DVec3>) {
 /// Eq. 65 from `p₀ = 0` into `out`, which holds exactly `n+2` points.
 #[inline]
 pub fn integrate_slice(tangents: &[DVec3], s: &[f64], out: &mut [DVec3]) {
+    // the sums start at +0 and never become −0, so adding a zero shift keeps their bits
+    integrate_shifted(tangents, s, DVec3::ZERO, out);
+}
+
+/// Eq. 65 from `p₀ = 0`, each point written plus `shift`.
+#[inline]
+fn integrate_shifted(tangents: &[DVec3], s: &[f64], shift: DVec3, out: &mut [DVec3]) {
     let n = tangents.len() - 1;
     assert!(s.len() == n + 1 && out.len() == n + 2 && n >= 1);
     let mut p = DVec3::ZERO;
-    out[0] = p;
+    out[0] = p + shift;
     p += tangents[0] * (0.5 * (s[1] - s[0]));
-    out[1] = p;
+    out[1] = p + shift;
     // p_{i+1} = p_i + ½(s_{i+1} − s_{i−1}) t_i, i = 1 … n−1
     for ((t, w), o) in tangents[1..n]
         .iter()
@@ -39,10 +46,10 @@ pub fn integrate_slice(tangents: &[DVec3], s: &[f64], out: &mut [DVec3]) {
         .zip(out[2..=n].iter_mut())
     {
         p += *t * (0.5 * (w[2] - w[0]));
-        *o = p;
+        *o = p + shift;
     }
     p += tangents[n] * (0.5 * (s[n] - s[n - 1]));
-    out[n + 1] = p;
+    out[n + 1] = p + shift;
 }
 
 /// Arc length of point `k` of the polyline.
@@ -72,7 +79,7 @@ pub fn point_at(points: &[DVec3], tangents: &[DVec3], s: &[f64], sigma: f64) -> 
 /// The point whose segment holds arc length `sigma`: 0 at or before `s₀`,
 /// `n+1` at or past `s_n`; between, segment `k → k+1` (direction `t_k`,
 /// spanning `[arclen(k), arclen(k+1)]`).
-fn segment_at(s: &[f64], sigma: f64) -> usize {
+pub(crate) fn segment_at(s: &[f64], sigma: f64) -> usize {
     let n = s.len() - 1;
     if sigma <= s[0] {
         return 0;
@@ -123,21 +130,7 @@ pub fn place_slice(tangents: &[DVec3], s: &[f64], sigma: f64, origin: DVec3, out
     } else {
         p + tangents[k] * (sigma - point_arclength(s, k))
     };
-    let shift = origin - anchor;
-    let mut p = DVec3::ZERO;
-    out[0] = p + shift;
-    p += tangents[0] * (0.5 * (s[1] - s[0]));
-    out[1] = p + shift;
-    for ((t, w), o) in tangents[1..n]
-        .iter()
-        .zip(s.windows(3))
-        .zip(out[2..=n].iter_mut())
-    {
-        p += *t * (0.5 * (w[2] - w[0]));
-        *o = p + shift;
-    }
-    p += tangents[n] * (0.5 * (s[n] - s[n - 1]));
-    out[n + 1] = p + shift;
+    integrate_shifted(tangents, s, origin - anchor, out);
 }
 
 /// The kernel's boundary for one streamline: validates and normalises the input,

@@ -243,10 +243,8 @@ impl Refine for DVec3 {
             }
             return;
         };
-        // copies 2i and inserts 2i + 1 with i in [lo, hi] ⊂ [1, n − 3], both
-        // inside `cols`, go to the vector path; the rest entry by entry
-        let lo = cols.lo.div_ceil(2).max(1);
-        let hi = ((cols.hi.saturating_sub(1)) / 2).min(n - 3);
+        // the run of copies and inserts goes to the vector path; the rest entry by entry
+        let (lo, hi) = four_point_run(cols, n);
         for k in outside(cols, 2 * lo, 2 * hi + 1) {
             out[k] = rule.tangent(c.stencil(n, k), |j| input[j]);
         }
@@ -312,10 +310,8 @@ impl Refine for f64 {
             }
             return;
         }
-        // copies 2i and inserts 2i + 1 with i in [lo, hi] ⊂ [1, n − 3], both
-        // inside `cols`, as one plain loop; the rest entry by entry
-        let lo = cols.lo.div_ceil(2).max(1);
-        let hi = ((cols.hi.saturating_sub(1)) / 2).min(n - 3);
+        // the run of copies and inserts as one plain loop; the rest entry by entry
+        let (lo, hi) = four_point_run(cols, n);
         for k in outside(cols, 2 * lo, 2 * hi + 1) {
             out[k] = crate::scalar::apply(*scheme, c.stencil(n, k), |j| input[j]);
         }
@@ -328,6 +324,16 @@ impl Refine for f64 {
             }
         }
     }
+}
+
+/// The run of a 4-point row step on `n ≥ 4` inputs inside `cols`: the `i` in
+/// `[lo, hi] ⊂ [1, n − 3]` whose copy `2i` and interior insert `2i + 1` both
+/// lie in `cols` (empty when `lo > hi`); the entries outside
+/// `[2 lo, 2 hi + 1]` take their stencils one by one.
+fn four_point_run(cols: Span, n: usize) -> (usize, usize) {
+    let lo = cols.lo.div_ceil(2).max(1);
+    let hi = ((cols.hi.saturating_sub(1)) / 2).min(n - 3);
+    (lo, hi)
 }
 
 /// The indices of `cols` before `a` and after `b` (`a ≤ b + 1`).

@@ -334,7 +334,7 @@ fn track_frame(
         return;
     }
     t.seen_frame = log.frame;
-    let dearest = ms > t.recent_frames.0.iter().copied().fold(0.0, f64::max);
+    let dearest = ms > t.ours_max_ms; // the largest of the frames kept so far
     if dearest && !detail.is_empty() {
         t.worst_frame = detail
             .iter()

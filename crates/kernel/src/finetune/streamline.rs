@@ -55,23 +55,6 @@ impl Domain {
     }
 }
 
-/// The segment whose arc-length range holds `sigma` (as
-/// [`crate::streamline::point_at`] chooses it).
-fn segment_of(s: &[f64], sigma: f64) -> usize {
-    let n = s.len() - 1;
-    if sigma <= s[0] {
-        return 0;
-    }
-    if sigma >= s[n] {
-        return n + 1;
-    }
-    match s.binary_search_by(|x| x.total_cmp(&sigma)) {
-        Ok(i) => i,
-        Err(i) if sigma < 0.5 * (s[i - 1] + s[i]) => i - 1,
-        Err(i) => i,
-    }
-}
-
 /// Points `P_k` from the integral values `big[k] = ∫_{s₀}^{a_k}` (`P₀ = 0`),
 /// and the point at `σ` (integral value `at_sigma`).
 fn polyline(
@@ -90,7 +73,7 @@ fn polyline(
         p += tangents[k] * (big[k + 1] - big[k]);
         out.push(p);
     }
-    let k = segment_of(s, sigma);
+    let k = crate::streamline::segment_at(s, sigma);
     let (base, dir) = if k > n {
         (n + 1, tangents[n])
     } else {
@@ -142,7 +125,7 @@ pub fn fine_tune_into(
 /// holds it (exact for the identity; the editor puts arrows there).
 pub fn point_by_fraction(points: &[DVec3], s: &[f64], x: f64) -> DVec3 {
     let n = s.len() - 1;
-    let k = segment_of(s, x).min(n);
+    let k = crate::streamline::segment_at(s, x).min(n);
     let (a0, a1) = (point_arclength(s, k), point_arclength(s, k + 1));
     let f = if a1 > a0 {
         ((x - a0) / (a1 - a0)).clamp(0.0, 1.0)

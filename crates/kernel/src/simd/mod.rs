@@ -8,7 +8,7 @@
 //! are **bit for bit** the scalar results; lanes the vector code does not
 //! cover (an insert past the series' range `h > FixedBlend::H_MAX` or with an
 //! antipodal midpoint, a degenerate normal) are recomputed by the scalar code.
-//! Elsewhere, and after [`set_enabled`]`(false)`, everything is scalar.
+//! Elsewhere, and with [`set_limit`]`(Width::Scalar)`, everything is scalar.
 //!
 //! The insert is `mid(blend(a, b, (8+ω)/8), blend(c, d, −ω/8))` with the
 //! trig-free blend of [`crate::sphere::FixedBlend`]: `cos(uθ)` and
@@ -96,11 +96,6 @@ pub fn active() -> Width {
 /// The widest path allowed (for benchmarks and tests that compare paths).
 pub fn set_limit(w: Width) {
     LIMIT.store(w as u8, Ordering::Relaxed);
-}
-
-/// Switches the vector paths on (the CPU's widest) or off.
-pub fn set_enabled(on: bool) {
-    set_limit(if on { Width::Avx512 } else { Width::Scalar });
 }
 
 /// `out[k] = rule.interior(a[k], b[k], c[k], d[k])` for every `k` (the column
