@@ -33,22 +33,25 @@ pub(crate) fn patch_mesh(
     if reshaped {
         s.points = Grid::filled(rows, cols, DVec3::ZERO);
     }
+    let same_mesh = !reshaped && s.mesh.positions.len() == rows * cols;
     for (line, p) in &changed {
         if line.row < rows && p.0.len() == cols {
             s.points.row_mut(line.row).copy_from_slice(&p.0);
+            if same_mesh {
+                // the mesh's positions are the points, row by row: written
+                // while the row is still in cache
+                let at = line.row * cols;
+                s.mesh.positions[at..at + cols].copy_from_slice(&p.0);
+            }
         }
     }
-    if reshaped {
+    if !same_mesh {
         s.mesh.rebuild(&s.points);
         s.rows_changed = None;
     } else {
         // same shape: the triangles stay, only the moved rows' positions and
         // the normals around them are rewritten (a drag on the car at depth 5
         // moves nearly every row; rewriting 82k triangles would be wasted)
-        for r in span.lo..=span.hi {
-            let base = r * cols;
-            s.mesh.positions[base..base + cols].copy_from_slice(s.points.row(r));
-        }
         let around = span.widen(1, rows);
         s.mesh.update_normals_rows(&s.points, around.lo, around.hi);
         s.rows_changed = Some(around);

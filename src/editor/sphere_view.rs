@@ -14,7 +14,7 @@ use crate::ecs::{EditMessage, Model, ModelSet};
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::Viewport;
 use bevy::camera::visibility::RenderLayers;
-use bevy::mesh::PrimitiveTopology;
+use bevy::mesh::{PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use bevy_egui::input::egui_wants_any_pointer_input;
@@ -231,16 +231,21 @@ fn update_points(
         return;
     }
     *shown = Some(depth);
-    let pos: Vec<[f32; 3]> = data
-        .0
-        .tangents
-        .data()
-        .iter()
-        .map(|&t| to_view(t).to_array())
-        .collect();
-    if let Some(mut m) = meshes.get_mut(&mesh.0) {
-        m.insert_attribute(Mesh::ATTRIBUTE_POSITION, pos);
+    let Some(mut m) = meshes.get_mut(&mesh.0) else {
+        return;
+    };
+    let tangents = data.0.tangents.data();
+    // same count (a drag): rewrite the points in place, no new buffer
+    if let Some(VertexAttributeValues::Float32x3(p)) = m.attribute_mut(Mesh::ATTRIBUTE_POSITION)
+        && p.len() == tangents.len()
+    {
+        for (p, &t) in p.iter_mut().zip(tangents) {
+            *p = to_view(t).to_array();
+        }
+        return;
     }
+    let pos: Vec<[f32; 3]> = tangents.iter().map(|&t| to_view(t).to_array()).collect();
+    m.insert_attribute(Mesh::ATTRIBUTE_POSITION, pos);
 }
 
 #[allow(clippy::too_many_arguments)]

@@ -107,65 +107,76 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
             p.send_grouped(Edit::SetDirection { row, col, dir }, g);
         }
     }
-    ui.separator();
-    ui.horizontal(|ui| {
-        ui.label("axis")
-            .on_hover_text("The rotation axis (any length; normalised)");
-        for (k, n) in ["x", "y", "z"].into_iter().enumerate() {
+    // rotation and length in a sub-section, closed unless asked for: while a
+    // drag runs, every widget drawn costs the frame budget (issue 4)
+    let mut more = egui::CollapsingHeader::new("Rotate about an axis, length")
+        .id_salt("selection_more")
+        .default_open(false);
+    if p.ui_state.force {
+        more = more.open(Some(true));
+    }
+    more.show(ui, |ui| {
+        ui.horizontal(|ui| {
+            ui.label("axis")
+                .on_hover_text("The rotation axis (any length; normalised)");
+            for (k, n) in ["x", "y", "z"].into_iter().enumerate() {
+                ui.add(
+                    egui::DragValue::new(&mut input.axis[k])
+                        .speed(0.01)
+                        .prefix(n),
+                )
+                .on_hover_text(format!("Axis component {n}"));
+            }
+        });
+        ui.horizontal(|ui| {
             ui.add(
-                egui::DragValue::new(&mut input.axis[k])
-                    .speed(0.01)
-                    .prefix(n),
+                egui::DragValue::new(&mut input.degrees)
+                    .speed(0.5)
+                    .suffix("°"),
             )
-            .on_hover_text(format!("Axis component {n}"));
-        }
-    });
-    ui.horizontal(|ui| {
-        ui.add(
-            egui::DragValue::new(&mut input.degrees)
-                .speed(0.5)
-                .suffix("°"),
-        )
-        .on_hover_text("Angle, degrees (right-handed about the axis)");
-        if ui
-            .button("Rotate")
-            .on_hover_text("Turn the selected tangent about the axis by the angle")
-            .clicked()
-        {
-            p.send(Edit::Rotate {
-                row,
-                col,
-                axis: DVec3::from_array(input.axis),
-                radians: input.degrees.to_radians(),
-            });
-        }
-        if ui
-            .button("tilt axis")
-            .on_hover_text(
-                "Use the axis perpendicular to the tangent and the vertical (tilts it up or down)",
+            .on_hover_text("Angle, degrees (right-handed about the axis)");
+            if ui
+                .button("Rotate")
+                .on_hover_text("Turn the selected tangent about the axis by the angle")
+                .clicked()
+            {
+                p.send(Edit::Rotate {
+                    row,
+                    col,
+                    axis: DVec3::from_array(input.axis),
+                    radians: input.degrees.to_radians(),
+                });
+            }
+            if ui
+                .button("tilt axis")
+                .on_hover_text(
+                    "Use the axis perpendicular to the tangent and the vertical (tilts it up or down)",
+                )
+                .clicked()
+            {
+                let ax = a.dir.cross(DVec3::Z).try_normalize().unwrap_or(DVec3::X);
+                input.axis = ax.to_array();
+            }
+        });
+        ui.horizontal(|ui| {
+            ui.add_enabled(
+                depth == 0,
+                egui::DragValue::new(&mut input.coefficient).range(0.01..=100.0).speed(0.01).prefix("length ×"),
             )
-            .clicked()
-        {
-            let ax = a.dir.cross(DVec3::Z).try_normalize().unwrap_or(DVec3::X);
-            input.axis = ax.to_array();
-        }
-    });
-    ui.horizontal(|ui| {
-        ui.add_enabled(
-            depth == 0,
-            egui::DragValue::new(&mut input.coefficient).range(0.01..=100.0).speed(0.01).prefix("length ×"),
-        )
-        .on_hover_text("Length coefficient: scales the arc length of the two intervals beside this control tangent")
-        .on_disabled_hover_text("Lengths belong to control tangents: set the edit depth to 0");
-        if ui
-            .add_enabled(depth == 0, egui::Button::new("Apply"))
-            .on_hover_text("Scale the intervals on both sides of this control tangent")
-            .on_disabled_hover_text("Set the edit depth to 0 to change lengths")
-            .clicked()
-        {
-            p.send(Edit::SetLength { row, col, coefficient: input.coefficient });
-        }
-    });
+            .on_hover_text("Length coefficient: scales the arc length of the two intervals beside this control tangent")
+            .on_disabled_hover_text("Lengths belong to control tangents: set the edit depth to 0");
+            if ui
+                .add_enabled(depth == 0, egui::Button::new("Apply"))
+                .on_hover_text("Scale the intervals on both sides of this control tangent")
+                .on_disabled_hover_text("Set the edit depth to 0 to change lengths")
+                .clicked()
+            {
+                p.send(Edit::SetLength { row, col, coefficient: input.coefficient });
+            }
+        });
+    })
+    .header_response
+    .on_hover_text("Turn the tangent about any axis by an angle; scale the length of its intervals");
     ui.data_mut(|d| d.insert_temp(id, input));
     let has_detail = p.model.scene.details.contains_key(&(depth, row, col));
     if depth > 0 {
@@ -192,12 +203,6 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
             });
         }
     }
-    ui.label(
-        egui::RichText::new(format!("({:.4}, {:.4}, {:.4})", a.dir.x, a.dir.y, a.dir.z))
-            .monospace()
-            .weak(),
-    )
-    .on_hover_text("The tangent now");
 }
 
 #[cfg(test)]

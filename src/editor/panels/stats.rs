@@ -6,12 +6,9 @@ use bevy_egui::egui;
 pub fn show(ui: &mut egui::Ui, p: &PanelCtx) {
     let net = &p.model.scene.design.net;
     let s = &p.stats;
-    let grid = |ui: &mut egui::Ui| {
-        let mut row = |k: &str, v: String, tip: &str| {
-            ui.label(k).on_hover_text(tip);
-            ui.label(v).on_hover_text(tip);
-            ui.end_row();
-        };
+    let mut rows: Vec<(&'static str, String, &'static str)> = Vec::with_capacity(17);
+    {
+        let mut row = |k: &'static str, v: String, tip: &'static str| rows.push((k, v, tip));
         row(
             "control net",
             format!("{} × {}", net.cols(), net.rows()),
@@ -108,9 +105,43 @@ pub fn show(ui: &mut egui::Ui, p: &PanelCtx) {
             ),
             "CPU time (thread CPU clocks, so time lost to other programs is not counted) of all our systems — the model's stages and the editor's: mesh upload, arrows, sphere view, analysis, panels — in the last frame with an edit, summed over threads, and the largest of the last 120",
         );
+    }
+    two_columns(ui, &rows);
+}
+
+/// The rows as two labels side by side (names, figures), each row with its
+/// own tooltip, chosen by where the pointer is. Two labels instead of a grid
+/// of 34: this section is open while dragging, when egui lays out every
+/// figure anew each frame, and each widget costs our frame budget (issue 4).
+fn two_columns(ui: &mut egui::Ui, rows: &[(&'static str, String, &'static str)]) {
+    if rows.is_empty() {
+        return;
+    }
+    let mut names = String::with_capacity(rows.len() * 16);
+    let mut figures = String::with_capacity(rows.len() * 16);
+    for (i, (k, v, _)) in rows.iter().enumerate() {
+        if i > 0 {
+            names.push('\n');
+            figures.push('\n');
+        }
+        names.push_str(k);
+        figures.push_str(v);
+    }
+    let row_tip = |ui: &mut egui::Ui, r: &egui::Response| {
+        let at = ui
+            .ctx()
+            .pointer_hover_pos()
+            .map_or(0.0, |p| p.y - r.rect.top());
+        let i = (at / r.rect.height().max(1.0) * rows.len() as f32).floor();
+        let (k, _, tip) = rows[(i.max(0.0) as usize).min(rows.len() - 1)];
+        ui.label(egui::RichText::new(k).strong());
+        ui.label(tip);
     };
-    egui::Grid::new("stats_grid")
-        .num_columns(2)
-        .striped(true)
-        .show(ui, grid);
+    ui.horizontal_top(|ui| {
+        let r = ui.add(egui::Label::new(names).selectable(false));
+        r.clone().on_hover_ui(|ui| row_tip(ui, &r));
+        ui.add_space(12.0);
+        let r = ui.add(egui::Label::new(figures).selectable(false));
+        r.clone().on_hover_ui(|ui| row_tip(ui, &r));
+    });
 }
