@@ -248,7 +248,7 @@ pub fn fine_tuning() -> Vec<Workload> {
                     },
                 );
                 app.update();
-                app.world().resource::<SurfaceData>().mesh.positions[0].x
+                app.world().resource::<SurfaceData>().points.data()[0].x
             }),
         }
     })
@@ -294,7 +294,7 @@ pub fn incremental() -> Vec<Workload> {
                         };
                         ecs::send(&mut app, edit);
                         app.update();
-                        app.world().resource::<SurfaceData>().mesh.positions[0].x
+                        app.world().resource::<SurfaceData>().points.data()[0].x
                     }),
                 });
             }

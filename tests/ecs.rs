@@ -142,10 +142,18 @@ proptest! {
         let fresh = ecs::headless_app(sc);
         let d2 = max_diff(&got, &points(&fresh));
         prop_assert!(d2 <= 1e-12, "incremental vs fresh ECS build: {d2:e}");
-        // The mesh follows the points.
-        let mesh = &app.world().resource::<SurfaceData>().mesh;
-        prop_assert_eq!(&mesh.positions, &got.data().to_vec());
-        prop_assert!(mesh.normals.iter().all(|n| n.is_finite()));
+        // The mesh follows the points: the normals patched row by row are
+        // those of a mesh made afresh from them, and so are the triangles and
+        // the bounding box kept row by row.
+        let surface = app.world().resource::<SurfaceData>();
+        let fresh_mesh = streamline_kernel::mesh::SurfaceMesh::from_points(&got);
+        prop_assert_eq!(&surface.mesh(), &fresh_mesh);
+        prop_assert!(surface.normals.iter().all(|n| n.is_finite()));
+        let (lo, hi) = got.data().iter().fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), &p| (lo.min(p), hi.max(p)),
+        );
+        prop_assert_eq!(surface.bounds(), Some([lo, hi]));
     }
 }
 
@@ -203,7 +211,7 @@ fn level_tangent_and_base(app: &mut App, level: u32, r: usize, c: usize) -> (DVe
         .iter(w)
         .find(|l| l.0.level == level)
         .expect("level exists");
-    (l.0.tangents.get(r, c), l.0.base.get(r, c))
+    (l.0.tangents.get(r, c), l.0.base().get(r, c))
 }
 
 /// SPEC §5: a detail is kept (as a rotation from its subdivided tangent) when a
@@ -265,7 +273,7 @@ fn multiresolution_details() {
         &{
             let w = app.world_mut();
             let mut q = w.query::<&ecs::components::LevelData>();
-            q.iter(w).find(|l| l.0.level == 2).unwrap().0.base.clone()
+            q.iter(w).find(|l| l.0.level == 2).unwrap().0.base().clone()
         },
         r,
         c,

@@ -2,7 +2,8 @@
 //! ECS pipeline, with JSON stats on stdout.
 
 use super::input::{CliError, scene_arg, write_stdout};
-use crate::ecs::{self, Edit, EditLog, Stats, SurfaceData, components::StreamlineTangents};
+use crate::ecs::components::{LevelData, SubdivisionLevel};
+use crate::ecs::{self, Edit, EditLog, Stats, SurfaceData};
 use clap::Args;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -74,14 +75,22 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
     let w = app.world_mut();
     let mut per = Vec::new();
     let mut total = 0.0;
+    let depth = w.resource::<ecs::Model>().scene.display_depth;
+    let mut levels = w.query::<(&SubdivisionLevel, &LevelData)>();
+    let Some((_, level)) = levels.iter(w).find(|(l, _)| l.0 == depth) else {
+        return Err(CliError::Usage(format!("no level {depth} was built")));
+    };
+    let level = level.clone();
     let mut q = w.query::<(
         &ecs::components::Streamline,
         &ecs::components::StreamlinePoints,
-        &StreamlineTangents,
     )>();
     let mut rows: Vec<_> = q
         .iter(w)
-        .map(|(l, p, t)| (l.row, polyline_length(&p.0), t.s[t.s.len() - 1] - t.s[0]))
+        .map(|(l, p)| {
+            let (_, s) = level.row(l.row);
+            (l.row, polyline_length(&p.0), s[s.len() - 1] - s[0])
+        })
         .collect();
     rows.sort_by_key(|r| r.0);
     let (mut max_abs, mut max_rel) = (0.0f64, 0.0f64);
@@ -103,7 +112,7 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         levels: stats.levels.clone(),
         streamlines: surface.points.rows(),
         points_per_streamline: surface.points.cols(),
-        triangles: surface.mesh.triangle_count(),
+        triangles: surface.triangle_count(),
         total_length: total,
         length_error: LengthError {
             max_abs,

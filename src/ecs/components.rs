@@ -46,6 +46,13 @@ pub struct SubdivisionLevel(pub u32);
 #[derive(Component, Debug, Clone)]
 pub struct LevelData(pub LevelState);
 
+impl LevelData {
+    /// Row `r`'s unit tangents and their arc-length parameters `s`.
+    pub fn row(&self, r: usize) -> (&[DVec3], &[f64]) {
+        (self.0.tangents.row(r), self.0.params.s.row(r))
+    }
+}
+
 /// A streamline of the display depth: row `row`.
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Streamline {
@@ -53,13 +60,11 @@ pub struct Streamline {
     pub row: usize,
 }
 
-/// What a streamline is integrated from; written only when its tangents change.
+/// What a streamline is integrated from, besides its row of the display
+/// level ([`LevelData::row`], read there, not copied); written (so marked
+/// changed) exactly when that row's tangents or parameters change.
 #[derive(Component, Debug, Clone, PartialEq)]
 pub struct StreamlineTangents {
-    /// Unit tangents along the row.
-    pub tangents: Vec<DVec3>,
-    /// Their arc-length parameters.
-    pub s: Vec<f64>,
     /// The anchor arc length.
     pub sigma: f64,
     /// The initial curve's point at the row's `t`.

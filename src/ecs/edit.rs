@@ -355,7 +355,7 @@ fn set_direction(ctx: &mut EditCtx, row: usize, col: usize, dir: DVec3) -> Resul
     let l = &level_data(ctx, level)?.0;
     let (rows, cols) = l.shape();
     check_cell(rows, cols, row, col, level)?;
-    let local = multires::to_local(&l.base, row, col, dir);
+    let local = multires::to_local(l.base(), row, col, dir);
     let key = (level, row, col);
     ctx.model.scene.details.insert(key, local);
     if ctx.model.respawn {

@@ -44,6 +44,7 @@ type ChangedLines<'w, 's> = Query<
     'w,
     's,
     (
+        &'static Streamline,
         &'static StreamlineTangents,
         &'static StreamlineAlpha,
         &'static mut StreamlinePoints,
@@ -53,17 +54,28 @@ type ChangedLines<'w, 's> = Query<
 
 pub(crate) fn integrate(
     meter: Res<super::meter::CpuMeter>,
+    model: Res<Model>,
+    levels: Query<(&SubdivisionLevel, &LevelData)>,
     mut lines: ChangedLines,
     mut stats: ResMut<Stats>,
 ) {
     let _meter = meter.start();
     let t0 = Instant::now();
+    let depth = model.scene.display_depth;
+    let Some((_, level)) = levels.iter().find(|(l, _)| l.0 == depth) else {
+        return;
+    };
+    let rows = level.0.shape().0;
     let mut n = 0;
-    for (t, alpha, mut p) in &mut lines {
+    for (line, t, alpha, mut p) in &mut lines {
+        if line.row >= rows {
+            continue;
+        }
+        let (tangents, s) = level.row(line.row);
         match &alpha.0 {
-            None => place_into(&t.tangents, &t.s, t.sigma, t.origin, &mut p.0),
+            None => place_into(tangents, s, t.sigma, t.origin, &mut p.0),
             Some((f, c)) => {
-                fine_tune_into(&t.tangents, &t.s, t.sigma, t.origin, f, *c, &mut p.0);
+                fine_tune_into(tangents, s, t.sigma, t.origin, f, *c, &mut p.0);
             }
         }
         n += 1;

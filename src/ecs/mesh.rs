@@ -5,6 +5,7 @@ use super::components::*;
 use super::resources::{Stats, SurfaceData};
 use bevy::prelude::*;
 use std::time::Instant;
+use streamline_kernel::mesh::{normals_rows, write_indices};
 use streamline_kernel::window::Span;
 use streamline_kernel::{DVec3, Grid};
 
@@ -32,28 +33,32 @@ pub(crate) fn patch_mesh(
     let reshaped = s.points.rows() != rows || s.points.cols() != cols;
     if reshaped {
         s.points = Grid::filled(rows, cols, DVec3::ZERO);
+        s.row_bounds = vec![[DVec3::ZERO; 2]; rows];
     }
-    let same_mesh = !reshaped && s.mesh.positions.len() == rows * cols;
     for (line, p) in &changed {
         if line.row < rows && p.0.len() == cols {
-            s.points.row_mut(line.row).copy_from_slice(&p.0);
-            if same_mesh {
-                // the mesh's positions are the points, row by row: written
-                // while the row is still in cache
-                let at = line.row * cols;
-                s.mesh.positions[at..at + cols].copy_from_slice(&p.0);
-            }
+            s.set_row(line.row, &p.0);
         }
     }
-    if !same_mesh {
-        s.mesh.rebuild(&s.points);
+    if reshaped {
+        s.normals.clear();
+        s.normals.resize(rows * cols, DVec3::Z);
+        normals_rows(
+            s.points.data(),
+            cols,
+            0,
+            rows.saturating_sub(1),
+            &mut s.normals,
+        );
+        s.indices.clear();
+        write_indices(rows, cols, &mut s.indices);
         s.rows_changed = None;
     } else {
-        // same shape: the triangles stay, only the moved rows' positions and
-        // the normals around them are rewritten (a drag on the car at depth 5
+        // same shape: the triangles stay, only the moved rows' points and the
+        // normals around them are rewritten (a drag on the car at depth 5
         // moves nearly every row; rewriting 82k triangles would be wasted)
         let around = span.widen(1, rows);
-        s.mesh.update_normals_rows(&s.points, around.lo, around.hi);
+        normals_rows(s.points.data(), cols, around.lo, around.hi, &mut s.normals);
         s.rows_changed = Some(around);
     }
     s.generation += 1;

@@ -25,11 +25,11 @@ pub(crate) fn write_files(
             },
             Edit::Export(path) => {
                 let name = model.scene.name.clone();
-                match export::export(&surface.mesh, &name, path) {
+                match export::export(&surface.mesh(), &name, path) {
                     Ok(f) => log.entries.push(Ok(format!(
                         "exported {} ({f:?}, {} triangles)",
                         path.display(),
-                        surface.mesh.triangle_count()
+                        surface.triangle_count()
                     ))),
                     Err(e) => log.entries.push(Err(e.to_string())),
                 }

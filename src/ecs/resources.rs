@@ -188,13 +188,19 @@ pub struct EditLog {
     pub frame: u64,
 }
 
-/// The surface at the display depth: points (rows × (cols + 1)) and mesh.
+/// The surface at the display depth: points (rows × (cols + 1)), which are
+/// the mesh's positions (kept once), the mesh's normals and triangles, and
+/// each row's bounding box.
 #[derive(Resource, Debug, Clone)]
 pub struct SurfaceData {
-    /// Streamline points, one row per streamline.
+    /// Streamline points, one row per streamline: the mesh's vertices, row-major.
     pub points: Grid<DVec3>,
-    /// Positions, normals and indices.
-    pub mesh: SurfaceMesh,
+    /// Unit vertex normals, one per point.
+    pub normals: Vec<DVec3>,
+    /// Triangles, three indices into the points each.
+    pub indices: Vec<u32>,
+    /// Each row's bounding box `[min, max]`, written with the row.
+    pub row_bounds: Vec<[DVec3; 2]>,
     /// Increases whenever the mesh changes.
     pub generation: u64,
     /// Rows rewritten by the last change (`None`: all).
@@ -205,10 +211,49 @@ impl Default for SurfaceData {
     fn default() -> Self {
         SurfaceData {
             points: Grid::filled(0, 0, DVec3::ZERO),
-            mesh: SurfaceMesh::default(),
+            normals: Vec::new(),
+            indices: Vec::new(),
+            row_bounds: Vec::new(),
             generation: 0,
             rows_changed: None,
         }
+    }
+}
+
+impl SurfaceData {
+    /// The mesh as the kernel's type (a copy, for export).
+    pub fn mesh(&self) -> SurfaceMesh {
+        SurfaceMesh {
+            positions: self.points.data().to_vec(),
+            normals: self.normals.clone(),
+            indices: self.indices.clone(),
+        }
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len() / 3
+    }
+
+    /// The bounding box `[min, max]` of all points (`None` when there are none).
+    pub fn bounds(&self) -> Option<[DVec3; 2]> {
+        self.row_bounds
+            .iter()
+            .copied()
+            .reduce(|[a, b], [c, d]| [a.min(c), b.max(d)])
+    }
+
+    /// Rewrites row `r`'s points and its bounding box.
+    pub fn set_row(&mut self, r: usize, points: &[DVec3]) {
+        let row = self.points.row_mut(r);
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        for (dst, &p) in row.iter_mut().zip(points) {
+            *dst = p;
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        self.row_bounds[r] = [lo, hi];
     }
 }
 

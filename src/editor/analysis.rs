@@ -7,8 +7,8 @@
 use super::camera::{MainCamera, OrbitCamera, SceneBounds};
 use super::coords::to_view;
 use super::surface::{ShadedMaterial, ShownSurface, SurfaceEntity};
-use crate::ecs::components::{Streamline, StreamlinePoints, StreamlineTangents};
-use crate::ecs::{ModelSet, SurfaceData};
+use crate::ecs::components::{LevelData, Streamline, StreamlinePoints, SubdivisionLevel};
+use crate::ecs::{Model, ModelSet, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
 use bevy::prelude::*;
@@ -284,10 +284,10 @@ fn apply_mode(
 
 /// Zebra `u` coordinates for an eye point (kernel coordinates).
 fn zebra_uv(data: &SurfaceData, settings: &AnalysisSettings, eye: DVec3) -> Vec<[f32; 2]> {
-    data.mesh
-        .positions
+    data.points
+        .data()
         .iter()
-        .zip(&data.mesh.normals)
+        .zip(&data.normals)
         .map(|(&p, &n)| {
             let view = (p - eye).normalize_or(DVec3::NEG_Z);
             let z = zebra_coordinate(n, view, DVec3::Z, settings.stripes);
@@ -301,15 +301,21 @@ fn draw_combs(
     meter: Res<crate::ecs::meter::CpuMeter>,
     settings: Res<AnalysisSettings>,
     bounds: Res<SceneBounds>,
-    lines: Query<(&Streamline, &StreamlineTangents, &StreamlinePoints)>,
+    model: Res<Model>,
+    levels: Query<(&SubdivisionLevel, &LevelData)>,
+    lines: Query<(&Streamline, &StreamlinePoints)>,
     mut gizmos: Gizmos,
 ) {
     let _meter = meter.start();
     if !settings.comb {
         return;
     }
+    let depth = model.scene.display_depth;
+    let Some((_, level)) = levels.iter().find(|(l, _)| l.0 == depth) else {
+        return;
+    };
     let rows = lines.iter().count();
-    if rows == 0 {
+    if rows == 0 || rows != level.0.shape().0 {
         return;
     }
     let step = rows.div_ceil(settings.comb_lines.max(1)).max(1);
@@ -317,8 +323,11 @@ fn draw_combs(
     // one scale for all combs: the largest tooth is a tenth of the scene, times the factor
     let kmax = lines
         .iter()
-        .filter(|(l, ..)| chosen(l.row))
-        .flat_map(|(_, t, _)| streamline_kernel::analysis::streamline_curvature(&t.tangents, &t.s))
+        .filter(|(l, _)| chosen(l.row))
+        .flat_map(|(l, _)| {
+            let (tangents, s) = level.row(l.row);
+            streamline_kernel::analysis::streamline_curvature(tangents, s)
+        })
         .fold(0.0f64, f64::max);
     if kmax <= 0.0 {
         return;
@@ -326,11 +335,12 @@ fn draw_combs(
     let scale = settings.comb_scale * 0.1 * bounds.size() / kmax;
     let tooth = Color::srgba(0.95, 0.35, 0.85, 0.8);
     let hull = Color::srgb(0.95, 0.35, 0.85);
-    for (l, t, p) in &lines {
+    for (l, p) in &lines {
         if !chosen(l.row) {
             continue;
         }
-        let teeth = comb(&p.0, &t.tangents, &t.s, scale);
+        let (tangents, s) = level.row(l.row);
+        let teeth = comb(&p.0, tangents, s, scale);
         for c in &teeth {
             gizmos.line(to_view(c.base), to_view(c.tip), tooth);
         }

@@ -147,14 +147,13 @@ fn bounds(
     mut b: ResMut<SceneBounds>,
 ) {
     let _meter = meter.start();
-    if data.generation == b.generation || data.points.data().is_empty() {
+    if data.generation == b.generation {
         return;
     }
-    let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-    for p in data.points.data() {
-        lo = lo.min(*p);
-        hi = hi.max(*p);
-    }
+    // the rows' boxes, kept by the mesh stage as it writes each row
+    let Some([lo, hi]) = data.bounds() else {
+        return;
+    };
     b.min = lo;
     b.max = hi;
     b.generation = data.generation;

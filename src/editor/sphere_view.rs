@@ -10,7 +10,7 @@ use super::coords::{from_view, to_view};
 use super::handles::{HandleArrows, HandleSettings};
 use super::picking::{ActiveDrag, Drag, DragGroups, DragKind, Selection};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
-use crate::ecs::{EditMessage, Model, ModelSet};
+use crate::ecs::{EditMessage, Model, ModelSet, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::Viewport;
 use bevy::camera::visibility::RenderLayers;
@@ -204,14 +204,17 @@ fn place_camera(
 }
 
 /// The display depth's tangents as a point cloud, rebuilt when that level changes.
+#[allow(clippy::too_many_arguments)]
 fn update_points(
     meter: Res<crate::ecs::meter::CpuMeter>,
     model: Res<Model>,
     settings: Res<SphereSettings>,
     levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
     points: Single<(&Mesh3d, &mut Visibility), With<SubdividedPoints>>,
+    surface: Res<SurfaceData>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut shown: Local<Option<u32>>,
+    mut seen_surface: Local<u64>,
 ) {
     let _meter = meter.start();
     let (mesh, mut vis) = points.into_inner();
@@ -227,19 +230,32 @@ fn update_points(
     let Some((_, data)) = levels.iter().find(|(l, _)| l.0 == depth) else {
         return;
     };
+    // an edit of the display level moves its streamlines too: the rows the
+    // mesh stage rewrote this frame hold every row whose tangents changed
+    let rows_changed = (surface.generation == *seen_surface + 1)
+        .then_some(surface.rows_changed)
+        .flatten();
+    *seen_surface = surface.generation;
     if !data.is_changed() && *shown == Some(depth) {
         return;
     }
+    let same_depth = *shown == Some(depth);
     *shown = Some(depth);
     let Some(mut m) = meshes.get_mut(&mesh.0) else {
         return;
     };
     let tangents = data.0.tangents.data();
-    // same count (a drag): rewrite the points in place, no new buffer
+    // same count (a drag): rewrite the points in place, no new buffer; only
+    // the rows that changed when the mesh stage says which
     if let Some(VertexAttributeValues::Float32x3(p)) = m.attribute_mut(Mesh::ATTRIBUTE_POSITION)
         && p.len() == tangents.len()
     {
-        for (p, &t) in p.iter_mut().zip(tangents) {
+        let cols = data.0.shape().1;
+        let range = match rows_changed {
+            Some(rows) if same_depth => rows.lo * cols..((rows.hi + 1) * cols).min(p.len()),
+            _ => 0..p.len(),
+        };
+        for (p, &t) in p[range.clone()].iter_mut().zip(&tangents[range]) {
             *p = to_view(t).to_array();
         }
         return;

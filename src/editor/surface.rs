@@ -5,7 +5,7 @@ use crate::ecs::{ModelSet, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
-use streamline_kernel::mesh::SurfaceMesh;
+use streamline_kernel::DVec3;
 
 use super::coords::kernel_to_view;
 
@@ -52,7 +52,7 @@ fn setup(
     commands.insert_resource(ShadedMaterial(material.clone()));
     commands.spawn((
         SurfaceEntity,
-        Mesh3d(meshes.add(to_bevy_mesh(&SurfaceMesh::default()))),
+        Mesh3d(meshes.add(to_bevy_mesh(&[], &[], &[]))),
         MeshMaterial3d(material),
         Transform::from_rotation(kernel_to_view()),
     ));
@@ -90,39 +90,39 @@ pub(super) fn sync_mesh(
     let Some(mut mesh) = meshes.get_mut(&surface.0) else {
         return;
     };
-    let m = &data.mesh;
+    let points = data.points.data();
     let cols = data.points.cols();
     if let Some(span) = data.rows_changed
-        && mesh.count_vertices() == m.positions.len()
+        && mesh.count_vertices() == points.len()
         && cols > 0
     {
         let range = span.lo * cols..(span.hi + 1) * cols;
         if let Some(VertexAttributeValues::Float32x3(p)) =
             mesh.attribute_mut(Mesh::ATTRIBUTE_POSITION)
         {
-            for i in range.clone() {
-                p[i] = m.positions[i].as_vec3().to_array();
+            for (p, q) in p[range.clone()].iter_mut().zip(&points[range.clone()]) {
+                *p = q.as_vec3().to_array();
             }
         }
         if let Some(VertexAttributeValues::Float32x3(n)) =
             mesh.attribute_mut(Mesh::ATTRIBUTE_NORMAL)
         {
-            for i in range {
-                n[i] = m.normals[i].as_vec3().to_array();
+            for (n, m) in n[range.clone()].iter_mut().zip(&data.normals[range]) {
+                *n = m.as_vec3().to_array();
             }
         }
         shown.full = false;
         return;
     }
-    *mesh = to_bevy_mesh(m);
+    *mesh = to_bevy_mesh(points, &data.normals, &data.indices);
     shown.full = true;
 }
 
 /// Converts the kernel's mesh buffers into a Bevy mesh (kernel axes; the
 /// entity's transform turns them into the view's).
-pub fn to_bevy_mesh(m: &SurfaceMesh) -> Mesh {
-    let pos: Vec<[f32; 3]> = m.positions.iter().map(|p| p.as_vec3().to_array()).collect();
-    let nrm: Vec<[f32; 3]> = m.normals.iter().map(|n| n.as_vec3().to_array()).collect();
+pub fn to_bevy_mesh(positions: &[DVec3], normals: &[DVec3], indices: &[u32]) -> Mesh {
+    let pos: Vec<[f32; 3]> = positions.iter().map(|p| p.as_vec3().to_array()).collect();
+    let nrm: Vec<[f32; 3]> = normals.iter().map(|n| n.as_vec3().to_array()).collect();
     let uv = vec![[0.5f32, 0.5]; pos.len()];
     Mesh::new(
         PrimitiveTopology::TriangleList,
@@ -131,5 +131,5 @@ pub fn to_bevy_mesh(m: &SurfaceMesh) -> Mesh {
     .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, pos)
     .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, nrm)
     .with_inserted_attribute(Mesh::ATTRIBUTE_UV_0, uv)
-    .with_inserted_indices(Indices::U32(m.indices.clone()))
+    .with_inserted_indices(Indices::U32(indices.to_vec()))
 }

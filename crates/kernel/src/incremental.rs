@@ -2,8 +2,9 @@
 //! (DESIGN, "Incremental rebuild, exactly"; SPEC §5 for the details).
 //!
 //! A [`LevelState`] holds one level: the intermediate grid of its first blend
-//! direction, the *base* (subdivided, before details), the tangents (with the
-//! details of that level applied) and the parameters. [`LevelState::update`]
+//! direction (none for s-first Kobbelt, [`crate::window::in_place`]), the
+//! *base* (subdivided, before details; kept only where the level has details),
+//! the tangents (with the details of that level applied) and the parameters. [`LevelState::update`]
 //! recomputes only the entries that read a dirty entry of the previous level,
 //! with the same per-entry rules as the full step, so the result is identical
 //! to a rebuild from scratch ([`reference_levels`]).
@@ -25,12 +26,15 @@ use glam::DVec3;
 pub struct LevelState {
     /// Depth of this level (0 = the control net).
     pub level: u32,
-    /// Intermediate grid of the first blend direction (empty at level 0).
+    /// Intermediate grid of the first blend direction (empty at level 0 and
+    /// where the step writes the next level in place, [`crate::window::in_place`]).
     pub half: Grid<DVec3>,
     /// The same for the `s` parameters.
     pub half_s: Grid<f64>,
-    /// Subdivided tangents before this level's details (the control net at level 0).
-    pub base: Grid<DVec3>,
+    /// Subdivided tangents before this level's details, kept from the first
+    /// detail on this level; empty (`0 × 0`) while the level has none, when it
+    /// equals `tangents` and is not copied ([`Self::base`]).
+    base: Grid<DVec3>,
     /// Tangents with this level's details applied.
     pub tangents: Grid<DVec3>,
     /// Parameters of this level.
@@ -53,7 +57,7 @@ impl LevelState {
             level: 0,
             half: Grid::filled(0, 0, DVec3::ZERO),
             half_s: Grid::filled(0, 0, 0.0),
-            base: design.net.clone(),
+            base: Grid::filled(0, 0, DVec3::ZERO),
             tangents: design.net.clone(),
             params: design.params.clone(),
         }
@@ -72,7 +76,7 @@ impl LevelState {
             level: prev.level + 1,
             half: Grid::filled(hr, hc, DVec3::ZERO),
             half_s: Grid::filled(hr, hc, 0.0),
-            base: Grid::filled(nr, nc, DVec3::ZERO),
+            base: Grid::filled(0, 0, DVec3::ZERO),
             tangents: Grid::filled(nr, nc, DVec3::ZERO),
             params: ParamGrid {
                 s: Grid::filled(nr, nc, 0.0),
@@ -89,6 +93,28 @@ impl LevelState {
         (self.tangents.rows(), self.tangents.cols())
     }
 
+    /// The subdivided tangents before this level's details (SPEC §5: the grid
+    /// whose local frames details are written in).
+    pub fn base(&self) -> &Grid<DVec3> {
+        if self.keeps_base() {
+            &self.base
+        } else {
+            &self.tangents
+        }
+    }
+
+    fn keeps_base(&self) -> bool {
+        self.base.rows() != 0
+    }
+
+    /// Starts keeping the base apart from the tangents (before the first
+    /// detail of this level is applied; until then they are equal).
+    fn keep_base(&mut self, details: &Details) {
+        if !self.keeps_base() && multires::has_level(details, self.level) {
+            self.base.clone_from(&self.tangents);
+        }
+    }
+
     /// Recomputes the entries that read `win` of `prev` (its dirty window),
     /// then re-applies the details there (widened by one cell where this level
     /// has details, since a frame reads its neighbours). Returns this level's
@@ -103,14 +129,13 @@ impl LevelState {
         win: Window,
     ) -> Result<(Window, UpdateCount), KernelError> {
         let (scheme, order) = (design.scheme, design.order);
-        let out = refine_grid_window(
-            scheme,
-            order,
-            &prev.tangents,
-            &mut self.half,
-            &mut self.base,
-            win,
-        );
+        self.keep_base(details);
+        let into = if self.keeps_base() {
+            &mut self.base
+        } else {
+            &mut self.tangents
+        };
+        let out = refine_grid_window(scheme, order, &prev.tangents, &mut self.half, into, win);
         refine_grid_window(
             scheme,
             order,
@@ -126,6 +151,16 @@ impl LevelState {
         }
         check_window(&self.params, self.level, out)?;
         let (rows, cols) = self.shape();
+        if !self.keeps_base() {
+            // no details here: the tangents are the base, written above
+            return Ok((
+                out,
+                UpdateCount {
+                    reblended: out.area(),
+                    details: 0,
+                },
+            ));
+        }
         let dirty = if multires::has_level(details, self.level) {
             out.widen(1, rows, cols)
         } else {
@@ -146,7 +181,10 @@ impl LevelState {
     pub fn reapply_details(&mut self, details: &Details, win: Window) -> Window {
         let (rows, cols) = self.shape();
         let win = win.widen(0, rows, cols);
-        multires::apply_window(&self.base, &mut self.tangents, details, self.level, win);
+        self.keep_base(details);
+        if self.keeps_base() {
+            multires::apply_window(&self.base, &mut self.tangents, details, self.level, win);
+        }
         win
     }
 
@@ -309,9 +347,7 @@ pub fn propagate(
     if let (Some(root), Some(Some(w))) = (levels.first_mut(), seeds.first()) {
         for r in w.rows.iter() {
             for c in w.cols.iter() {
-                let v = design.net.get(r, c);
-                root.base.set(r, c, v);
-                root.tangents.set(r, c, v);
+                root.tangents.set(r, c, design.net.get(r, c));
             }
             root.params.s.row_mut(r)[w.cols.lo..=w.cols.hi]
                 .copy_from_slice(&design.params.s.row(r)[w.cols.lo..=w.cols.hi]);

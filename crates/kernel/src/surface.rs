@@ -387,7 +387,8 @@ pub fn refine_grid<T: Refine + Send + Sync>(
 }
 
 /// [`refine_grid`] into buffers kept by the caller: `half` (the grid of the
-/// first direction) and `next` are reshaped and overwritten.
+/// first direction; left empty where the step needs none,
+/// [`crate::window::in_place`]) and `next` are reshaped and overwritten.
 pub fn refine_grid_into<T: Refine + Send + Sync>(
     scheme: SurfaceScheme,
     order: BlendOrder,
@@ -395,13 +396,6 @@ pub fn refine_grid_into<T: Refine + Send + Sync>(
     half: &mut Grid<T>,
     next: &mut Grid<T>,
 ) {
-    if order == BlendOrder::SFirst && scheme.is_interpolatory() && g.rows() >= 2 {
-        // the even rows of `next` are the rows of the first direction
-        // (Stencil::Copy): written there directly, no `half` to copy from
-        half.reshape(0, 0, T::default());
-        refine_interpolatory_s_first(scheme, g, next);
-        return;
-    }
     let c = scheme.curve();
     let (hr, hc) = crate::window::half_shape(scheme, order, g.rows(), g.cols());
     half.reshape(hr, hc, T::default());
@@ -418,42 +412,6 @@ pub fn refine_grid_into<T: Refine + Send + Sync>(
         next,
         crate::window::Window::all(g.rows(), g.cols()),
     );
-}
-
-/// One s-first step of an interpolatory scheme (Kobbelt) into `next` alone:
-/// each row of `g` refined along `s` into the even row `2r` of `next` (the
-/// 4-point rule copies input rows: `Stencil::Copy`), then the odd rows from
-/// the even ones, with the same per-entry operations as
-/// [`crate::window::refine_grid_window`] (bitwise equal; one thread).
-fn refine_interpolatory_s_first<T: Refine + Send + Sync>(
-    scheme: SurfaceScheme,
-    g: &Grid<T>,
-    next: &mut Grid<T>,
-) {
-    let c = scheme.curve();
-    let rule = T::prepare(c);
-    let (n, nr, nc) = (g.rows(), c.refined_len(g.rows()), c.refined_len(g.cols()));
-    next.reshape(nr, nc, T::default());
-    let all = Span::all(nc);
-    for r in 0..n {
-        T::apply_along(&rule, c, g.row(r), all, next.row_mut(2 * r));
-    }
-    for r in (1..nr).step_by(2) {
-        // row j of the first direction is row 2j of `next`: above the output
-        // row in `before`, below it in `after`
-        let (before, rest) = next.data_mut().split_at_mut(r * nc);
-        let (out, after) = rest.split_at_mut(nc);
-        let (before, after) = (&*before, &*after);
-        let rows = |j: usize| {
-            if 2 * j < r {
-                &before[2 * j * nc..(2 * j + 1) * nc]
-            } else {
-                let at = (2 * j - r - 1) * nc;
-                &after[at..at + nc]
-            }
-        };
-        T::apply_across(&rule, c.stencil(n, r), rows, all, out);
-    }
 }
 
 /// The same step computed the plain way, curve by curve (columns gathered

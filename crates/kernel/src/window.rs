@@ -232,6 +232,9 @@ pub fn refine_grid_window<T: Refine + Send + Sync>(
     next: &mut Grid<T>,
     win: Window,
 ) -> Window {
+    if in_place(scheme, order, prev.rows()) {
+        return refine_in_place_s_first(scheme, prev, next, win);
+    }
     let c = scheme.curve();
     let rule = T::prepare(c);
     let out = win.refine(scheme, prev.rows(), prev.cols());
@@ -249,13 +252,117 @@ pub fn refine_grid_window<T: Refine + Send + Sync>(
     out
 }
 
-/// The shape of `half` for one step of a `rows × cols` grid.
+/// Whether a step keeps no `half` grid: s-first with an interpolatory scheme
+/// (Kobbelt) on two rows or more, where the first direction's row `r` *is*
+/// row `2r` of the next level (the 4-point rule's `Stencil::Copy`), so it is
+/// written there and read from there.
+pub fn in_place(scheme: SurfaceScheme, order: BlendOrder, rows: usize) -> bool {
+    order == BlendOrder::SFirst && scheme.is_interpolatory() && rows >= 2
+}
+
+/// [`refine_grid_window`] of an s-first interpolatory step ([`in_place`]):
+/// the rows of `prev` in `win` refined along `s` straight into the even rows
+/// of `next`, then the odd rows of the output window from the even rows, with
+/// the same per-entry operations as the two-grid path (bitwise equal). Rows
+/// of `next` outside the window are read as they are: they hold the refined
+/// rows of unchanged input. Large windows run on two threads, split at an
+/// even row; the few even rows one half reads from the other are copied first.
+fn refine_in_place_s_first<T: Refine + Send + Sync>(
+    scheme: SurfaceScheme,
+    prev: &Grid<T>,
+    next: &mut Grid<T>,
+    win: Window,
+) -> Window {
+    let c = scheme.curve();
+    let rule = T::prepare(c);
+    let n = prev.rows();
+    let out = win.refine(scheme, n, prev.cols());
+    let nc = next.cols();
+    let (nr, cols) = (next.rows(), out.cols);
+    // rows [0, split) on the calling thread, [split, nr) on the helper
+    let split = if out.area() >= T::PARALLEL_MIN_ENTRIES && out.rows.len() >= 8 {
+        (out.rows.lo + out.rows.len() / 2) & !1
+    } else {
+        nr
+    };
+    let data = next.data_mut();
+    // the first direction: even rows 2r, r in win.rows
+    {
+        let (top, bottom) = data.split_at_mut(split * nc);
+        let even = |chunk: &mut [T], first: usize| {
+            for r in win.rows.iter() {
+                let at = 2 * r;
+                if at >= first && (at - first + 1) * nc <= chunk.len() {
+                    let row = &mut chunk[(at - first) * nc..(at - first + 1) * nc];
+                    T::apply_along(&rule, c, prev.row(r), cols, row);
+                }
+            }
+        };
+        if split < nr {
+            crate::parallel::join(|| even(top, 0), || even(bottom, split));
+        } else {
+            even(top, 0);
+        }
+    }
+    // the second: odd rows of out.rows from the even rows (read in place)
+    let odd_rows = || out.rows.iter().filter(|r| r % 2 == 1);
+    let mut borrowed: Vec<(usize, Vec<T>)> = Vec::new();
+    if split < nr {
+        for r in odd_rows() {
+            let (lo, hi) = c.stencil(n, r).reads();
+            for j in lo..=hi {
+                let row = 2 * j;
+                if (r < split) != (row < split) && !borrowed.iter().any(|(k, _)| *k == row) {
+                    borrowed.push((row, data[row * nc..(row + 1) * nc].to_vec()));
+                }
+            }
+        }
+    }
+    let borrowed = &borrowed;
+    let odd = |chunk: &mut [T], first: usize| {
+        let end = first + chunk.len() / nc;
+        for r in odd_rows().filter(|&r| first <= r && r < end) {
+            let (before, rest) = chunk.split_at_mut((r - first) * nc);
+            let (row_out, after) = rest.split_at_mut(nc);
+            let (before, after) = (&*before, &*after);
+            let rows = |j: usize| -> &[T] {
+                let at = 2 * j;
+                if at >= first && at < r {
+                    &before[(at - first) * nc..(at - first + 1) * nc]
+                } else if at > r && at < end {
+                    let k = at - r - 1;
+                    &after[k * nc..(k + 1) * nc]
+                } else {
+                    let (_, v) = borrowed
+                        .iter()
+                        .find(|(k, _)| *k == at)
+                        .expect("rows across the split are borrowed");
+                    v
+                }
+            };
+            T::apply_across(&rule, c.stencil(n, r), rows, cols, row_out);
+        }
+    };
+    let (top, bottom) = data.split_at_mut(split * nc);
+    if split < nr {
+        crate::parallel::join(|| odd(top, 0), || odd(bottom, split));
+    } else {
+        odd(top, 0);
+    }
+    out
+}
+
+/// The shape of `half` for one step of a `rows × cols` grid (`0 × 0` where
+/// the step needs none, [`in_place`]).
 pub fn half_shape(
     scheme: SurfaceScheme,
     order: BlendOrder,
     rows: usize,
     cols: usize,
 ) -> (usize, usize) {
+    if in_place(scheme, order, rows) {
+        return (0, 0);
+    }
     let c = scheme.curve();
     match order {
         BlendOrder::SFirst => (rows, c.refined_len(cols)),
@@ -305,6 +412,73 @@ mod tests {
                     assert_eq!(w, Window::all(full.rows(), full.cols()));
                     assert!(w.area() < PARALLEL_MIN_ENTRIES || rows > 5);
                     assert_eq!(next, full, "{scheme:?} {order:?} {rows}×{cols}");
+                }
+            }
+        }
+    }
+
+    /// Windowed updates after edits of the coarse grid give the full step's
+    /// numbers bitwise: small windows (one thread), windows past
+    /// `PARALLEL_MIN_ENTRIES` (split in two; for s-first Kobbelt at an even
+    /// row, with rows borrowed across the split), windows at the borders.
+    #[test]
+    fn windowed_updates_equal_the_full_step_bitwise() {
+        for scheme in [
+            SurfaceScheme::default(),
+            SurfaceScheme::Kobbelt { omega: 1.3 },
+            SurfaceScheme::CatmullClark,
+        ] {
+            for order in [BlendOrder::SFirst, BlendOrder::TFirst] {
+                let (rows, cols) = (70, 90);
+                let mut g = net(rows, cols);
+                let (hr, hc) = half_shape(scheme, order, rows, cols);
+                assert_eq!(
+                    (hr, hc) == (0, 0),
+                    in_place(scheme, order, rows),
+                    "{scheme:?} {order:?}"
+                );
+                let mut half = Grid::filled(hr, hc, DVec3::ZERO);
+                let full = refine_grid_gathered(scheme, order, &g);
+                let mut next = Grid::filled(full.rows(), full.cols(), DVec3::ZERO);
+                refine_grid_window(
+                    scheme,
+                    order,
+                    &g,
+                    &mut half,
+                    &mut next,
+                    Window::all(rows, cols),
+                );
+                let windows = [
+                    Window::cell(35, 40),
+                    Window {
+                        rows: Span::new(5, 60),
+                        cols: Span::new(3, 85),
+                    },
+                    Window::cell(0, 0),
+                    Window::cell(69, 89),
+                    Window {
+                        rows: Span::new(1, 2),
+                        cols: Span::all(cols),
+                    },
+                    Window {
+                        rows: Span::new(30, 69),
+                        cols: Span::new(0, 50),
+                    },
+                ];
+                for (i, w) in windows.into_iter().enumerate() {
+                    for r in w.rows.iter() {
+                        for c in w.cols.iter() {
+                            let a = (r * 31 + c * 17 + i) as f64 * 0.21;
+                            g.set(r, c, DVec3::new(a.sin(), 0.4, a.cos()).normalize());
+                        }
+                    }
+                    let out = refine_grid_window(scheme, order, &g, &mut half, &mut next, w);
+                    let parallel = out.area() >= PARALLEL_MIN_ENTRIES;
+                    assert_eq!(
+                        next,
+                        refine_grid_gathered(scheme, order, &g),
+                        "{scheme:?} {order:?} window {i} (parallel: {parallel})"
+                    );
                 }
             }
         }

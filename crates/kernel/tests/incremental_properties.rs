@@ -94,8 +94,8 @@ proptest! {
                 }
                 Edit::Detail { level, r, c, v } => {
                     let lv = &levels[level as usize];
-                    let (r, c) = (r % lv.base.rows(), c % lv.base.cols());
-                    details.insert((level, r, c), multires::to_local(&lv.base, r, c, v));
+                    let (r, c) = (r % lv.base().rows(), c % lv.base().cols());
+                    details.insert((level, r, c), multires::to_local(lv.base(), r, c, v));
                     seeds[level as usize] = Some(Window::cell(r, c));
                 }
                 Edit::Length { r, c, k } => {

@@ -369,14 +369,45 @@ fn warm_glyphs(ctx: &egui::Context) {
     });
 }
 
+/// Text that changes with every edit (the Stats figures, the status line),
+/// rewritten at most every [`Self::EVERY`]: while dragging, egui would lay
+/// out every figure anew each frame (a new text misses its layout cache),
+/// which cost a tenth of the frame budget, and figures that change 120
+/// times a second cannot be read anyway.
+#[derive(Default)]
+pub struct Throttled {
+    stats: Vec<(&'static str, String, &'static str)>,
+    status: String,
+    at: Option<std::time::Instant>,
+}
+
+impl Throttled {
+    const EVERY: std::time::Duration = std::time::Duration::from_millis(200);
+
+    fn refresh(&mut self, p: &PanelCtx) {
+        let now = std::time::Instant::now();
+        if self
+            .at
+            .is_some_and(|at| now.duration_since(at) < Self::EVERY)
+        {
+            return;
+        }
+        self.at = Some(now);
+        self.stats = stats::rows(p);
+        self.status = status_text(p);
+    }
+}
+
 fn panel(
     meter: Res<crate::ecs::meter::CpuMeter>,
     mut contexts: EguiContexts,
     mut p: PanelCtx,
     mut area: ResMut<ViewArea>,
     mut warmed: Local<bool>,
+    mut text: Local<Throttled>,
 ) -> Result {
     let _meter = meter.start();
+    text.refresh(&p);
     let ctx = contexts.ctx_mut()?.clone();
     if !*warmed {
         warm_glyphs(&ctx);
@@ -390,7 +421,7 @@ fn panel(
             .max_rect(ctx.viewport_rect()),
     );
     egui::Panel::top("toolbar").show(&mut root, |ui| toolbar(ui, &mut p));
-    egui::Panel::bottom("status").show(&mut root, |ui| status(ui, &p));
+    egui::Panel::bottom("status").show(&mut root, |ui| status(ui, &text.status));
     egui::Panel::left("side_panel")
         .resizable(true)
         .default_size(300.0)
@@ -413,7 +444,7 @@ fn panel(
                         PanelName::Tuning => tuning::show(ui, &mut p),
                         PanelName::Analysis => analysis::show(ui, &mut p),
                         PanelName::Mesh => mesh::show(ui, &mut p),
-                        PanelName::Stats => stats::show(ui, &p),
+                        PanelName::Stats => stats::show(ui, &text.stats),
                     });
                     shown.header_response.on_hover_text(name.tooltip());
                 }
@@ -480,7 +511,7 @@ fn toolbar(ui: &mut egui::Ui, p: &mut PanelCtx) {
     });
 }
 
-fn status(ui: &mut egui::Ui, p: &PanelCtx) {
+fn status_text(p: &PanelCtx) -> String {
     let text = p
         .log
         .entries
@@ -492,8 +523,16 @@ fn status(ui: &mut egui::Ui, p: &PanelCtx) {
         .filter(|s| !s.is_empty())
         .collect::<Vec<_>>()
         .join("; ");
+    if text.is_empty() {
+        "ready".into()
+    } else {
+        text
+    }
+}
+
+fn status(ui: &mut egui::Ui, text: &str) {
     ui.horizontal(|ui| {
-        ui.label(egui::RichText::new(if text.is_empty() { "ready".into() } else { text }).weak())
+        ui.label(egui::RichText::new(text).weak())
             .on_hover_text("What the last edit did");
         ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
             ui.label(

@@ -3,7 +3,8 @@
 use super::PanelCtx;
 use bevy_egui::egui;
 
-pub fn show(ui: &mut egui::Ui, p: &PanelCtx) {
+/// The section's rows: name, figure, tooltip.
+pub fn rows(p: &PanelCtx) -> Vec<(&'static str, String, &'static str)> {
     let net = &p.model.scene.design.net;
     let s = &p.stats;
     let mut rows: Vec<(&'static str, String, &'static str)> = Vec::with_capacity(17);
@@ -106,7 +107,12 @@ pub fn show(ui: &mut egui::Ui, p: &PanelCtx) {
             "CPU time (thread CPU clocks, so time lost to other programs is not counted) of all our systems — the model's stages and the editor's: mesh upload, arrows, sphere view, analysis, panels — in the last frame with an edit, summed over threads, and the largest of the last 120",
         );
     }
-    two_columns(ui, &rows);
+    rows
+}
+
+/// The section, from [`rows`] (refreshed a few times a second, [`super::Throttled`]).
+pub fn show(ui: &mut egui::Ui, rows: &[(&'static str, String, &'static str)]) {
+    two_columns(ui, rows);
 }
 
 /// The rows as two labels side by side (names, figures), each row with its
