@@ -128,6 +128,20 @@ impl LevelState {
         prev: &LevelState,
         win: Window,
     ) -> Result<(Window, UpdateCount), KernelError> {
+        self.update_with(design, details, prev, win, true)
+    }
+
+    /// [`Self::update`], re-blending the parameters only when `params` is
+    /// set: when no parameter of the previous level changed (an edit of
+    /// directions alone), this level's parameters are still right.
+    pub fn update_with(
+        &mut self,
+        design: &Design,
+        details: &Details,
+        prev: &LevelState,
+        win: Window,
+        params: bool,
+    ) -> Result<(Window, UpdateCount), KernelError> {
         let (scheme, order) = (design.scheme, design.order);
         self.keep_base(details);
         let into = if self.keeps_base() {
@@ -136,20 +150,22 @@ impl LevelState {
             &mut self.tangents
         };
         let out = refine_grid_window(scheme, order, &prev.tangents, &mut self.half, into, win);
-        refine_grid_window(
-            scheme,
-            order,
-            &prev.params.s,
-            &mut self.half_s,
-            &mut self.params.s,
-            win,
-        );
-        let c = scheme.curve();
-        for r in out.rows.iter() {
-            self.params.t[r] = scalar::at(c, &prev.params.t, r);
-            self.params.sigma[r] = scalar::at(c, &prev.params.sigma, r);
+        if params {
+            refine_grid_window(
+                scheme,
+                order,
+                &prev.params.s,
+                &mut self.half_s,
+                &mut self.params.s,
+                win,
+            );
+            let c = scheme.curve();
+            for r in out.rows.iter() {
+                self.params.t[r] = scalar::at(c, &prev.params.t, r);
+                self.params.sigma[r] = scalar::at(c, &prev.params.sigma, r);
+            }
+            check_window(&self.params, self.level, out)?;
         }
-        check_window(&self.params, self.level, out)?;
         let (rows, cols) = self.shape();
         if !self.keeps_base() {
             // no details here: the tangents are the base, written above
@@ -333,7 +349,9 @@ pub struct Propagation {
 /// level `l` (level 0: control tangents or parameters, already changed in
 /// `design`; deeper: details, already changed in `details`). `levels[0]` is
 /// refreshed from `design` inside its seed, then each level recomputes what
-/// reads a dirty entry of the level above.
+/// reads a dirty entry of the level above: the parameters too only if some
+/// parameter in the seed changed (parameters depend on parameters alone, so
+/// an edit of directions leaves every level's parameters as they are).
 pub fn propagate(
     design: &Design,
     details: &Details,
@@ -344,13 +362,24 @@ pub fn propagate(
         dirty: vec![None; levels.len()],
         ..Default::default()
     };
+    let mut params = false;
     if let (Some(root), Some(Some(w))) = (levels.first_mut(), seeds.first()) {
+        let same = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
         for r in w.rows.iter() {
             for c in w.cols.iter() {
                 root.tangents.set(r, c, design.net.get(r, c));
             }
-            root.params.s.row_mut(r)[w.cols.lo..=w.cols.hi]
-                .copy_from_slice(&design.params.s.row(r)[w.cols.lo..=w.cols.hi]);
+            let cols = w.cols.lo..=w.cols.hi;
+            let (old, new) = (
+                &mut root.params.s.row_mut(r)[cols.clone()],
+                &design.params.s.row(r)[cols],
+            );
+            params |= !same(old, new)
+                || !same(
+                    &[root.params.t[r], root.params.sigma[r]],
+                    &[design.params.t[r], design.params.sigma[r]],
+                );
+            old.copy_from_slice(new);
             root.params.t[r] = design.params.t[r];
             root.params.sigma[r] = design.params.sigma[r];
         }
@@ -361,7 +390,7 @@ pub fn propagate(
         let (prev, me) = (&*above[l - 1], &mut *below[0]);
         let mut dirty = None;
         if let Some(w) = prop.dirty[l - 1] {
-            let (d, n) = me.update(design, details, prev, w)?;
+            let (d, n) = me.update_with(design, details, prev, w, params)?;
             prop.reblended += n.reblended;
             prop.details += n.details;
             dirty = Some(d);
