@@ -77,14 +77,14 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
     let mut total = 0.0;
     let depth = w.resource::<ecs::Model>().scene.display_depth;
     let mut levels = w.query::<(&SubdivisionLevel, &LevelData)>();
-    let Some((_, level)) = levels.iter(w).find(|(l, _)| l.0 == depth) else {
-        return Err(CliError::Usage(format!("no level {depth} was built")));
-    };
-    let level = level.clone();
     let mut q = w.query::<(
         &ecs::components::Streamline,
         &ecs::components::StreamlinePoints,
     )>();
+    let w = &*w;
+    let Some((_, level)) = levels.iter(w).find(|(l, _)| l.0 == depth) else {
+        return Err(CliError::Usage(format!("no level {depth} was built")));
+    };
     let mut rows: Vec<_> = q
         .iter(w)
         .map(|(l, p)| {

@@ -5,7 +5,7 @@ use super::components::*;
 use super::resources::{Stats, SurfaceData};
 use bevy::prelude::*;
 use std::time::Instant;
-use streamline_kernel::mesh::{normals_rows, write_indices};
+use streamline_kernel::mesh::{normals_and_indices, normals_rows};
 use streamline_kernel::window::Span;
 use streamline_kernel::{DVec3, Grid};
 
@@ -41,17 +41,7 @@ pub(crate) fn patch_mesh(
         }
     }
     if reshaped {
-        s.normals.clear();
-        s.normals.resize(rows * cols, DVec3::Z);
-        normals_rows(
-            s.points.data(),
-            cols,
-            0,
-            rows.saturating_sub(1),
-            &mut s.normals,
-        );
-        s.indices.clear();
-        write_indices(rows, cols, &mut s.indices);
+        normals_and_indices(&s.points, &mut s.normals, &mut s.indices);
         s.rows_changed = None;
     } else {
         // same shape: the triangles stay, only the moved rows' points and the

@@ -34,11 +34,7 @@ impl SurfaceMesh {
     pub fn rebuild(&mut self, points: &Grid<DVec3>) {
         self.positions.clear();
         self.positions.extend_from_slice(points.data());
-        self.normals.clear();
-        self.normals.resize(points.data().len(), DVec3::Z);
-        self.update_normals_rows(points, 0, points.rows().saturating_sub(1));
-        self.indices.clear();
-        write_indices(points.rows(), points.cols(), &mut self.indices);
+        normals_and_indices(points, &mut self.normals, &mut self.indices);
     }
 
     /// Recomputes the normals of rows `lo ..= hi`; at least
@@ -52,6 +48,22 @@ impl SurfaceMesh {
     pub fn update_normals_row(&mut self, points: &Grid<DVec3>, r: usize) {
         self.update_normals_rows(points, r, r);
     }
+}
+
+/// The normals and triangles of a whole point grid, into buffers kept by the
+/// caller (a mesh whose positions are `points` itself).
+pub fn normals_and_indices(points: &Grid<DVec3>, normals: &mut Vec<DVec3>, indices: &mut Vec<u32>) {
+    normals.clear();
+    normals.resize(points.data().len(), DVec3::Z);
+    normals_rows(
+        points.data(),
+        points.cols(),
+        0,
+        points.rows().saturating_sub(1),
+        normals,
+    );
+    indices.clear();
+    write_indices(points.rows(), points.cols(), indices);
 }
 
 /// Mesh updates of at least this many points run on two threads.

@@ -437,17 +437,12 @@ mod tests {
                     in_place(scheme, order, rows),
                     "{scheme:?} {order:?}"
                 );
-                let mut half = Grid::filled(hr, hc, DVec3::ZERO);
-                let full = refine_grid_gathered(scheme, order, &g);
-                let mut next = Grid::filled(full.rows(), full.cols(), DVec3::ZERO);
-                refine_grid_window(
-                    scheme,
-                    order,
-                    &g,
-                    &mut half,
-                    &mut next,
-                    Window::all(rows, cols),
+                let (mut half, mut next) = (
+                    Grid::filled(0, 0, DVec3::ZERO),
+                    Grid::filled(0, 0, DVec3::ZERO),
                 );
+                crate::surface::refine_grid_into(scheme, order, &g, &mut half, &mut next);
+                assert_eq!((half.rows(), half.cols()), (hr, hc));
                 let windows = [
                     Window::cell(35, 40),
                     Window {
