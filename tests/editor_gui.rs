@@ -132,6 +132,7 @@ struct Report {
     last_edit: String,
     net: Vec<[f64; 3]>,
     cols: usize,
+    shown_gap: Option<f64>,
 }
 
 fn drag(dir: &Path, mode: &str) -> Report {
@@ -174,7 +175,11 @@ fn pointer_drag_turns_an_arrow_and_esc_cancels() {
         ((d[0] - start[0]).powi(2) + (d[1] - start[1]).powi(2) + (d[2] - start[2]).powi(2)).sqrt();
     assert!(turn > 0.05, "the arrow turned by {turn}: {moved:?}");
     assert_eq!(moved.undo, 1, "a drag is one undo step");
+    // the rows and columns rewritten in place, frame by frame, in the
+    // surface mesh and the sphere view's points are all there is to change
+    assert_eq!(moved.shown_gap, Some(0.0), "the views show the model");
     let cancelled = drag(&dir, "esc");
+    assert_eq!(cancelled.shown_gap, Some(0.0), "the views show the model");
     assert_eq!(cancelled.net[8], start, "Esc restores the direction");
     assert_eq!(cancelled.undo, 0, "a cancelled drag leaves no undo step");
     assert!(

@@ -89,7 +89,7 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         .iter(w)
         .map(|(l, p)| {
             let (_, s) = level.row(l.row);
-            (l.row, polyline_length(&p.0), s[s.len() - 1] - s[0])
+            (l.row, polyline_length(&p.points), s[s.len() - 1] - s[0])
         })
         .collect();
     rows.sort_by_key(|r| r.0);

@@ -46,6 +46,7 @@ fn streamline_of(model: &Model, level: &LevelState, row: usize) -> StreamlineTan
         sigma: p.sigma[row],
         origin: model.scene.design.initial.point(p.t[row]),
         t: p.t[row],
+        changed_from: 0,
     }
 }
 
@@ -56,13 +57,16 @@ fn streamline_of(model: &Model, level: &LevelState, row: usize) -> StreamlineTan
 /// rebuild in full), so the row's start point is kept unless its `t` moved
 /// (evaluating the initial curve, a QI curve under Gauss quadrature, was
 /// about 1.5 % of such an edit).
-fn refresh(model: &Model, level: &LevelState, row: usize, t: &mut StreamlineTangents) {
+/// `from` is the first column whose tangent may have changed, `0` when the
+/// parameters changed too.
+fn refresh(model: &Model, level: &LevelState, row: usize, from: usize, t: &mut StreamlineTangents) {
     let p = &level.params;
     t.sigma = p.sigma[row];
     if t.t.to_bits() != p.t[row].to_bits() {
         t.origin = model.scene.design.initial.point(p.t[row]);
         t.t = p.t[row];
     }
+    t.changed_from = t.changed_from.min(from);
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -141,9 +145,11 @@ pub(crate) fn reblend(
             let display = model.scene.display_depth as usize;
             if let (Some(Some(w)), Some(level)) = (p.dirty.get(display), refs.get(display)) {
                 let rows: Span = w.rows;
+                // only tangents inside the window changed, unless parameters did
+                let from = if p.params { 0 } else { w.cols.lo };
                 for (_, line, mut t) in lines.iter_mut() {
                     if rows.lo <= line.row && line.row <= rows.hi {
-                        refresh(&model, level, line.row, &mut t);
+                        refresh(&model, level, line.row, from, &mut t);
                     }
                 }
             }

@@ -71,6 +71,12 @@ pub struct StreamlineTangents {
     pub origin: DVec3,
     /// The row's parameter `t` (across the streamlines).
     pub t: f64,
+    /// The first tangent of the row changed since its points were last
+    /// integrated, when only tangents from there on changed (`s`, σ and the
+    /// start point as they were); `0` asks for the whole row. The integrate
+    /// stage sums again only the points after it (Eq. 65 is a running sum)
+    /// and sets it back to `usize::MAX` (nothing pending).
+    pub changed_from: usize,
 }
 
 /// The fine-tuning function of one streamline (SPEC §6), `None` when fine
@@ -82,4 +88,10 @@ pub struct StreamlineAlpha(pub Option<(BSpline, Constraint)>);
 
 /// The integrated, placed streamline: `n + 2` points (Eq. 65).
 #[derive(Component, Debug, Clone, Default, PartialEq)]
-pub struct StreamlinePoints(pub Vec<DVec3>);
+pub struct StreamlinePoints {
+    /// The points.
+    pub points: Vec<DVec3>,
+    /// The first point the last integration rewrote (`0`: all of them); the
+    /// ones before it are as they were.
+    pub moved_from: usize,
+}

@@ -7,7 +7,7 @@ use super::resources::{Model, Stats};
 use bevy::prelude::*;
 use std::time::Instant;
 use streamline_kernel::finetune::{SurfaceTuning, fine_tune_into};
-use streamline_kernel::streamline::place_into;
+use streamline_kernel::streamline::{place_into, place_slice_from};
 
 /// Gives every streamline its row of the scene's fine-tuning function; only
 /// rows whose function (or constraint) differs are marked changed.
@@ -45,8 +45,8 @@ type ChangedLines<'w, 's> = Query<
     's,
     (
         &'static Streamline,
-        &'static StreamlineTangents,
-        &'static StreamlineAlpha,
+        &'static mut StreamlineTangents,
+        Ref<'static, StreamlineAlpha>,
         &'static mut StreamlinePoints,
     ),
     Or<(Changed<StreamlineTangents>, Changed<StreamlineAlpha>)>,
@@ -67,17 +67,36 @@ pub(crate) fn integrate(
     };
     let rows = level.0.shape().0;
     let mut n = 0;
-    for (line, t, alpha, mut p) in &mut lines {
+    for (line, mut t, alpha, mut p) in &mut lines {
         if line.row >= rows {
             continue;
         }
         let (tangents, s) = level.row(line.row);
-        match &alpha.0 {
-            None => place_into(tangents, s, t.sigma, t.origin, &mut p.0),
-            Some((f, c)) => {
-                fine_tune_into(tangents, s, t.sigma, t.origin, f, *c, &mut p.0);
+        let p = &mut *p;
+        p.moved_from = match &alpha.0 {
+            // only the tangents from `changed_from` on moved: the running
+            // sum (Eq. 65) goes on from the point there
+            None if !alpha.is_changed() && p.points.len() == tangents.len() + 1 => {
+                place_slice_from(
+                    tangents,
+                    s,
+                    t.sigma,
+                    t.origin,
+                    t.changed_from,
+                    &mut p.points,
+                )
             }
-        }
+            None => {
+                place_into(tangents, s, t.sigma, t.origin, &mut p.points);
+                0
+            }
+            Some((f, c)) => {
+                fine_tune_into(tangents, s, t.sigma, t.origin, f, *c, &mut p.points);
+                0
+            }
+        };
+        // integrated: nothing pending (not an edit of the row, so not marked)
+        t.bypass_change_detection().changed_from = usize::MAX;
         n += 1;
     }
     if n > 0 {

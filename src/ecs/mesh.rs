@@ -5,8 +5,8 @@ use super::components::*;
 use super::resources::{Stats, SurfaceData};
 use bevy::prelude::*;
 use std::time::Instant;
-use streamline_kernel::mesh::{normals_and_indices, normals_rows};
-use streamline_kernel::window::Span;
+use streamline_kernel::mesh::{normals_and_indices, normals_window};
+use streamline_kernel::window::{Span, Window};
 use streamline_kernel::{DVec3, Grid};
 
 pub(crate) fn patch_mesh(
@@ -22,7 +22,7 @@ pub(crate) fn patch_mesh(
     let mut span: Option<Span> = None;
     let mut cols = surface.points.cols();
     for (line, p) in &changed {
-        cols = p.0.len();
+        cols = p.points.len();
         span = Some(span.map_or(Span::single(line.row), |s| s.union(Span::single(line.row))));
     }
     let Some(span) = span else {
@@ -35,21 +35,42 @@ pub(crate) fn patch_mesh(
         s.points = Grid::filled(rows, cols, DVec3::ZERO);
         s.row_bounds = vec![[DVec3::ZERO; 2]; rows];
     }
-    for (line, p) in &changed {
-        if line.row < rows && p.0.len() == cols {
-            s.set_row(line.row, &p.0);
-        }
-    }
     if reshaped {
+        for (line, p) in &changed {
+            if line.row < rows && p.points.len() == cols {
+                s.set_row_from(line.row, &p.points, 0);
+            }
+        }
         normals_and_indices(&s.points, &mut s.normals, &mut s.indices);
-        s.rows_changed = None;
+        s.changed = None;
     } else {
-        // same shape: the triangles stay, only the moved rows' points and the
+        // same shape: the triangles stay, only the points that moved and the
         // normals around them are rewritten (a drag on the car at depth 5
         // moves nearly every row; rewriting 82k triangles would be wasted)
-        let around = span.widen(1, rows);
-        normals_rows(s.points.data(), cols, around.lo, around.hi, &mut s.normals);
-        s.rows_changed = Some(around);
+        let mut from = cols;
+        for (line, p) in &changed {
+            if line.row < rows && p.points.len() == cols {
+                s.set_row_from(line.row, &p.points, p.moved_from);
+                from = from.min(p.moved_from);
+            }
+        }
+        // a normal reads its neighbours across and along
+        let around = Window {
+            rows: span.widen(1, rows),
+            cols: Span {
+                lo: from.saturating_sub(1).min(cols - 1),
+                hi: cols - 1,
+            },
+        };
+        normals_window(
+            s.points.data(),
+            cols,
+            around.rows.lo,
+            around.rows.hi,
+            around.cols.lo,
+            &mut s.normals,
+        );
+        s.changed = Some(around);
     }
     s.generation += 1;
     stats.last.mesh_rows += span.len();

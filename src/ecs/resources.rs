@@ -6,7 +6,7 @@ use std::collections::VecDeque;
 use std::path::PathBuf;
 use streamline_kernel::mesh::SurfaceMesh;
 use streamline_kernel::multires::Details;
-use streamline_kernel::window::{Span, Window};
+use streamline_kernel::window::Window;
 use streamline_kernel::{DVec3, Grid};
 
 /// The scene being edited (kept equal to the handle components by the edit
@@ -203,8 +203,9 @@ pub struct SurfaceData {
     pub row_bounds: Vec<[DVec3; 2]>,
     /// Increases whenever the mesh changes.
     pub generation: u64,
-    /// Rows rewritten by the last change (`None`: all).
-    pub rows_changed: Option<Span>,
+    /// The points (rows × columns) whose position or normal the last change
+    /// rewrote (`None`: all).
+    pub changed: Option<Window>,
 }
 
 impl Default for SurfaceData {
@@ -215,7 +216,7 @@ impl Default for SurfaceData {
             indices: Vec::new(),
             row_bounds: Vec::new(),
             generation: 0,
-            rows_changed: None,
+            changed: None,
         }
     }
 }
@@ -243,12 +244,18 @@ impl SurfaceData {
             .reduce(|[a, b], [c, d]| [a.min(c), b.max(d)])
     }
 
-    /// Rewrites row `r`'s points and its bounding box.
-    pub fn set_row(&mut self, r: usize, points: &[DVec3]) {
+    /// Rewrites row `r`'s points from column `from` on (the ones before are
+    /// as they were) and its bounding box.
+    pub fn set_row_from(&mut self, r: usize, points: &[DVec3], from: usize) {
         let row = self.points.row_mut(r);
+        let from = from.min(row.len());
         let mut lo = DVec3::splat(f64::INFINITY);
         let mut hi = DVec3::splat(f64::NEG_INFINITY);
-        for (dst, &p) in row.iter_mut().zip(points) {
+        for &p in &row[..from] {
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        for (dst, &p) in row[from..].iter_mut().zip(&points[from..]) {
             *dst = p;
             lo = lo.min(p);
             hi = hi.max(p);

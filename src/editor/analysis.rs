@@ -340,7 +340,7 @@ fn draw_combs(
             continue;
         }
         let (tangents, s) = level.row(l.row);
-        let teeth = comb(&p.0, tangents, s, scale);
+        let teeth = comb(&p.points, tangents, s, scale);
         for c in &teeth {
             gizmos.line(to_view(c.base), to_view(c.tip), tooth);
         }

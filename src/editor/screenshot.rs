@@ -8,9 +8,11 @@ use super::coords::to_view;
 use super::handles::HandleArrows;
 use super::panels::{PanelName, UiState};
 use super::picking::Selection;
-use super::sphere_view::SphereCamera;
-use super::surface::ShownSurface;
-use crate::ecs::{History, Model, Stats};
+use super::sphere_view::{SphereCamera, SubdividedPoints};
+use super::surface::{ShownSurface, SurfaceEntity};
+use crate::ecs::components::{LevelData, SubdivisionLevel};
+use crate::ecs::{History, Model, Stats, SurfaceData};
+use bevy::mesh::VertexAttributeValues;
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured, save_to_disk};
 use std::path::PathBuf;
@@ -73,6 +75,8 @@ struct ShotProgress {
     held: u32,
     /// Frames drawn while work ran off the frame (opening a mesh).
     busy_frames: u32,
+    /// [`Report::shown_gap`], once measured.
+    shown_gap: Option<f64>,
 }
 
 pub struct ScreenshotPlugin;
@@ -84,7 +88,12 @@ impl Plugin for ScreenshotPlugin {
                 Startup,
                 set_up_view.run_if(resource_exists::<ScreenshotRequest>),
             )
-            .add_systems(Last, drive.run_if(resource_exists::<ScreenshotRequest>));
+            .add_systems(
+                Last,
+                (measure_shown_gap, drive)
+                    .chain()
+                    .run_if(resource_exists::<ScreenshotRequest>),
+            );
     }
 }
 
@@ -144,6 +153,12 @@ struct Report {
     busy_frames: u32,
     /// The Loop mesh panel's last error, if any.
     mesh_error: Option<String>,
+    /// The largest gap between what the views show and the model, when the
+    /// picture was taken: the surface mesh's positions and normals against
+    /// the model's points and normals, the sphere view's points against the
+    /// display depth's tangents (each made `f32` as the views make it; `0`
+    /// when every row and column that edits rewrote in place got there).
+    shown_gap: Option<f64>,
 }
 
 fn write_report(path: &std::path::Path, r: &Report) {
@@ -264,9 +279,74 @@ fn drive(
                     ours_frames: timing.recent_frames.0.iter().copied().collect(),
                     busy_frames: p.busy_frames,
                     mesh_error: mesh.error.clone(),
+                    shown_gap: p.shown_gap,
                 },
             );
         }
         exit.write(AppExit::Success);
     }
+}
+
+/// Measures [`Report::shown_gap`] once the picture is taken (reports only).
+#[allow(clippy::too_many_arguments)]
+fn measure_shown_gap(
+    req: Res<ScreenshotRequest>,
+    mut p: ResMut<ShotProgress>,
+    model: Res<Model>,
+    data: Res<SurfaceData>,
+    meshes: Res<Assets<Mesh>>,
+    surface: Query<&Mesh3d, With<SurfaceEntity>>,
+    points: Query<&Mesh3d, With<SubdividedPoints>>,
+    levels: Query<(&SubdivisionLevel, &LevelData)>,
+) {
+    if req.report.is_none() || p.captured.is_none() || p.shown_gap.is_some() {
+        return;
+    }
+    let attr = |m: &Mesh3d, a| match meshes.get(&m.0).and_then(|m| m.attribute(a)) {
+        Some(VertexAttributeValues::Float32x3(v)) => Some(v.clone()),
+        _ => None,
+    };
+    let gap = |shown: &[[f32; 3]], want: &mut dyn Iterator<Item = Vec3>| {
+        let mut n = 0;
+        let mut g = shown
+            .iter()
+            .zip(want)
+            .map(|(a, b)| {
+                n += 1;
+                (Vec3::from_array(*a) - b).abs().max_element() as f64
+            })
+            .fold(0.0, f64::max);
+        if n != shown.len() {
+            g = f64::MAX; // sizes differ
+        }
+        g
+    };
+    let mut worst = 0.0f64;
+    if let Ok(m) = surface.single() {
+        let (Some(pos), Some(nrm)) = (
+            attr(m, Mesh::ATTRIBUTE_POSITION),
+            attr(m, Mesh::ATTRIBUTE_NORMAL),
+        ) else {
+            return;
+        };
+        let mut want = data.points.data().iter().map(|q| q.as_vec3());
+        worst = worst.max(gap(&pos, &mut want));
+        let mut want = data.normals.iter().map(|q| q.as_vec3());
+        worst = worst.max(gap(&nrm, &mut want));
+        if pos.len() != data.points.data().len() {
+            worst = f64::MAX;
+        }
+    }
+    let depth = model.scene.display_depth;
+    if let (Ok(m), Some((_, level))) = (points.single(), levels.iter().find(|(l, _)| l.0 == depth))
+        && let Some(pos) = attr(m, Mesh::ATTRIBUTE_POSITION)
+    {
+        let tangents = level.0.tangents.data();
+        let mut want = tangents.iter().map(|&t| to_view(t));
+        worst = worst.max(gap(&pos, &mut want));
+        if pos.len() != tangents.len() {
+            worst = f64::MAX;
+        }
+    }
+    p.shown_gap = Some(worst);
 }

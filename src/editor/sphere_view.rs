@@ -63,8 +63,9 @@ pub struct SphereGizmos;
 #[derive(Component)]
 pub struct SphereCamera;
 
+/// Marks the point cloud of the display depth's tangents.
 #[derive(Component)]
-struct SubdividedPoints;
+pub struct SubdividedPoints;
 
 pub struct SphereViewPlugin;
 
@@ -232,8 +233,8 @@ fn update_points(
     };
     // an edit of the display level moves its streamlines too: the rows the
     // mesh stage rewrote this frame hold every row whose tangents changed
-    let rows_changed = (surface.generation == *seen_surface + 1)
-        .then_some(surface.rows_changed)
+    let changed = (surface.generation == *seen_surface + 1)
+        .then_some(surface.changed)
         .flatten();
     *seen_surface = surface.generation;
     if !data.is_changed() && *shown == Some(depth) {
@@ -251,12 +252,22 @@ fn update_points(
         && p.len() == tangents.len()
     {
         let cols = data.0.shape().1;
-        let range = match rows_changed {
-            Some(rows) if same_depth => rows.lo * cols..((rows.hi + 1) * cols).min(p.len()),
-            _ => 0..p.len(),
-        };
-        for (p, &t) in p[range.clone()].iter_mut().zip(&tangents[range]) {
-            *p = to_view(t).to_array();
+        match changed {
+            // tangent j moves points j + 1 on: the window's columns (points,
+            // from one before the first that moved) hold every changed tangent
+            Some(w) if same_depth && w.rows.hi * cols < p.len() => {
+                for r in w.rows.iter() {
+                    let range = r * cols + w.cols.lo.min(cols)..(r + 1) * cols;
+                    for (p, &t) in p[range.clone()].iter_mut().zip(&tangents[range]) {
+                        *p = to_view(t).to_array();
+                    }
+                }
+            }
+            _ => {
+                for (p, &t) in p.iter_mut().zip(tangents) {
+                    *p = to_view(t).to_array();
+                }
+            }
         }
         return;
     }

@@ -92,23 +92,31 @@ pub(super) fn sync_mesh(
     };
     let points = data.points.data();
     let cols = data.points.cols();
-    if let Some(span) = data.rows_changed
+    if let Some(w) = data.changed
         && mesh.count_vertices() == points.len()
         && cols > 0
     {
-        let range = span.lo * cols..(span.hi + 1) * cols;
+        let rows = || {
+            w.rows
+                .iter()
+                .map(move |r| r * cols + w.cols.lo..r * cols + w.cols.hi + 1)
+        };
         if let Some(VertexAttributeValues::Float32x3(p)) =
             mesh.attribute_mut(Mesh::ATTRIBUTE_POSITION)
         {
-            for (p, q) in p[range.clone()].iter_mut().zip(&points[range.clone()]) {
-                *p = q.as_vec3().to_array();
+            for range in rows() {
+                for (p, q) in p[range.clone()].iter_mut().zip(&points[range]) {
+                    *p = q.as_vec3().to_array();
+                }
             }
         }
         if let Some(VertexAttributeValues::Float32x3(n)) =
             mesh.attribute_mut(Mesh::ATTRIBUTE_NORMAL)
         {
-            for (n, m) in n[range.clone()].iter_mut().zip(&data.normals[range]) {
-                *n = m.as_vec3().to_array();
+            for range in rows() {
+                for (n, m) in n[range.clone()].iter_mut().zip(&data.normals[range]) {
+                    *n = m.as_vec3().to_array();
+                }
             }
         }
         shown.full = false;

@@ -343,6 +343,10 @@ pub struct Propagation {
     pub reblended: usize,
     /// Details re-applied over all levels.
     pub details: usize,
+    /// Whether some parameter (`s`, `t` or σ) in the seed changed, so that
+    /// the levels' parameters were re-blended too; when not, only tangents
+    /// inside the dirty windows changed.
+    pub params: bool,
 }
 
 /// Carries edits down the levels. `seeds[l]` is the window edited directly on
@@ -401,5 +405,6 @@ pub fn propagate(
         }
         prop.dirty[l] = dirty;
     }
+    prop.params = params;
     Ok(prop)
 }

@@ -72,20 +72,33 @@ pub const PARALLEL_MIN_POINTS: usize = 16_384;
 /// The normals of rows `lo ..= hi` of the row-major point grid `points`
 /// (`cols` wide) into the same entries of `normals`; large ranges on two threads.
 pub fn normals_rows(points: &[DVec3], cols: usize, lo: usize, hi: usize, normals: &mut [DVec3]) {
-    if cols == 0 || points.is_empty() || hi < lo {
+    normals_window(points, cols, lo, hi, 0, normals);
+}
+
+/// [`normals_rows`] for columns `c0 ..` of those rows only (a streamline
+/// summed again from a column on moves only its points after it).
+pub fn normals_window(
+    points: &[DVec3],
+    cols: usize,
+    lo: usize,
+    hi: usize,
+    c0: usize,
+    normals: &mut [DVec3],
+) {
+    if cols == 0 || points.is_empty() || hi < lo || c0 >= cols {
         return;
     }
     let region = &mut normals[lo * cols..(hi + 1) * cols];
     let n = hi - lo + 1;
-    if n * cols < PARALLEL_MIN_POINTS || n < 2 {
-        crate::simd::normals_rows(points, cols, lo, hi, region);
+    if n * (cols - c0) < PARALLEL_MIN_POINTS || n < 2 {
+        crate::simd::normals_rows_from(points, cols, lo, hi, c0, region);
         return;
     }
     let (top, bottom) = region.split_at_mut((n / 2) * cols);
     let mid = lo + n / 2;
     crate::parallel::join(
-        || crate::simd::normals_rows(points, cols, lo, mid - 1, top),
-        || crate::simd::normals_rows(points, cols, mid, hi, bottom),
+        || crate::simd::normals_rows_from(points, cols, lo, mid - 1, c0, top),
+        || crate::simd::normals_rows_from(points, cols, mid, hi, c0, bottom),
     );
 }
 

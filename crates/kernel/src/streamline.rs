@@ -30,26 +30,43 @@ pub fn integrate_slice(tangents: &[DVec3], s: &[f64], out: &mut [DVec3]) {
     integrate_shifted(tangents, s, DVec3::ZERO, out);
 }
 
-/// Eq. 65 from `p₀ = 0`, each point written plus `shift`.
+/// Eq. 65 from `p₀ = shift`: the sums carry the shift from the start, so
+/// the points from any column on depend only on the point there and the
+/// tangents after it ([`integrate_from`]).
 #[inline]
 fn integrate_shifted(tangents: &[DVec3], s: &[f64], shift: DVec3, out: &mut [DVec3]) {
     let n = tangents.len() - 1;
     assert!(s.len() == n + 1 && out.len() == n + 2 && n >= 1);
-    let mut p = DVec3::ZERO;
-    out[0] = p + shift;
-    p += tangents[0] * (0.5 * (s[1] - s[0]));
-    out[1] = p + shift;
+    out[0] = shift;
+    integrate_from(tangents, s, 0, out);
+}
+
+/// Eq. 65 from point `from` (`≤ n`) on: `out[from]` holds `p_from`, and
+/// `p_{i+1} = p_i + ½(s_{i+1} − s_{i−1}) t_i` is written for `i ≥ from`
+/// (with the end rules at `i = 0` and `i = n`), the same sums in the same
+/// order as from the first point.
+#[inline]
+fn integrate_from(tangents: &[DVec3], s: &[f64], from: usize, out: &mut [DVec3]) {
+    let n = tangents.len() - 1;
+    debug_assert!(from <= n && s.len() == n + 1 && out.len() == n + 2);
+    let mut p = out[from];
+    let mut i = from;
+    if i == 0 {
+        p += tangents[0] * (0.5 * (s[1] - s[0]));
+        out[1] = p;
+        i = 1;
+    }
     // p_{i+1} = p_i + ½(s_{i+1} − s_{i−1}) t_i, i = 1 … n−1
-    for ((t, w), o) in tangents[1..n]
+    for ((t, w), o) in tangents[i.min(n)..n]
         .iter()
-        .zip(s.windows(3))
-        .zip(out[2..=n].iter_mut())
+        .zip(s[i - 1..].windows(3))
+        .zip(out[i + 1..=n].iter_mut())
     {
         p += *t * (0.5 * (w[2] - w[0]));
-        *o = p + shift;
+        *o = p;
     }
     p += tangents[n] * (0.5 * (s[n] - s[n - 1]));
-    out[n + 1] = p + shift;
+    out[n + 1] = p;
 }
 
 /// Arc length of point `k` of the polyline.
@@ -133,6 +150,32 @@ pub fn place_slice(tangents: &[DVec3], s: &[f64], sigma: f64, origin: DVec3, out
     integrate_shifted(tangents, s, origin - anchor, out);
 }
 
+/// [`place_slice`] after a change of the row's tangents from index `from`
+/// on, `out` holding the row as placed before it (same `s`, σ and origin):
+/// the points up to `from` do not move when the anchor's segment lies
+/// before `from`, so only the points after it are summed again, with the
+/// same bits as placing the whole row. Returns the first point rewritten
+/// (`0`: the whole row, when the anchor reads a changed tangent or `from`
+/// is 0).
+pub fn place_slice_from(
+    tangents: &[DVec3],
+    s: &[f64],
+    sigma: f64,
+    origin: DVec3,
+    from: usize,
+    out: &mut [DVec3],
+) -> usize {
+    let n = tangents.len() - 1;
+    assert!(s.len() == n + 1 && out.len() == n + 2 && n >= 1);
+    // the anchor reads the tangents up to its segment's (all of them past s_n)
+    if from == 0 || from > n || segment_at(s, sigma) >= from {
+        place_slice(tangents, s, sigma, origin, out);
+        return 0;
+    }
+    integrate_from(tangents, s, from, out);
+    from + 1
+}
+
 /// The kernel's boundary for one streamline: validates and normalises the input,
 /// then integrates with anchor column `anchor` placed at `origin` (the point at
 /// arc length `s[anchor]` is `origin`).
@@ -204,30 +247,83 @@ pub fn polyline_length(points: &[DVec3]) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    #[test]
-    fn placing_in_one_pass_is_integrating_then_shifting() {
-        let t: Vec<DVec3> = (0..9)
-            .map(|i| DVec3::new((i as f64 * 0.4).cos(), (i as f64 * 0.4).sin(), -0.3).normalize())
+    fn wavy(k: usize, phase: f64) -> (Vec<DVec3>, Vec<f64>) {
+        let t: Vec<DVec3> = (0..k)
+            .map(|i| {
+                let a = i as f64 * 0.4 + phase;
+                DVec3::new(a.cos(), a.sin(), -0.3).normalize()
+            })
             .collect();
-        let s: Vec<f64> = (0..9)
+        let s: Vec<f64> = (0..k)
             .map(|i| i as f64 * 0.7 + (i as f64 * 1.3).sin() * 0.2)
             .collect();
+        (t, s)
+    }
+
+    #[test]
+    fn placing_in_one_pass_is_integrating_then_shifting() {
+        let (t, s) = wavy(9, 0.0);
         let origin = DVec3::new(-0.0, 2.5, 1e-3);
         for sigma in [-3.0, s[0], 0.1, 0.35, s[3], 2.9, s[8], 9.0, f64::NAN] {
             let mut plain = Vec::new();
             integrate_into(&t, &s, &mut plain);
             let shift = origin - point_at(&plain, &t, &s, sigma);
-            for p in plain.iter_mut() {
-                *p += shift;
-            }
             let mut fast = vec![DVec3::ZERO; t.len() + 1];
             place_slice(&t, &s, sigma, origin, &mut fast);
-            let bits = |v: &[DVec3]| {
-                v.iter()
-                    .map(|p| p.to_array().map(f64::to_bits))
-                    .collect::<Vec<_>>()
-            };
-            assert_eq!(bits(&fast), bits(&plain), "sigma = {sigma}");
+            for (p, q) in plain.iter().zip(&fast) {
+                // the shift rides in the sums: the same points up to rounding
+                let want = *p + shift;
+                assert!(
+                    (want - *q).length() <= 1e-14 * (1.0 + want.length()) || want.is_nan(),
+                    "sigma = {sigma}: {want} vs {q}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn placing_from_a_column_is_placing_the_whole_row_bitwise() {
+        let bits = |v: &[DVec3]| {
+            v.iter()
+                .map(|p| p.to_array().map(f64::to_bits))
+                .collect::<Vec<_>>()
+        };
+        let origin = DVec3::new(0.3, -1.0, 2.0);
+        for k in [2, 3, 9] {
+            let (t, s) = wavy(k, 0.0);
+            let n = k - 1;
+            let sigmas = [
+                s[0] - 1.0,
+                s[0],
+                0.5 * (s[0] + s[1]),
+                s[n / 2],
+                s[n],
+                s[n] + 1.0,
+            ];
+            for sigma in sigmas {
+                for from in 0..=n + 1 {
+                    // the row as placed before, then its tangents from `from` on turned
+                    let mut row = vec![DVec3::ZERO; k + 1];
+                    place_slice(&t, &s, sigma, origin, &mut row);
+                    let (turned, _) = wavy(k, 0.9);
+                    let mut t2 = t.clone();
+                    t2[from.min(k)..].copy_from_slice(&turned[from.min(k)..]);
+                    let mut whole = vec![DVec3::ZERO; k + 1];
+                    place_slice(&t2, &s, sigma, origin, &mut whole);
+                    let first = place_slice_from(&t2, &s, sigma, origin, from, &mut row);
+                    assert_eq!(bits(&row), bits(&whole), "k {k} σ {sigma} from {from}");
+                    let anchored_before = segment_at(&s, sigma) < from;
+                    if from >= 1 && from <= n && anchored_before {
+                        assert_eq!(first, from + 1, "k {k} σ {sigma} from {from}");
+                        // the points up to `from` did not move
+                        let mut old = vec![DVec3::ZERO; k + 1];
+                        place_slice(&t, &s, sigma, origin, &mut old);
+                        assert_eq!(bits(&old[..=from]), bits(&whole[..=from]));
+                    } else {
+                        assert_eq!(first, 0, "k {k} σ {sigma} from {from}");
+                    }
+                }
+            }
         }
     }
 

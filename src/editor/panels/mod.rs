@@ -18,7 +18,7 @@ use super::camera::{FrameRequest, SceneBounds, ViewArea};
 use super::files::FileUi;
 use super::handles::{HandleArrows, HandleSettings};
 use super::overlay::OverlaySettings;
-use super::picking::{DragGroups, Selection};
+use super::picking::{Drag, DragGroups, DragKind, Selection};
 use super::sphere_view::SphereSettings;
 use crate::ecs::{Edit, EditLog, EditMessage, History, Model, Stats};
 use bevy::ecs::system::SystemParam;
@@ -151,6 +151,7 @@ pub struct PanelCtx<'w> {
     pub frame: ResMut<'w, FrameRequest>,
     pub bounds: Res<'w, SceneBounds>,
     pub groups: ResMut<'w, DragGroups>,
+    pub drag: Res<'w, Drag>,
     pub edits: MessageWriter<'w, EditMessage>,
     pub exit: MessageWriter<'w, AppExit>,
     pub ui_state: Res<'w, UiState>,
@@ -379,6 +380,7 @@ pub struct Throttled {
     stats: Vec<(&'static str, String, &'static str)>,
     status: String,
     at: Option<std::time::Instant>,
+    dragging: bool,
 }
 
 impl Throttled {
@@ -386,15 +388,32 @@ impl Throttled {
 
     fn refresh(&mut self, p: &PanelCtx) {
         let now = std::time::Instant::now();
-        if self
-            .at
-            .is_some_and(|at| now.duration_since(at) < Self::EVERY)
+        // at once when a drag ends: what it did replaces "turning …"
+        let ended = self.dragging && p.drag.0.is_none();
+        self.dragging = p.drag.0.is_some();
+        if !ended
+            && self
+                .at
+                .is_some_and(|at| now.duration_since(at) < Self::EVERY)
         {
             return;
         }
         self.at = Some(now);
         self.stats = stats::rows(p);
-        self.status = status_text(p);
+        self.status = match &p.drag.0 {
+            // the same words for the whole drag (its figures are in the
+            // Selection section), and the way out
+            Some(d) => format!(
+                "turning ({}, {}) {}: release to keep it, Esc to cancel",
+                d.row,
+                d.col,
+                match d.kind {
+                    DragKind::Trackball { .. } => "on the trackball",
+                    DragKind::Sphere => "on the sphere",
+                }
+            ),
+            None => status_text(p),
+        };
     }
 }
 

@@ -311,18 +311,21 @@ unsafe fn normals<L: Lanes>(
     }
 }
 
-/// The normals of rows `lo ..= hi` of the point grid (`cols` wide) into `out`
-/// (those rows only), each row split into coordinate arrays once, in a
-/// ring of three rows kept in `ring` (9 · cols doubles).
+/// The normals of rows `lo ..= hi`, columns `c0 ..`, of the point grid
+/// (`cols` wide) into `out` (those rows only), each row split into
+/// coordinate arrays once (from column `c0 − 1`), in a ring of three rows
+/// kept in `ring` (9 · cols doubles).
 #[inline(always)]
 unsafe fn normals_rows<L: Lanes>(
     points: &[DVec3],
     cols: usize,
     lo: usize,
     hi: usize,
+    c0: usize,
     out: &mut [DVec3],
     ring: &mut [f64],
 ) {
+    let a = c0.saturating_sub(1); // the first column read
     let rows = points.len() / cols;
     let mut held = [usize::MAX; 3]; // the row in each slot
     for r in lo..=hi {
@@ -333,8 +336,9 @@ unsafe fn normals_rows<L: Lanes>(
                 let s = &mut ring[slot * 3 * cols..(slot + 1) * 3 * cols];
                 let (x, rest) = s.split_at_mut(cols);
                 let (y, z) = rest.split_at_mut(cols);
+                let row = &points[q * cols + a..(q + 1) * cols];
                 // SAFETY: the caller runs with L's target feature.
-                unsafe { split::<L>(&points[q * cols..(q + 1) * cols], [x, y, z]) };
+                unsafe { split::<L>(row, [&mut x[a..], &mut y[a..], &mut z[a..]]) };
                 held[slot] = q;
             }
         }
@@ -345,7 +349,7 @@ unsafe fn normals_rows<L: Lanes>(
         let (above, here, below) = (coords(need[0]), coords(need[1]), coords(need[2]));
         let row = |q: usize| &points[q * cols..(q + 1) * cols];
         let o = &mut out[(r - lo) * cols..(r - lo + 1) * cols];
-        let mut c = 0;
+        let mut c = c0;
         while c < cols {
             // SAFETY: 1 ≤ c and c + N < cols; the caller runs with L's feature.
             if c >= 1 && c + L::N < cols && unsafe { normals::<L>(above, here, below, c, o) } {
@@ -394,19 +398,20 @@ macro_rules! entry_points {
         }
 
         /// # Safety
-        /// The CPU must have the target feature; `lo ≤ hi < rows`, `out` holds
-        /// rows `lo ..= hi`, `ring` holds `9 · cols` doubles.
+        /// The CPU must have the target feature; `lo ≤ hi < rows`, `c0 < cols`,
+        /// `out` holds rows `lo ..= hi`, `ring` holds `9 · cols` doubles.
         #[target_feature(enable = $feature)]
         pub(super) unsafe fn $normals(
             points: &[DVec3],
             cols: usize,
             lo: usize,
             hi: usize,
+            c0: usize,
             out: &mut [DVec3],
             ring: &mut [f64],
         ) {
             // SAFETY: the feature is enabled here; the caller checked the sizes.
-            unsafe { normals_rows::<$lanes>(points, cols, lo, hi, out, ring) }
+            unsafe { normals_rows::<$lanes>(points, cols, lo, hi, c0, out, ring) }
         }
     };
 }

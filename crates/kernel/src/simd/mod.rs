@@ -205,7 +205,20 @@ fn carried(out: &[DVec3], c: usize) -> DVec3 {
 /// (`cols` wide) into `out`, which holds those rows: [`normal_at`] for every
 /// point, `N` at a time on a vector path.
 pub fn normals_rows(points: &[DVec3], cols: usize, lo: usize, hi: usize, out: &mut [DVec3]) {
-    normals_with(active(), points, cols, lo, hi, out);
+    normals_with(active(), points, cols, lo, hi, 0, out);
+}
+
+/// [`normals_rows`] for the columns `c0 ..` only (the others of `out` are
+/// kept: a normal carried into a degenerate point at `c0` is read there).
+pub fn normals_rows_from(
+    points: &[DVec3],
+    cols: usize,
+    lo: usize,
+    hi: usize,
+    c0: usize,
+    out: &mut [DVec3],
+) {
+    normals_with(active(), points, cols, lo, hi, c0, out);
 }
 
 /// [`normals_rows`] on the path `width` (at most [`cpu_width`]).
@@ -215,10 +228,11 @@ fn normals_with(
     cols: usize,
     lo: usize,
     hi: usize,
+    c0: usize,
     out: &mut [DVec3],
 ) {
     assert!(width <= cpu_width());
-    if cols == 0 || hi < lo {
+    if cols == 0 || hi < lo || c0 >= cols {
         return;
     }
     let rows = points.len() / cols;
@@ -235,8 +249,10 @@ fn normals_with(
             // were asserted above and `ring` holds 9 · cols doubles.
             unsafe {
                 match width {
-                    Width::Avx512 => kernels::normals_avx512(points, cols, lo, hi, out, &mut ring),
-                    _ => kernels::normals_avx2(points, cols, lo, hi, out, &mut ring),
+                    Width::Avx512 => {
+                        kernels::normals_avx512(points, cols, lo, hi, c0, out, &mut ring)
+                    }
+                    _ => kernels::normals_avx2(points, cols, lo, hi, c0, out, &mut ring),
                 }
             }
         });
@@ -245,7 +261,7 @@ fn normals_with(
     let row = |q: usize| &points[q * cols..(q + 1) * cols];
     for (r, o) in (lo..=hi).zip(out.chunks_mut(cols)) {
         let (above, here, below) = (row(r.saturating_sub(1)), row(r), row((r + 1).min(rows - 1)));
-        for c in 0..cols {
+        for c in c0..cols {
             o[c] = match unit_normal(above, here, below, c) {
                 Some(n) => n,
                 None => carried(o, c),
@@ -290,7 +306,7 @@ mod tests {
                 points[2 * cols + 6] = points[6]; // row 1's dt = 0 at column 6: degenerate
             }
             let mut plain = vec![DVec3::ZERO; rows * cols];
-            normals_with(Width::Scalar, &points, cols, 0, rows - 1, &mut plain);
+            normals_with(Width::Scalar, &points, cols, 0, rows - 1, 0, &mut plain);
             for r in 0..rows {
                 let row = |q: usize| &points[q * cols..(q + 1) * cols];
                 let mut last = DVec3::Z;
@@ -307,11 +323,25 @@ mod tests {
             for width in widths() {
                 // all rows, then rows 1 ..= 3 alone
                 let mut fast = vec![DVec3::ZERO; rows * cols];
-                normals_with(width, &points, cols, 0, rows - 1, &mut fast);
+                normals_with(width, &points, cols, 0, rows - 1, 0, &mut fast);
                 assert_eq!(fast, plain, "{width:?}: {cols} columns");
                 let mut part = vec![DVec3::ZERO; 3 * cols];
-                normals_with(width, &points, cols, 1, 3, &mut part);
+                normals_with(width, &points, cols, 1, 3, 0, &mut part);
                 assert_eq!(part[..], plain[cols..4 * cols], "{width:?}: rows 1–3");
+                // from a column on: those columns written, the others kept
+                for c0 in [1, 5, 6, 7, cols - 1, cols] {
+                    let marker = DVec3::new(9.0, 9.0, 9.0);
+                    let mut tail: Vec<DVec3> = plain[cols..4 * cols].to_vec();
+                    for row in tail.chunks_mut(cols) {
+                        row[c0.min(cols)..].fill(marker);
+                    }
+                    normals_with(width, &points, cols, 1, 3, c0, &mut tail);
+                    assert_eq!(
+                        tail[..],
+                        plain[cols..4 * cols],
+                        "{width:?}: rows 1–3 from {c0}"
+                    );
+                }
             }
         }
     }
