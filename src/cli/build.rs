@@ -77,19 +77,21 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
     let mut total = 0.0;
     let depth = w.resource::<ecs::Model>().scene.display_depth;
     let mut levels = w.query::<(&SubdivisionLevel, &LevelData)>();
-    let mut q = w.query::<(
-        &ecs::components::Streamline,
-        &ecs::components::StreamlinePoints,
-    )>();
+    let mut q = w.query::<&ecs::components::Streamline>();
     let w = &*w;
+    let points = &w.resource::<ecs::SurfaceData>().points;
     let Some((_, level)) = levels.iter(w).find(|(l, _)| l.0 == depth) else {
         return Err(CliError::Usage(format!("no level {depth} was built")));
     };
     let mut rows: Vec<_> = q
         .iter(w)
-        .map(|(l, p)| {
+        .map(|l| {
             let (_, s) = level.row(l.row);
-            (l.row, polyline_length(&p.points), s[s.len() - 1] - s[0])
+            (
+                l.row,
+                polyline_length(points.row(l.row)),
+                s[s.len() - 1] - s[0],
+            )
         })
         .collect();
     rows.sort_by_key(|r| r.0);

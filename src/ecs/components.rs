@@ -86,11 +86,11 @@ pub struct StreamlineTangents {
 #[derive(Component, Debug, Clone, Default, PartialEq)]
 pub struct StreamlineAlpha(pub Option<(BSpline, Constraint)>);
 
-/// The integrated, placed streamline: `n + 2` points (Eq. 65).
+/// The integrated, placed streamline: its `n + 2` points (Eq. 65) are row
+/// `row` of [`super::SurfaceData::points`] (the mesh's vertices, kept once);
+/// this component is marked changed when they move.
 #[derive(Component, Debug, Clone, Default, PartialEq)]
 pub struct StreamlinePoints {
-    /// The points.
-    pub points: Vec<DVec3>,
     /// The first point the last integration rewrote (`0`: all of them); the
     /// ones before it are as they were.
     pub moved_from: usize,

@@ -1,13 +1,15 @@
 //! The integrate stage: streamlines whose tangents or fine-tuning function
 //! changed are integrated again (Eq. 65, or its fine-tuned form, SPEC §6) and
-//! placed on the initial curve (Eqs. 1–2).
+//! placed on the initial curve (Eqs. 1–2), into their row of the surface's
+//! points ([`SurfaceData`]).
 
 use super::components::*;
-use super::resources::{Model, Stats};
+use super::resources::{Model, Stats, SurfaceData};
 use bevy::prelude::*;
 use std::time::Instant;
 use streamline_kernel::finetune::{SurfaceTuning, fine_tune_into};
-use streamline_kernel::streamline::{place_into, place_slice_from};
+use streamline_kernel::streamline::{place_slice, place_slice_from};
+use streamline_kernel::{DVec3, Grid};
 
 /// Gives every streamline its row of the scene's fine-tuning function; only
 /// rows whose function (or constraint) differs are marked changed.
@@ -57,7 +59,9 @@ pub(crate) fn integrate(
     model: Res<Model>,
     levels: Query<(&SubdivisionLevel, &LevelData)>,
     mut lines: ChangedLines,
+    mut surface: ResMut<SurfaceData>,
     mut stats: ResMut<Stats>,
+    mut tuned: Local<Vec<DVec3>>,
 ) {
     let _meter = meter.start();
     let t0 = Instant::now();
@@ -65,36 +69,43 @@ pub(crate) fn integrate(
     let Some((_, level)) = levels.iter().find(|(l, _)| l.0 == depth) else {
         return;
     };
-    let rows = level.0.shape().0;
+    if lines.is_empty() {
+        return;
+    }
+    let (rows, cols) = level.0.shape();
+    let surface = &mut *surface;
+    // a new shape (a new depth, a new net): every row is new and integrated below
+    let reshaped = surface.points.rows() != rows || surface.points.cols() != cols + 1;
+    if reshaped {
+        surface.points = Grid::filled(rows, cols + 1, DVec3::ZERO);
+        surface.row_bounds = vec![[DVec3::ZERO; 2]; rows];
+        surface.reshaped = true;
+    }
     let mut n = 0;
     for (line, mut t, alpha, mut p) in &mut lines {
         if line.row >= rows {
             continue;
         }
         let (tangents, s) = level.row(line.row);
-        let p = &mut *p;
+        let out = surface.points.row_mut(line.row);
         p.moved_from = match &alpha.0 {
             // only the tangents from `changed_from` on moved: the running
             // sum (Eq. 65) goes on from the point there
-            None if !alpha.is_changed() && p.points.len() == tangents.len() + 1 => {
-                place_slice_from(
-                    tangents,
-                    s,
-                    t.sigma,
-                    t.origin,
-                    t.changed_from,
-                    &mut p.points,
-                )
+            None if !alpha.is_changed() && !reshaped => {
+                place_slice_from(tangents, s, t.sigma, t.origin, t.changed_from, out)
             }
             None => {
-                place_into(tangents, s, t.sigma, t.origin, &mut p.points);
+                place_slice(tangents, s, t.sigma, t.origin, out);
                 0
             }
             Some((f, c)) => {
-                fine_tune_into(tangents, s, t.sigma, t.origin, f, *c, &mut p.points);
+                fine_tune_into(tangents, s, t.sigma, t.origin, f, *c, &mut tuned);
+                out.copy_from_slice(&tuned);
                 0
             }
         };
+        // the row's box, while its points are in the cache
+        surface.row_bounds[line.row] = row_bounds(surface.points.row(line.row));
         // integrated: nothing pending (not an edit of the row, so not marked)
         t.bypass_change_detection().changed_from = usize::MAX;
         n += 1;
@@ -103,4 +114,12 @@ pub(crate) fn integrate(
         stats.last.streamlines_reintegrated += n;
         stats.last.us_integrate += t0.elapsed().as_secs_f64() * 1e6;
     }
+}
+
+/// The bounding box `[min, max]` of a row of points.
+fn row_bounds(points: &[DVec3]) -> [DVec3; 2] {
+    points.iter().fold(
+        [DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)],
+        |[lo, hi], &p| [lo.min(p), hi.max(p)],
+    )
 }

@@ -206,6 +206,9 @@ pub struct SurfaceData {
     /// The points (rows × columns) whose position or normal the last change
     /// rewrote (`None`: all).
     pub changed: Option<Window>,
+    /// Set by the integrate stage when it gave the points a new shape (the
+    /// mesh stage then makes the normals and triangles afresh).
+    pub(crate) reshaped: bool,
 }
 
 impl Default for SurfaceData {
@@ -217,6 +220,7 @@ impl Default for SurfaceData {
             row_bounds: Vec::new(),
             generation: 0,
             changed: None,
+            reshaped: false,
         }
     }
 }
@@ -242,25 +246,6 @@ impl SurfaceData {
             .iter()
             .copied()
             .reduce(|[a, b], [c, d]| [a.min(c), b.max(d)])
-    }
-
-    /// Rewrites row `r`'s points from column `from` on (the ones before are
-    /// as they were) and its bounding box.
-    pub fn set_row_from(&mut self, r: usize, points: &[DVec3], from: usize) {
-        let row = self.points.row_mut(r);
-        let from = from.min(row.len());
-        let mut lo = DVec3::splat(f64::INFINITY);
-        let mut hi = DVec3::splat(f64::NEG_INFINITY);
-        for &p in &row[..from] {
-            lo = lo.min(p);
-            hi = hi.max(p);
-        }
-        for (dst, &p) in row[from..].iter_mut().zip(&points[from..]) {
-            *dst = p;
-            lo = lo.min(p);
-            hi = hi.max(p);
-        }
-        self.row_bounds[r] = [lo, hi];
     }
 }
 

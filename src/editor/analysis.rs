@@ -7,7 +7,7 @@
 use super::camera::{MainCamera, OrbitCamera, SceneBounds};
 use super::coords::to_view;
 use super::surface::{ShadedMaterial, ShownSurface, SurfaceEntity};
-use crate::ecs::components::{LevelData, Streamline, StreamlinePoints, SubdivisionLevel};
+use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::{Model, ModelSet, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
@@ -303,7 +303,7 @@ fn draw_combs(
     bounds: Res<SceneBounds>,
     model: Res<Model>,
     levels: Query<(&SubdivisionLevel, &LevelData)>,
-    lines: Query<(&Streamline, &StreamlinePoints)>,
+    data: Res<SurfaceData>,
     mut gizmos: Gizmos,
 ) {
     let _meter = meter.start();
@@ -314,18 +314,18 @@ fn draw_combs(
     let Some((_, level)) = levels.iter().find(|(l, _)| l.0 == depth) else {
         return;
     };
-    let rows = lines.iter().count();
+    // the streamlines are the surface's rows
+    let rows = data.points.rows();
     if rows == 0 || rows != level.0.shape().0 {
         return;
     }
     let step = rows.div_ceil(settings.comb_lines.max(1)).max(1);
     let chosen = |r: usize| r.is_multiple_of(step) || r + 1 == rows;
     // one scale for all combs: the largest tooth is a tenth of the scene, times the factor
-    let kmax = lines
-        .iter()
-        .filter(|(l, _)| chosen(l.row))
-        .flat_map(|(l, _)| {
-            let (tangents, s) = level.row(l.row);
+    let kmax = (0..rows)
+        .filter(|&r| chosen(r))
+        .flat_map(|r| {
+            let (tangents, s) = level.row(r);
             streamline_kernel::analysis::streamline_curvature(tangents, s)
         })
         .fold(0.0f64, f64::max);
@@ -335,12 +335,9 @@ fn draw_combs(
     let scale = settings.comb_scale * 0.1 * bounds.size() / kmax;
     let tooth = Color::srgba(0.95, 0.35, 0.85, 0.8);
     let hull = Color::srgb(0.95, 0.35, 0.85);
-    for (l, p) in &lines {
-        if !chosen(l.row) {
-            continue;
-        }
-        let (tangents, s) = level.row(l.row);
-        let teeth = comb(&p.points, tangents, s, scale);
+    for r in (0..rows).filter(|&r| chosen(r)) {
+        let (tangents, s) = level.row(r);
+        let teeth = comb(data.points.row(r), tangents, s, scale);
         for c in &teeth {
             gizmos.line(to_view(c.base), to_view(c.tip), tooth);
         }

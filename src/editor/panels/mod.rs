@@ -388,10 +388,13 @@ impl Throttled {
 
     fn refresh(&mut self, p: &PanelCtx) {
         let now = std::time::Instant::now();
-        // at once when a drag ends: what it did replaces "turning …"
-        let ended = self.dragging && p.drag.0.is_none();
-        self.dragging = p.drag.0.is_some();
-        if !ended
+        // at once when a drag starts or ends: "turning …" is laid out in the
+        // frame of the press (which has no edit to make), and what the drag
+        // did replaces it as soon as it is let go
+        let dragging = p.drag.0.is_some();
+        let turned = dragging != self.dragging;
+        self.dragging = dragging;
+        if !turned
             && self
                 .at
                 .is_some_and(|at| now.duration_since(at) < Self::EVERY)
