@@ -8,6 +8,7 @@ use super::resources::{Model, Stats, SurfaceData};
 use bevy::prelude::*;
 use std::time::Instant;
 use streamline_kernel::finetune::{SurfaceTuning, fine_tune_into};
+use streamline_kernel::mesh::bounds;
 use streamline_kernel::streamline::{place_slice, place_slice_from};
 use streamline_kernel::{DVec3, Grid};
 
@@ -105,7 +106,7 @@ pub(crate) fn integrate(
             }
         };
         // the row's box, while its points are in the cache
-        surface.row_bounds[line.row] = row_bounds(surface.points.row(line.row));
+        surface.row_bounds[line.row] = bounds(surface.points.row(line.row).iter().copied());
         // integrated: nothing pending (not an edit of the row, so not marked)
         t.bypass_change_detection().changed_from = usize::MAX;
         n += 1;
@@ -114,12 +115,4 @@ pub(crate) fn integrate(
         stats.last.streamlines_reintegrated += n;
         stats.last.us_integrate += t0.elapsed().as_secs_f64() * 1e6;
     }
-}
-
-/// The bounding box `[min, max]` of a row of points.
-fn row_bounds(points: &[DVec3]) -> [DVec3; 2] {
-    points.iter().fold(
-        [DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)],
-        |[lo, hi], &p| [lo.min(p), hi.max(p)],
-    )
 }

@@ -165,10 +165,7 @@ fn rebuild(
     let mut controls = level_arrows(&model, &base.0, 0.7);
     // long intervals (a 3×3 net) would give arrows as large as the scene: cap
     // them at a tenth of the control points' extent
-    let (lo, hi) = controls.iter().fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), a| (lo.min(a.base), hi.max(a.base)),
-    );
+    let [lo, hi] = streamline_kernel::mesh::bounds(controls.iter().map(|a| a.base));
     let cap = ((hi - lo).length() * 0.1).max(1e-6);
     let clamp = |v: &mut Vec<Arrow>| {
         for a in v.iter_mut() {

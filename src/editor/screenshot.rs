@@ -302,25 +302,7 @@ fn measure_shown_gap(
     if req.report.is_none() || p.captured.is_none() || p.shown_gap.is_some() {
         return;
     }
-    let attr = |m: &Mesh3d, a| match meshes.get(&m.0).and_then(|m| m.attribute(a)) {
-        Some(VertexAttributeValues::Float32x3(v)) => Some(v.clone()),
-        _ => None,
-    };
-    let gap = |shown: &[[f32; 3]], want: &mut dyn Iterator<Item = Vec3>| {
-        let mut n = 0;
-        let mut g = shown
-            .iter()
-            .zip(want)
-            .map(|(a, b)| {
-                n += 1;
-                (Vec3::from_array(*a) - b).abs().max_element() as f64
-            })
-            .fold(0.0, f64::max);
-        if n != shown.len() {
-            g = f64::MAX; // sizes differ
-        }
-        g
-    };
+    let attr = |m: &Mesh3d, a| f32x3(&meshes, m, a);
     let mut worst = 0.0f64;
     if let Ok(m) = surface.single() {
         let (Some(pos), Some(nrm)) = (
@@ -329,24 +311,42 @@ fn measure_shown_gap(
         ) else {
             return;
         };
-        let mut want = data.points.data().iter().map(|q| q.as_vec3());
-        worst = worst.max(gap(&pos, &mut want));
-        let mut want = data.normals.iter().map(|q| q.as_vec3());
-        worst = worst.max(gap(&nrm, &mut want));
-        if pos.len() != data.points.data().len() {
-            worst = f64::MAX;
-        }
+        worst = worst.max(gap(pos, data.points.data().iter().map(|q| q.as_vec3())));
+        worst = worst.max(gap(nrm, data.normals.iter().map(|q| q.as_vec3())));
     }
     let depth = model.scene.display_depth;
     if let (Ok(m), Some((_, level))) = (points.single(), levels.iter().find(|(l, _)| l.0 == depth))
         && let Some(pos) = attr(m, Mesh::ATTRIBUTE_POSITION)
     {
-        let tangents = level.0.tangents.data();
-        let mut want = tangents.iter().map(|&t| to_view(t));
-        worst = worst.max(gap(&pos, &mut want));
-        if pos.len() != tangents.len() {
-            worst = f64::MAX;
-        }
+        worst = worst.max(gap(
+            pos,
+            level.0.tangents.data().iter().map(|&t| to_view(t)),
+        ));
     }
     p.shown_gap = Some(worst);
+}
+
+/// A mesh's `Float32x3` attribute, if it has one.
+fn f32x3<'a>(
+    meshes: &'a Assets<Mesh>,
+    m: &Mesh3d,
+    attribute: bevy::mesh::MeshVertexAttribute,
+) -> Option<&'a [[f32; 3]]> {
+    match meshes.get(&m.0)?.attribute(attribute)? {
+        VertexAttributeValues::Float32x3(v) => Some(v),
+        _ => None,
+    }
+}
+
+/// The largest coordinate gap between what a view shows and what it should
+/// (`f64::MAX` when their sizes differ).
+fn gap(shown: &[[f32; 3]], want: impl ExactSizeIterator<Item = Vec3>) -> f64 {
+    if shown.len() != want.len() {
+        return f64::MAX;
+    }
+    shown
+        .iter()
+        .zip(want)
+        .map(|(a, b)| (Vec3::from_array(*a) - b).abs().max_element() as f64)
+        .fold(0.0, f64::max)
 }

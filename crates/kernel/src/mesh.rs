@@ -66,6 +66,14 @@ pub fn normals_and_indices(points: &Grid<DVec3>, normals: &mut Vec<DVec3>, indic
     write_indices(points.rows(), points.cols(), indices);
 }
 
+/// The bounding box `[min, max]` of some points (`[+∞, −∞]` when there are none).
+pub fn bounds(points: impl IntoIterator<Item = DVec3>) -> [DVec3; 2] {
+    points.into_iter().fold(
+        [DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)],
+        |[lo, hi], p| [lo.min(p), hi.max(p)],
+    )
+}
+
 /// Mesh updates of at least this many points run on two threads.
 pub const PARALLEL_MIN_POINTS: usize = 16_384;
 
@@ -91,14 +99,14 @@ pub fn normals_window(
     let region = &mut normals[lo * cols..(hi + 1) * cols];
     let n = hi - lo + 1;
     if n * (cols - c0) < PARALLEL_MIN_POINTS || n < 2 {
-        crate::simd::normals_rows_from(points, cols, lo, hi, c0, region);
+        crate::simd::normals_rows(points, cols, lo, hi, c0, region);
         return;
     }
     let (top, bottom) = region.split_at_mut((n / 2) * cols);
     let mid = lo + n / 2;
     crate::parallel::join(
-        || crate::simd::normals_rows_from(points, cols, lo, mid - 1, c0, top),
-        || crate::simd::normals_rows_from(points, cols, mid, hi, c0, bottom),
+        || crate::simd::normals_rows(points, cols, lo, mid - 1, c0, top),
+        || crate::simd::normals_rows(points, cols, mid, hi, c0, bottom),
     );
 }
 

@@ -207,10 +207,8 @@ impl TriMesh {
 
     /// The bounding box `(min, max)`.
     pub fn bounds(&self) -> (DVec3, DVec3) {
-        self.positions.iter().fold(
-            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-            |(lo, hi), &p| (lo.min(p), hi.max(p)),
-        )
+        let [lo, hi] = crate::mesh::bounds(self.positions.iter().copied());
+        (lo, hi)
     }
 
     /// The axis-aligned bounding box's largest side (the error scale of 002 Table 1).

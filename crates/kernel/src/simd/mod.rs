@@ -201,16 +201,12 @@ fn carried(out: &[DVec3], c: usize) -> DVec3 {
     if c == 0 { DVec3::Z } else { out[c - 1] }
 }
 
-/// The normals of rows `lo ..= hi` of the row-major point grid `points`
-/// (`cols` wide) into `out`, which holds those rows: [`normal_at`] for every
-/// point, `N` at a time on a vector path.
-pub fn normals_rows(points: &[DVec3], cols: usize, lo: usize, hi: usize, out: &mut [DVec3]) {
-    normals_with(active(), points, cols, lo, hi, 0, out);
-}
-
-/// [`normals_rows`] for the columns `c0 ..` only (the others of `out` are
-/// kept: a normal carried into a degenerate point at `c0` is read there).
-pub fn normals_rows_from(
+/// The normals of rows `lo ..= hi`, columns `c0 ..`, of the row-major point
+/// grid `points` (`cols` wide) into `out`, which holds those rows:
+/// [`normal_at`] for every point, `N` at a time on a vector path. The other
+/// columns of `out` are kept (a normal carried into a degenerate point at
+/// `c0` is read there).
+pub fn normals_rows(
     points: &[DVec3],
     cols: usize,
     lo: usize,
