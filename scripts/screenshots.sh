@@ -6,7 +6,9 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cargo build --release
 BIN="${CARGO_TARGET_DIR:-target}/release/streamline-studio"
-shot() { local name=$1; shift; xvfb-run -a -s "-screen 0 1280x800x24" "$BIN" screenshot "$@" --out "docs/img/$name.png" 2>/dev/null; echo "docs/img/$name.png"; }
+# --msaa 4: the pictures show the 3D views as a GPU draws them (on a
+# software renderer the editor itself starts without multisampling)
+shot() { local name=$1; shift; xvfb-run -a -s "-screen 0 1280x800x24" "$BIN" screenshot "$@" --msaa 4 --out "docs/img/$name.png" 2>/dev/null; echo "docs/img/$name.png"; }
 mkdir -p docs/img
 shot editor-car1 car1 --select 3,4
 shot panel-file car1 --panel file

@@ -152,6 +152,16 @@ fn cli_bad_input_exit_2_one_line() {
     );
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("over the cap of 4000000"), "{err}");
+    // a sample count the renderer does not offer: clap's usage error, before
+    // any window opens
+    for args in [
+        &["--msaa", "3"][..],
+        &["screenshot", "--msaa", "16", "--out", "never.png"],
+    ] {
+        let (code, _, err) = run(args, "");
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains("give 1 (off), 2, 4 or 8"), "{args:?}: {err}");
+    }
     for (args, input, needle) in cases {
         let (code, out, err) = run(args, input);
         assert_eq!(code, 2, "{args:?} {input}: exit code, stderr {err}");

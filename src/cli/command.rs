@@ -19,6 +19,11 @@ pub struct Cli {
     /// The same as SCENE, as an option.
     #[arg(long)]
     pub scene: Option<String>,
+    /// With no subcommand: multisample anti-aliasing of the 3D views, 1 (off),
+    /// 2, 4 or 8 [default: off on a software renderer such as llvmpipe, which
+    /// then draws about four times as many frames; 4 on a GPU].
+    #[arg(long, value_parser = crate::editor::antialias::parse_samples)]
+    pub msaa: Option<u32>,
 }
 
 /// Headless subcommands.
@@ -68,6 +73,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
                 .as_deref()
                 .or(cli.scene.as_deref())
                 .unwrap_or(crate::scene::builtin::DEFAULT),
+            cli.msaa,
         ),
         Some(Command::Curve(a)) => geometry::curve(a),
         Some(Command::Surface(a)) => geometry::surface(a),

@@ -23,6 +23,25 @@ pub struct CpuMeter {
     helper_seen: AtomicU64,
     /// Per call site (`file:line`), when asked for.
     detail: Option<Mutex<HashMap<&'static Location<'static>, u64>>>,
+    /// With the detail: page faults and involuntary context switches taken
+    /// while our systems ran (what makes a frame dear besides our work).
+    faults: AtomicU64,
+    switches: AtomicU64,
+}
+
+/// The calling thread's minor + major page faults and involuntary context
+/// switches so far (`getrusage(RUSAGE_THREAD)`; zeros where it is missing).
+pub fn thread_faults() -> [u64; 2] {
+    #[cfg(target_os = "linux")]
+    {
+        // SAFETY: an all-zero rusage is a valid value of this plain C struct.
+        let mut r: libc::rusage = unsafe { std::mem::zeroed() };
+        // SAFETY: `r` is valid and writable; RUSAGE_THREAD is Linux's.
+        if unsafe { libc::getrusage(libc::RUSAGE_THREAD, &mut r) } == 0 {
+            return [(r.ru_minflt + r.ru_majflt) as u64, r.ru_nivcsw as u64];
+        }
+    }
+    [0, 0]
 }
 
 /// The calling thread's CPU time in nanoseconds.
@@ -51,6 +70,8 @@ impl FromWorld for CpuMeter {
             ns: AtomicU64::new(0),
             helper_seen: AtomicU64::new(streamline_kernel::parallel::helper_nanos()),
             detail,
+            faults: AtomicU64::new(0),
+            switches: AtomicU64::new(0),
         }
     }
 }
@@ -61,7 +82,27 @@ impl CpuMeter {
     pub fn start(&self) -> MeterGuard<'_> {
         let caller = Location::caller();
         let at = self.detail.as_ref().map(|_| caller);
-        MeterGuard(self, thread_cpu_ns(), at)
+        let faults = if at.is_some() {
+            thread_faults()
+        } else {
+            [0, 0]
+        };
+        MeterGuard(self, thread_cpu_ns(), at, faults)
+    }
+
+    /// With the detail: page faults and involuntary context switches in our
+    /// systems since the last call; starts again from 0.
+    pub fn take_faults(&self) -> [u64; 2] {
+        [
+            self.faults.swap(0, Ordering::Relaxed),
+            self.switches.swap(0, Ordering::Relaxed),
+        ]
+    }
+
+    /// Whether the meter keeps each system's share
+    /// (`STREAMLINE_STUDIO_METER_DETAIL=1`).
+    pub fn has_detail(&self) -> bool {
+        self.detail.is_some()
     }
 
     /// Each call site's nanoseconds since the last call (empty unless
@@ -88,8 +129,35 @@ impl CpuMeter {
     }
 }
 
+/// CPU microseconds of a fixed piece of work (arithmetic and reads over
+/// 64 KiB): run at both ends of a frame with the detail, it tells a frame
+/// that was dear because the machine was slow from one that was dear because
+/// of our work (the same work, the same time, on a steady machine).
+pub fn speed_probe_us() -> f64 {
+    let t0 = thread_cpu_ns();
+    let mut buf = [0u64; 8192];
+    let mut x = 0x9e37_79b9_7f4a_7c15u64;
+    let mut acc = 0.0f64;
+    for round in 0..4 {
+        for (i, b) in buf.iter_mut().enumerate() {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            *b = b.wrapping_add(x ^ i as u64 ^ round);
+            acc = acc.mul_add(0.999_999, (*b >> 11) as f64 * 1e-16);
+        }
+    }
+    std::hint::black_box((&buf, acc));
+    thread_cpu_ns().saturating_sub(t0) as f64 * 1e-3
+}
+
 /// Adds its thread's CPU time to the meter when dropped.
-pub struct MeterGuard<'a>(&'a CpuMeter, u64, Option<&'static Location<'static>>);
+pub struct MeterGuard<'a>(
+    &'a CpuMeter,
+    u64,
+    Option<&'static Location<'static>>,
+    [u64; 2],
+);
 
 impl Drop for MeterGuard<'_> {
     fn drop(&mut self) {
@@ -99,6 +167,32 @@ impl Drop for MeterGuard<'_> {
             && let Ok(mut m) = m.lock()
         {
             *m.entry(at).or_default() += d;
+            let [f, c] = thread_faults();
+            self.0
+                .faults
+                .fetch_add(f.saturating_sub(self.3[0]), Ordering::Relaxed);
+            self.0
+                .switches
+                .fetch_add(c.saturating_sub(self.3[1]), Ordering::Relaxed);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_probe_and_the_counters_read_this_thread() {
+        let us = speed_probe_us();
+        assert!(us.is_finite() && us > 0.0, "{us}");
+        let [f0, _] = thread_faults();
+        // touching fresh pages faults them in, on this thread
+        let v = std::hint::black_box(vec![1u8; 8 << 20]);
+        let [f1, _] = thread_faults();
+        assert_eq!(v.len(), 8 << 20);
+        if cfg!(target_os = "linux") {
+            assert!(f1 > f0, "{f0} → {f1}");
         }
     }
 }

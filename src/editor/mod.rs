@@ -4,10 +4,12 @@
 //! top-level [`EditorPlugin`] only composes one plugin per feature.
 
 mod analysis;
+pub mod antialias;
 pub mod autosave;
 mod camera;
 mod coords;
 pub mod files;
+mod frame_timing;
 mod handles;
 pub mod mesh_mode;
 mod overlay;
@@ -40,6 +42,8 @@ pub struct EditorOptions {
     pub screenshot: Option<ScreenshotRequest>,
     /// Where recent files and the recovery file live.
     pub dirs: EditorDirs,
+    /// MSAA samples of the 3D views (`None`: off on a software renderer, 4× on a GPU).
+    pub msaa: Option<u32>,
 }
 
 /// Composes the editor's feature plugins (the model plugin comes separately).
@@ -55,6 +59,8 @@ impl Plugin for EditorPlugin {
             sphere_view::SphereViewPlugin,
             camera::OrbitCameraPlugin,
             analysis::AnalysisPlugin,
+            antialias::AntiAliasPlugin,
+            frame_timing::FrameTimingPlugin,
             panels::PanelPlugin,
             files::FilesPlugin,
             autosave::AutosavePlugin,
@@ -150,6 +156,7 @@ pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
     .add_plugins(ModelPlugin::new(opts.scene))
     .add_plugins(crate::ecs::runner::ScriptRunPlugin)
     .insert_resource(opts.dirs)
+    .insert_resource(antialias::AntiAliasing::new(opts.msaa))
     .add_plugins(EditorPlugin);
     app.world_mut().resource_mut::<Model>().path = opts.path;
     if let Some(req) = opts.screenshot {

@@ -149,6 +149,12 @@ struct Report {
     worst_frame: Vec<(String, f64)>,
     /// All our systems in each frame with an edit (ms), oldest first.
     ours_frames: Vec<f64>,
+    /// With the detail: page faults and involuntary context switches in our
+    /// systems in each of those frames.
+    frame_faults: Vec<[u64; 2]>,
+    /// With the detail: a fixed piece of work's CPU µs at four points of
+    /// each of those frames (how fast the machine was).
+    frame_probe: Vec<Vec<f64>>,
     /// Frames drawn while a mesh was being opened off the frame.
     busy_frames: u32,
     /// The Loop mesh panel's last error, if any.
@@ -214,7 +220,7 @@ fn drive(
     model: Res<Model>,
     history: Res<History>,
     stats: Res<Stats>,
-    timing: Res<super::panels::FrameTiming>,
+    timing: Res<super::frame_timing::FrameTiming>,
     selection: Res<Selection>,
     arrows: Res<HandleArrows>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
@@ -277,6 +283,8 @@ fn drive(
                         .collect(),
                     worst_frame: timing.worst_frame.clone(),
                     ours_frames: timing.recent_frames.0.iter().copied().collect(),
+                    frame_faults: timing.recent_faults.iter().copied().collect(),
+                    frame_probe: timing.recent_probe.iter().cloned().collect(),
                     busy_frames: p.busy_frames,
                     mesh_error: mesh.error.clone(),
                     shown_gap: p.shown_gap,

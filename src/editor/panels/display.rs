@@ -35,4 +35,39 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
         .on_hover_text("The tangents of the display depth as small points");
     ui.add(egui::Slider::new(&mut s.fraction, 0.2..=0.7).text("sphere view size"))
         .on_hover_text("The inset's side as a share of the 3D view");
+    antialiasing(ui, p);
+}
+
+/// The 3D views' multisampling, with why it starts where it does.
+fn antialiasing(ui: &mut egui::Ui, p: &mut PanelCtx) {
+    let current = p.antialias.samples;
+    let name = |n: u32| {
+        if n == 1 {
+            "off".to_string()
+        } else {
+            format!("{n}×")
+        }
+    };
+    let hint = if p.antialias.software {
+        "Multisample anti-aliasing of the 3D views. This adapter is a software renderer: \
+         every sample is drawn by the CPU, so it starts off (about four times the frames of 4×)"
+    } else {
+        "Multisample anti-aliasing of the 3D views (smoother edges, more work for the GPU)"
+    };
+    ui.horizontal(|ui| {
+        ui.label("anti-aliasing");
+        let mut chosen = current;
+        egui::ComboBox::from_id_salt("msaa")
+            .selected_text(name(current))
+            .show_ui(ui, |ui| {
+                for n in super::super::antialias::AntiAliasing::CHOICES {
+                    ui.selectable_value(&mut chosen, n, name(n));
+                }
+            })
+            .response
+            .on_hover_text(hint);
+        if chosen != current {
+            p.antialias.samples = chosen;
+        }
+    });
 }

@@ -16,6 +16,7 @@ mod tuning;
 use super::analysis::{AnalysisSettings, CurvatureField};
 use super::camera::{FrameRequest, SceneBounds, ViewArea};
 use super::files::FileUi;
+use super::frame_timing::FrameTiming;
 use super::handles::{HandleArrows, HandleSettings};
 use super::overlay::OverlaySettings;
 use super::picking::{Drag, DragGroups, DragKind, Selection};
@@ -160,6 +161,7 @@ pub struct PanelCtx<'w> {
     pub opened: Res<'w, OpenedScene>,
     pub mesh: ResMut<'w, super::mesh_mode::MeshView>,
     pub script: ResMut<'w, crate::ecs::runner::ScriptRun>,
+    pub antialias: ResMut<'w, super::antialias::AntiAliasing>,
 }
 
 /// The control net as the scene was opened (the Selection panel's reset).
@@ -208,57 +210,14 @@ impl PanelCtx<'_> {
     }
 }
 
-/// The last 120 figures of a kind, for their maximum.
-#[derive(Debug, Default)]
-pub struct Recent(pub std::collections::VecDeque<f64>);
-
-impl Recent {
-    /// Adds `ms` (dropping the oldest past 120) and returns the largest kept.
-    fn push(&mut self, ms: f64) -> f64 {
-        self.0.push_back(ms);
-        while self.0.len() > 120 {
-            self.0.pop_front();
-        }
-        self.0.iter().copied().fold(0.0, f64::max)
-    }
-}
-
-/// CPU time of the model's systems in recent frames (for the Stats panel).
-#[derive(Resource, Debug, Default)]
-pub struct FrameTiming {
-    /// Milliseconds of the last frame with an edit (edit → mesh).
-    pub last_ms: f64,
-    /// The largest of the last 120 frames with an edit.
-    pub max_ms: f64,
-    /// CPU milliseconds of all our systems (the model's stages and the
-    /// editor's systems, summed over threads; [`crate::ecs::meter`]) in the
-    /// last frame with an edit.
-    pub ours_last_ms: f64,
-    /// The largest of the last 120 such frames.
-    pub ours_max_ms: f64,
-    /// With `STREAMLINE_STUDIO_METER_DETAIL=1`: per system (where it starts
-    /// the meter), over frames with an edit: total and largest ms, frames.
-    pub detail: std::collections::BTreeMap<String, (f64, f64, u32)>,
-    /// With the detail: the dearest frame with an edit, system by system (ms).
-    pub worst_frame: Vec<(String, f64)>,
-    recent: Recent,
-    /// "Our systems" of the last 120 frames with an edit (ms), oldest first.
-    pub recent_frames: Recent,
-    seen: u64,
-    seen_frame: u64,
-}
-
 pub struct PanelPlugin;
 
 impl Plugin for PanelPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<UiState>()
-            .init_resource::<FrameTiming>()
             .init_resource::<SliderGroups>()
             .init_resource::<OpenedScene>()
             .add_systems(Update, track_opened.after(crate::ecs::ModelSet::Output))
-            .add_systems(Update, track_timing.after(crate::ecs::ModelSet::Output))
-            .add_systems(Last, track_frame)
             .add_systems(Startup, spawn_ui_camera)
             .add_systems(EguiPrimaryContextPass, panel);
     }
@@ -274,6 +233,10 @@ fn spawn_ui_camera(mut commands: Commands, mut settings: ResMut<bevy_egui::EguiG
     commands.spawn((
         bevy_egui::PrimaryEguiContext,
         Camera2d,
+        // egui draws after the 3D views and needs no samples of its own
+        // (with them, each frame would copy the window into a multisampled
+        // texture and back: dear on a software renderer)
+        Msaa::Off,
         RenderLayers::none(),
         Camera {
             order: 10,
@@ -304,56 +267,6 @@ fn track_opened(
         o.net = Some(model.scene.design.net.clone());
     }
     o.seen = log.frame;
-}
-
-fn track_timing(
-    meter: Res<crate::ecs::meter::CpuMeter>,
-    stats: Res<Stats>,
-    log: Res<EditLog>,
-    mut t: ResMut<FrameTiming>,
-) {
-    let _meter = meter.start();
-    if log.frame == t.seen {
-        return;
-    }
-    t.seen = log.frame;
-    let ms = stats.last.us_total() / 1000.0;
-    t.last_ms = ms;
-    t.max_ms = t.recent.push(ms);
-}
-
-/// At the end of a frame: the CPU time of all our systems (the model's and
-/// the editor's, with the kernel's helper threads), kept for frames with an edit.
-fn track_frame(
-    log: Res<EditLog>,
-    meter: Res<crate::ecs::meter::CpuMeter>,
-    mut t: ResMut<FrameTiming>,
-) {
-    let ms = meter.take();
-    let detail = meter.take_detail();
-    if log.frame == t.seen_frame {
-        return;
-    }
-    t.seen_frame = log.frame;
-    let dearest = ms > t.ours_max_ms; // the largest of the frames kept so far
-    if dearest && !detail.is_empty() {
-        t.worst_frame = detail
-            .iter()
-            .map(|(at, ns)| (at.clone(), *ns as f64 * 1e-6))
-            .collect();
-        t.worst_frame
-            .push(("all, with the kernel's helper thread".into(), ms));
-        t.worst_frame.sort_by(|a, b| b.1.total_cmp(&a.1));
-    }
-    for (at, ns) in detail {
-        let e = t.detail.entry(at).or_default();
-        let ms = ns as f64 * 1e-6;
-        e.0 += ms;
-        e.1 = e.1.max(ms);
-        e.2 += 1;
-    }
-    t.ours_last_ms = ms;
-    t.ours_max_ms = t.recent_frames.push(ms);
 }
 
 /// Every character the panels show, in every text style, rasterised into
