@@ -13,6 +13,7 @@ mod frame_timing;
 mod handles;
 pub mod mesh_mode;
 mod overlay;
+pub mod pacing;
 mod panels;
 mod picking;
 mod screenshot;
@@ -157,6 +158,9 @@ pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
     .add_plugins(crate::ecs::runner::ScriptRunPlugin)
     .insert_resource(opts.dirs)
     .insert_resource(antialias::AntiAliasing::new(opts.msaa))
+    .add_plugins(pacing::PacingPlugin {
+        continuous: opts.screenshot.is_some(),
+    })
     .add_plugins(EditorPlugin);
     app.world_mut().resource_mut::<Model>().path = opts.path;
     if let Some(req) = opts.screenshot {
