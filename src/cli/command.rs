@@ -20,8 +20,9 @@ pub struct Cli {
     #[arg(long)]
     pub scene: Option<String>,
     /// With no subcommand: multisample anti-aliasing of the 3D views, 1 (off),
-    /// 2, 4 or 8 [default: off on a software renderer such as llvmpipe, which
-    /// then draws about four times as many frames; 4 on a GPU].
+    /// 2, 4 or 8, or the nearest the graphics adapter offers [default: off on
+    /// a software renderer such as llvmpipe, which then draws about four times
+    /// as many frames; 4 on a GPU].
     #[arg(long, value_parser = crate::editor::antialias::parse_samples)]
     pub msaa: Option<u32>,
 }

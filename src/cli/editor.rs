@@ -64,8 +64,9 @@ pub struct ScreenshotArgs {
     /// Start running this script (File ▸ Run script); the picture shows its progress.
     #[arg(long)]
     script: Option<PathBuf>,
-    /// Multisample anti-aliasing of the 3D views: 1 (off), 2, 4 or 8
-    /// [default: off on a software renderer, 4 on a GPU, as the editor].
+    /// Multisample anti-aliasing of the 3D views: 1 (off), 2, 4 or 8, or the
+    /// nearest the adapter offers [default: off on a software renderer, 4 on a
+    /// GPU, as the editor].
     #[arg(long, value_parser = editor::antialias::parse_samples)]
     msaa: Option<u32>,
 }

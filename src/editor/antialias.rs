@@ -7,7 +7,8 @@
 //! on a GPU; `--msaa N` and the Display panel choose otherwise.
 
 use bevy::prelude::*;
-use bevy::render::renderer::RenderAdapterInfo;
+use bevy::render::render_resource::TextureFormat;
+use bevy::render::renderer::{RenderAdapter, RenderAdapterInfo};
 
 /// Samples per pixel of the 3D views (1 = off).
 #[derive(Resource, Debug, Clone, PartialEq, Eq)]
@@ -18,6 +19,9 @@ pub struct AntiAliasing {
     pub asked: Option<u32>,
     /// Whether the adapter is a software renderer.
     pub software: bool,
+    /// The sample counts the adapter offers for the views' colour and depth
+    /// formats (llvmpipe: 1 and 4 only; WebGPU promises no more).
+    pub supported: Vec<u32>,
 }
 
 impl AntiAliasing {
@@ -30,7 +34,17 @@ impl AntiAliasing {
             samples: asked.unwrap_or(4),
             asked,
             software: false,
+            supported: vec![1, 4],
         }
+    }
+
+    /// `want` if the adapter offers it, else the nearest it offers (ties: fewer).
+    pub fn nearest_supported(want: u32, supported: &[u32]) -> u32 {
+        supported
+            .iter()
+            .copied()
+            .min_by_key(|&n| (n.abs_diff(want), n))
+            .unwrap_or(1)
     }
 
     /// The default for an adapter: off on a software renderer, else 4×.
@@ -75,11 +89,38 @@ impl Plugin for AntiAliasPlugin {
 }
 
 /// Reads the adapter once the renderer is up.
-fn choose(mut aa: ResMut<AntiAliasing>, info: Option<Res<RenderAdapterInfo>>) {
+fn choose(
+    mut aa: ResMut<AntiAliasing>,
+    info: Option<Res<RenderAdapterInfo>>,
+    adapter: Option<Res<RenderAdapter>>,
+) {
     aa.software = info.is_some_and(|i| is_software(&format!("{:?}", i.device_type), &i.name));
-    if aa.asked.is_none() {
-        aa.samples = AntiAliasing::for_adapter(aa.software);
+    if let Some(adapter) = adapter {
+        // the views draw to Rgba8UnormSrgb with a Depth32Float depth buffer
+        let offers = |n: u32| {
+            [TextureFormat::Rgba8UnormSrgb, TextureFormat::Depth32Float]
+                .into_iter()
+                .all(|f| {
+                    adapter
+                        .get_texture_format_features(f)
+                        .flags
+                        .sample_count_supported(n)
+                })
+        };
+        aa.supported = AntiAliasing::CHOICES
+            .into_iter()
+            .filter(|&n| n == 1 || offers(n))
+            .collect();
     }
+    let want = aa.asked.unwrap_or(AntiAliasing::for_adapter(aa.software));
+    let samples = AntiAliasing::nearest_supported(want, &aa.supported);
+    if aa.asked.is_some_and(|n| n != samples) {
+        warn!(
+            "--msaa {want}: this graphics adapter offers {:?} samples; using {samples}",
+            aa.supported
+        );
+    }
+    aa.samples = samples;
     if aa.software && aa.samples == 1 {
         info!("software renderer: multisampling is off (--msaa 4 turns it on)");
     }
@@ -121,6 +162,11 @@ mod tests {
         }
         assert_eq!(AntiAliasing::for_adapter(true), 1);
         assert_eq!(AntiAliasing::for_adapter(false), 4);
+        assert_eq!(AntiAliasing::nearest_supported(2, &[1, 4]), 1);
+        assert_eq!(AntiAliasing::nearest_supported(8, &[1, 4]), 4);
+        assert_eq!(AntiAliasing::nearest_supported(3, &[1, 2, 4]), 2);
+        assert_eq!(AntiAliasing::nearest_supported(4, &[1, 2, 4, 8]), 4);
+        assert_eq!(AntiAliasing::nearest_supported(4, &[]), 1);
         assert!(is_software("Cpu", "whatever"));
         assert!(is_software("Other", "llvmpipe (LLVM 19.1.7, 256 bits)"));
         assert!(!is_software("DiscreteGpu", "NVIDIA H200"));

@@ -60,7 +60,8 @@ fn antialiasing(ui: &mut egui::Ui, p: &mut PanelCtx) {
         egui::ComboBox::from_id_salt("msaa")
             .selected_text(name(current))
             .show_ui(ui, |ui| {
-                for n in super::super::antialias::AntiAliasing::CHOICES {
+                // only what the adapter offers (llvmpipe: off and 4×)
+                for &n in &p.antialias.supported {
                     ui.selectable_value(&mut chosen, n, name(n));
                 }
             })
