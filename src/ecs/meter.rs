@@ -130,7 +130,7 @@ impl CpuMeter {
 }
 
 /// CPU microseconds of a fixed piece of work (arithmetic and reads over
-/// 64 KiB): run at both ends of a frame with the detail, it tells a frame
+/// 64 KiB): run at four points of a frame with the detail, it tells a frame
 /// that was dear because the machine was slow from one that was dear because
 /// of our work (the same work, the same time, on a steady machine).
 pub fn speed_probe_us() -> f64 {

@@ -45,15 +45,21 @@ pub struct FrameTiming {
     recent: Recent,
     /// "Our systems" of the last 120 frames with an edit (ms), oldest first.
     pub recent_frames: Recent,
-    /// With the detail: page faults and involuntary context switches in our
-    /// systems in the same frames as `recent_frames`.
-    pub recent_faults: std::collections::VecDeque<[u64; 2]>,
-    /// With the detail: [`crate::ecs::meter::speed_probe_us`] at four points
-    /// of the same frames (First, after the model's stages, PostUpdate, Last).
-    pub recent_probe: std::collections::VecDeque<Vec<f64>>,
+    /// With the detail: the same frames as `recent_frames`, what else they saw.
+    pub recent_detail: std::collections::VecDeque<FrameDetail>,
     probe_now: Vec<f64>,
     seen: u64,
     seen_frame: u64,
+}
+
+/// What a frame with an edit saw besides our work (with the detail).
+#[derive(Debug, Clone, Default)]
+pub struct FrameDetail {
+    /// Page faults and involuntary context switches in our systems.
+    pub faults: [u64; 2],
+    /// [`crate::ecs::meter::speed_probe_us`] at four points of the frame
+    /// (First, after the model's stages, PostUpdate, Last).
+    pub probe: Vec<f64>,
 }
 
 pub struct FrameTimingPlugin;
@@ -62,9 +68,14 @@ impl Plugin for FrameTimingPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<FrameTiming>()
             .add_systems(Update, track_timing.after(crate::ecs::ModelSet::Output))
-            .add_systems(First, probe_speed)
-            .add_systems(Update, probe_speed.after(crate::ecs::ModelSet::Output))
-            .add_systems(PostUpdate, probe_speed)
+            .add_systems(First, probe_speed.run_if(detail_on))
+            .add_systems(
+                Update,
+                probe_speed
+                    .run_if(detail_on)
+                    .after(crate::ecs::ModelSet::Output),
+            )
+            .add_systems(PostUpdate, probe_speed.run_if(detail_on))
             .add_systems(Last, track_frame);
     }
 }
@@ -85,11 +96,13 @@ fn track_timing(
     t.max_ms = t.recent.push(ms);
 }
 
+fn detail_on(meter: Res<crate::ecs::meter::CpuMeter>) -> bool {
+    meter.has_detail()
+}
+
 /// With the detail: how fast the machine is at this point of the frame.
-fn probe_speed(meter: Res<crate::ecs::meter::CpuMeter>, mut t: ResMut<FrameTiming>) {
-    if meter.has_detail() {
-        t.probe_now.push(crate::ecs::meter::speed_probe_us());
-    }
+fn probe_speed(mut t: ResMut<FrameTiming>) {
+    t.probe_now.push(crate::ecs::meter::speed_probe_us());
 }
 
 /// At the end of a frame: the CPU time of all our systems (the model's and
@@ -128,11 +141,9 @@ fn track_frame(
     t.ours_max_ms = t.recent_frames.push(ms);
     if meter.has_detail() {
         probe.push(crate::ecs::meter::speed_probe_us());
-        t.recent_faults.push_back(faults);
-        t.recent_probe.push_back(probe);
-        while t.recent_faults.len() > t.recent_frames.0.len() {
-            t.recent_faults.pop_front();
-            t.recent_probe.pop_front();
+        t.recent_detail.push_back(FrameDetail { faults, probe });
+        while t.recent_detail.len() > t.recent_frames.0.len() {
+            t.recent_detail.pop_front();
         }
     }
 }

@@ -283,8 +283,12 @@ fn drive(
                         .collect(),
                     worst_frame: timing.worst_frame.clone(),
                     ours_frames: timing.recent_frames.0.iter().copied().collect(),
-                    frame_faults: timing.recent_faults.iter().copied().collect(),
-                    frame_probe: timing.recent_probe.iter().cloned().collect(),
+                    frame_faults: timing.recent_detail.iter().map(|d| d.faults).collect(),
+                    frame_probe: timing
+                        .recent_detail
+                        .iter()
+                        .map(|d| d.probe.clone())
+                        .collect(),
                     busy_frames: p.busy_frames,
                     mesh_error: mesh.error.clone(),
                     shown_gap: p.shown_gap,
