@@ -4,5 +4,5 @@
 # profile the editor runs in, so a newcomer compiles Bevy once.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh --tests
 cargo test --release --workspace
