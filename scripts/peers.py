@@ -1,7 +1,7 @@
 """Times Loop subdivision in trimesh and pymeshlab on the test meshes and
 prints them beside ours (a JSON-lines file from `streamline-studio bench
 --json --filter loop/`). Both peers use Loop's vertex weight, as we do
-(SPEC §7); pymeshlab refines every edge only with threshold=PureValue(0)."""
+(docs/math.md §7); pymeshlab refines every edge only with threshold=PureValue(0)."""
 import json
 import sys
 import time

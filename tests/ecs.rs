@@ -105,7 +105,7 @@ fn scheme() -> impl Strategy<Value = (SurfaceScheme, BlendOrder)> {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(40))]
 
-    /// DESIGN: the result of any edit sequence equals a rebuild from scratch to 1e-12.
+    /// docs/architecture.md: the result of any edit sequence equals a rebuild from scratch to 1e-12.
     #[test]
     fn ecs_edits_equal_full_rebuild(
         (sch, order) in scheme(),
@@ -218,7 +218,7 @@ fn level_tangent_and_base(app: &mut App, level: u32, r: usize, c: usize) -> (DVe
     (l.0.tangents.get(r, c), l.0.base().get(r, c))
 }
 
-/// SPEC §5: a detail is kept (as a rotation from its subdivided tangent) when a
+/// docs/math.md §5: a detail is kept (as a rotation from its subdivided tangent) when a
 /// coarse edit changes the surface; undoing the coarse edit gives back the
 /// exact surface; details survive save/load; depth down and up restores the surface.
 #[test]

@@ -1,6 +1,6 @@
-//! ECS features beyond the pipeline: fine tuning (SPEC §6) re-integrates only
+//! ECS features beyond the pipeline: fine tuning (docs/math.md §6) re-integrates only
 //! the streamlines its edit reaches and equals a fresh build; interpolated
-//! control tangents (SPEC §7) are reached at the limit and saved.
+//! control tangents (docs/math.md §7) are reached at the limit and saved.
 
 mod common;
 
@@ -9,7 +9,7 @@ use streamline_kernel::{BlendOrder, Grid, SurfaceScheme, presets};
 use streamline_studio::ecs::{self, Edit, Stats};
 use streamline_studio::scene::Scene;
 
-/// Fine tuning (SPEC §6) through the ECS: an edit of one control value
+/// Fine tuning (docs/math.md §6) through the ECS: an edit of one control value
 /// re-blends nothing and re-integrates only the streamlines inside that
 /// value's support across the rows; the result equals a fresh build of the
 /// same scene, and undo gives back the exact surface.
@@ -70,7 +70,7 @@ fn tuning_edit_is_local_and_equals_a_fresh_build() {
     );
 }
 
-/// SPEC §7, last bullet: with "interpolate control tangents" the level-0 net
+/// docs/math.md §7, on the Gaussian sphere: with "interpolate control tangents" the level-0 net
 /// the ECS subdivides has limit tangents (Catmull–Clark and Doo–Sabin, both
 /// blend orders) equal to the designer's interior control tangents within
 /// 1e-9 rad; the border is kept; the option survives save → load.

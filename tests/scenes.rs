@@ -120,7 +120,7 @@ fn random_scene() -> impl Strategy<Value = Scene> {
                 scene.view.yaw = streamline_studio::scene::format::Finite(rnd() * 180.0);
                 scene.interpolate_tangents = rnd() > 0.3;
                 if rnd() > 0.0 {
-                    // fine tuning with random degrees, counts and values (SPEC §6)
+                    // fine tuning with random degrees, counts and values (docs/math.md §6)
                     let (ds, dt) = ((rnd().abs() * 3.0) as usize, (rnd().abs() * 3.0) as usize);
                     let (ns, nt) = (
                         ds + 1 + (rnd().abs() * 3.0) as usize,

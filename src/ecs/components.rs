@@ -23,7 +23,7 @@ pub struct Direction(pub DVec3);
 #[derive(Component, Debug, Clone, Copy, PartialEq)]
 pub struct ArcParam(pub f64);
 
-/// A multiresolution detail handle at `(level, row, col)` (SPEC §5).
+/// A multiresolution detail handle at `(level, row, col)` (docs/math.md §5).
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DetailHandle {
     /// Level (≥ 1).
@@ -79,7 +79,7 @@ pub struct StreamlineTangents {
     pub changed_from: usize,
 }
 
-/// The fine-tuning function of one streamline (SPEC §6), `None` when fine
+/// The fine-tuning function of one streamline (docs/math.md §6), `None` when fine
 /// tuning is off: the surface function restricted to the row's `v`, and the
 /// constraint. Written with `set_if_neq`, so an edit of a control value
 /// re-integrates only the streamlines whose function changed.

@@ -1,5 +1,5 @@
 //! The integrate stage: streamlines whose tangents or fine-tuning function
-//! changed are integrated again (Eq. 65, or its fine-tuned form, SPEC §6) and
+//! changed are integrated again (Eq. 65, or its fine-tuned form, docs/math.md §6) and
 //! placed on the initial curve (Eqs. 1–2), into their row of the surface's
 //! points ([`SurfaceData`]).
 

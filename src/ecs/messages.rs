@@ -35,7 +35,7 @@ pub enum Edit {
     SetDisplayDepth(u32),
     /// Level of the handles.
     SetEditDepth(u32),
-    /// Turns fine tuning on with this function and constraint, or off (SPEC §6).
+    /// Turns fine tuning on with this function and constraint, or off (docs/math.md §6).
     SetTuning(Option<SurfaceTuning>),
     /// Sets fine-tuning control value `(row, col)` (row across the
     /// streamlines, column along them); turns fine tuning on (3×3 quadratic) if off.

@@ -1,4 +1,4 @@
-//! The ECS layer (DESIGN, "The shape in one picture"): tangent handles,
+//! The ECS layer (docs/architecture.md, "The shape in one picture"): tangent handles,
 //! subdivision levels and streamlines are entities; edits arrive as
 //! [`EditMessage`]s; systems in named, ordered sets carry a change down
 //! (edit → blend → integrate → mesh → output), recomputing only what an edit

@@ -61,13 +61,13 @@ pub struct SceneFile {
     /// Level whose tangents are the handles.
     #[serde(default)]
     pub edit_depth: u32,
-    /// Multiresolution details (SPEC §5).
+    /// Multiresolution details (docs/math.md §5).
     #[serde(default)]
     pub details: Vec<DetailSpec>,
     /// The camera.
     #[serde(default)]
     pub view: ViewSpec,
-    /// Fine tuning (SPEC §6): absent or `None` when off.
+    /// Fine tuning (docs/math.md §6): absent or `None` when off.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tuning: Option<TuningSpec>,
     /// Catmull–Clark and Doo–Sabin pass through the interior control

@@ -28,10 +28,10 @@ pub struct Scene {
     pub edit_depth: u32,
     /// The camera.
     pub view: ViewSpec,
-    /// Fine tuning (SPEC §6), if on.
+    /// Fine tuning (docs/math.md §6), if on.
     pub tuning: Option<SurfaceTuning>,
     /// Make the approximating schemes pass through the interior control
-    /// tangents at the limit (progressive interpolation on the sphere, SPEC §7).
+    /// tangents at the limit (progressive interpolation on the sphere, docs/math.md §7).
     pub interpolate_tangents: bool,
 }
 

@@ -1,5 +1,5 @@
 //! Scalar B-spline functions: the fine-tuning functions `α(u)` and `α(u, v)`
-//! of paper 003 (SPEC §6), on clamped uniform knot vectors over `[0, 1]`.
+//! of paper 003 (docs/math.md §6), on clamped uniform knot vectors over `[0, 1]`.
 //!
 //! A function of degree `p` with `m` control values `c₀ … c_{m−1}` is
 //! `α(u) = Σ cᵢ N_{i,p}(u)` on the knots `0 (p+1 times), 1/(m−p), …, 1 (p+1 times)`.

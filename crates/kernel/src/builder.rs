@@ -1,4 +1,4 @@
-//! A full build (blend → integrate → mesh, SPEC §2–4) that keeps its buffers
+//! A full build (blend → integrate → mesh, docs/math.md §2–4) that keeps its buffers
 //! from one build to the next.
 //!
 //! [`Design::build`] allocates every level, streamline and mesh buffer

@@ -1,6 +1,6 @@
 //! Curve subdivision of tangents on the Gaussian sphere (paper 000, §3.5–3.7).
 //!
-//! Open polylines of `n ≥ 2` tangents. One step of each scheme (SPEC §2):
+//! Open polylines of `n ≥ 2` tangents. One step of each scheme (docs/math.md §2):
 //!
 //! | scheme | rule | count |
 //! |---|---|---|
@@ -84,7 +84,7 @@ impl CurveScheme {
         Some(n)
     }
 
-    /// How many coarse cells on each side an output depends on (DESIGN, incremental rebuild).
+    /// How many coarse cells on each side an output depends on (docs/architecture.md, incremental rebuild).
     pub fn stencil_radius(self) -> usize {
         match self {
             CurveScheme::FourPoint { .. } => 2,
@@ -192,7 +192,7 @@ impl CurveScheme {
         Prepared::new(self).tangent(self.stencil(t.len(), k), |j| t[j])
     }
 
-    /// One refinement step of planar scalars (the parameter grids: SPEC §4), the
+    /// One refinement step of planar scalars (the parameter grids: docs/math.md §4), the
     /// same scheme with the ordinary affine combinations (Eqs. 49–50, 55–56, 60).
     pub fn refine_scalars(self, input: &[f64], out: &mut Vec<f64>) {
         crate::scalar::refine(self, input, out);
@@ -298,7 +298,7 @@ impl FourPointRule {
     }
 }
 
-/// Which inputs one output of a step reads, and by which rule (SPEC §2).
+/// Which inputs one output of a step reads, and by which rule (docs/math.md §2).
 /// The same stencils drive tangents ([`Prepared::tangent`]) and scalars
 /// ([`crate::scalar::apply`]), so the parameter grids follow the tangents.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

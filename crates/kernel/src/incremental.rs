@@ -1,5 +1,5 @@
 //! Subdivision levels kept between edits, updated inside dirty windows
-//! (DESIGN, "Incremental rebuild, exactly"; SPEC §5 for the details).
+//! (docs/architecture.md, "Incremental rebuild, exactly"; docs/math.md §5 for the details).
 //!
 //! A [`LevelState`] holds one level: the intermediate grid of its first blend
 //! direction (none for s-first Kobbelt, [`crate::window::in_place`]), the
@@ -93,7 +93,7 @@ impl LevelState {
         (self.tangents.rows(), self.tangents.cols())
     }
 
-    /// The subdivided tangents before this level's details (SPEC §5: the grid
+    /// The subdivided tangents before this level's details (docs/math.md §5: the grid
     /// whose local frames details are written in).
     pub fn base(&self) -> &Grid<DVec3> {
         if self.keeps_base() {
@@ -303,7 +303,7 @@ pub fn place_row(
     );
 }
 
-/// [`place_row`] with fine tuning (SPEC §6): row `r`'s restriction of
+/// [`place_row`] with fine tuning (docs/math.md §6): row `r`'s restriction of
 /// `tuning` (at its `v` among the level's rows) scales its derivative.
 pub fn place_row_tuned(
     initial: &InitialCurve,

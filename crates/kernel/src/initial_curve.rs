@@ -1,5 +1,5 @@
 //! The initial curve `S(s_a, t)` on which every streamline starts (paper 000,
-//! Eq. 1; SPEC §4): by default a QI curve of its own tangents, of length `L_t`,
+//! Eq. 1; docs/math.md §4): by default a QI curve of its own tangents, of length `L_t`,
 //! parameterised by arc length `t ∈ [0, L_t]`.
 //!
 //! `C(u) = C₀ + L ∫₀ᵘ t(v) dv` with `u = t / L` (the QI tangent is unit, so `u`

@@ -1,4 +1,4 @@
-//! Progressive interpolation with Loop surfaces (paper 002; SPEC §7): find the
+//! Progressive interpolation with Loop surfaces (paper 002; docs/math.md §7): find the
 //! control mesh whose Loop limit surface passes through every vertex of a
 //! given mesh.
 //!

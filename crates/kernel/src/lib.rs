@@ -9,7 +9,7 @@
 //! into an arc-length streamline ([`streamline`]) placed on an initial curve
 //! ([`initial_curve`]); the rows together make a triangle mesh ([`mesh`]).
 //!
-//! Conventions (see `SPEC.md`): all math is `f64` ([`glam::DVec3`]); inputs are
+//! Conventions (see `docs/math.md`): all math is `f64` ([`glam::DVec3`]); inputs are
 //! normalised at the kernel's boundary ([`Tangent::new`], [`tangent::normalize_all`]);
 //! degenerate geometry is a documented branch, never a NaN; invalid input is a
 //! [`KernelError`] that names the place and the fix. This crate never imports Bevy.

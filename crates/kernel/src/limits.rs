@@ -11,7 +11,7 @@ pub const MEMORY_CAP_BYTES: u64 = 2 << 30;
 /// together (estimate; measured ≈ 230 B on the car, see docs/reliability.md).
 pub const DESIGN_BYTES_PER_TANGENT: u64 = 400;
 
-/// The most tangents one subdivision level may hold (SPEC §8): what the
+/// The most tangents one subdivision level may hold (docs/math.md §8): what the
 /// memory cap affords at [`DESIGN_BYTES_PER_TANGENT`], rounded down to 4
 /// million (96 MB of `DVec3` per copy of the finest level); beyond that the
 /// editor could no longer stay interactive either.

@@ -1,4 +1,4 @@
-//! Loop subdivision with boundary rules, and limit points (paper 002, §2 and §4; SPEC §7).
+//! Loop subdivision with boundary rules, and limit points (paper 002, §2 and §4; docs/math.md §7).
 //!
 //! - Interior vertex of valence `n`: `(1 − nβ) V + β Σ neighbours`, Loop's
 //!   `β = (5/8 − (3/8 + ¼ cos(2π/n))²)/n` (not Warren's `3/(8n)`).

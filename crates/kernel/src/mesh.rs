@@ -1,4 +1,4 @@
-//! The surface as a triangle mesh (SPEC §4): point `k` of row `j` is joined to
+//! The surface as a triangle mesh (docs/math.md §4): point `k` of row `j` is joined to
 //! point `k` of row `j+1`; each quad becomes two triangles wound so that their
 //! normal is `∂/∂s × ∂/∂t`; vertex normals come from the grid's cross
 //! derivatives (central differences, one-sided at the border).

@@ -1,4 +1,4 @@
-//! Multiresolution details (SPEC §5).
+//! Multiresolution details (docs/math.md §5).
 //!
 //! An edit at depth `d > 0` is stored as a *detail*: the edited tangent written
 //! in a local orthonormal frame of the subdivided net of level `d` before any

@@ -1,4 +1,4 @@
-//! Parameter grids (SPEC §4): an arc-length parameter `s` per control tangent,
+//! Parameter grids (docs/math.md §4): an arc-length parameter `s` per control tangent,
 //! strictly increasing along its row; per row a `t` (arc length along the
 //! initial curve where the streamline starts) and an anchor arc length `σ`
 //! (`s` of the anchor column at level 0). All are subdivided with the same

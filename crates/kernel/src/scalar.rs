@@ -1,5 +1,5 @@
 //! The planar (scalar) versions of the curve schemes, used to subdivide the
-//! parameter grids `s`, `t` and `σ` with the same scheme as the tangents (SPEC §4).
+//! parameter grids `s`, `t` and `σ` with the same scheme as the tangents (docs/math.md §4).
 //! Planar rules: Chaikin Eqs. 49–50, cubic B-spline Eqs. 55–56, 4-point Eq. 60
 //! with `w = ω/16` and the quadratic end rule `⅜p₀ + ¾p₁ − ⅛p₂`.
 

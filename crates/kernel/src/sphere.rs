@@ -2,7 +2,7 @@
 //!
 //! `blend(a, b, u)` is the paper's `(1-u) a ⊕ u b` (Eq. 33): `a` rotated about
 //! `a × b` by `u·θ`, `θ = atan2(|a × b|, a·b)` ∈ [0, π]. Eq. 21 of the paper writes
-//! `θ = asin(|a × b|)`, wrong for obtuse angles; we use `atan2` (SPEC §1).
+//! `θ = asin(|a × b|)`, wrong for obtuse angles; we use `atan2` (docs/math.md §1).
 //! `u` is any real: outside [0, 1] it extrapolates along the great circle.
 //!
 //! All functions here take unit vectors (validated at the kernel's boundary by

@@ -1,4 +1,4 @@
-//! Progressive interpolation on the Gaussian sphere (SPEC §7, last bullet):
+//! Progressive interpolation on the Gaussian sphere (docs/math.md §7, on the Gaussian sphere):
 //! make the approximating tangent schemes — Catmull–Clark (cubic B-spline ⊗
 //! cubic B-spline) and Doo–Sabin (Chaikin ⊗ Chaikin) — pass through the
 //! designer's control tangents at the limit.

@@ -1,4 +1,4 @@
-//! Streamline integration (paper 000, Eq. 65; SPEC §4).
+//! Streamline integration (paper 000, Eq. 65; docs/math.md §4).
 //!
 //! For tangents `t₀ … t_n` at arc lengths `s₀ … s_n` the streamline has `n+2` points:
 //! `p₁ = p₀ + ½(s₁ − s₀) t₀`, `p_{i+1} = p_i + ½(s_{i+1} − s_{i−1}) t_i` for

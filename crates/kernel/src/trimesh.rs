@@ -1,4 +1,4 @@
-//! Triangle meshes for Loop subdivision (paper 002; SPEC §7): positions and
+//! Triangle meshes for Loop subdivision (paper 002; docs/math.md §7): positions and
 //! faces, their topology built once (each vertex's ring of neighbours in fan
 //! order, boundary loops), and validation that names the offending element.
 

@@ -1,4 +1,4 @@
-//! Dirty windows for the incremental rebuild (DESIGN, "Incremental rebuild, exactly").
+//! Dirty windows for the incremental rebuild (docs/architecture.md, "Incremental rebuild, exactly").
 //!
 //! An edit marks the control cells it touched as a [`Window`]. One subdivision
 //! step maps a dirty input range `[a, b]` to the outputs that read any of it:

@@ -1,4 +1,4 @@
-//! SPEC §1–2 invariants of blending and curve subdivision, as properties over random input.
+//! docs/math.md §1–2 invariants of blending and curve subdivision, as properties over random input.
 
 mod common;
 

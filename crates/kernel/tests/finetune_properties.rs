@@ -1,4 +1,4 @@
-//! SPEC §6 (fine tuning) as properties over random streamlines and functions:
+//! docs/math.md §6 (fine tuning) as properties over random streamlines and functions:
 //! the identity changes nothing; the constraints hold; between its points the
 //! fine-tuned streamline advances by `∫ α p'`, with `α` from an independent
 //! Cox–de Boor recursion and Gauss–Legendre quadrature on each knot span.

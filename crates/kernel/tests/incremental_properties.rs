@@ -1,4 +1,4 @@
-//! Incremental rebuild (DESIGN): random edit sequences applied through dirty
+//! Incremental rebuild (docs/architecture.md): random edit sequences applied through dirty
 //! windows give the same levels as an independent full rebuild, for every
 //! scheme and both blend orders; and single edits stay local.
 

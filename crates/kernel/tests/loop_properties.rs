@@ -1,4 +1,4 @@
-//! SPEC §7 (paper 002): the limit masks agree with 40 levels of actual
+//! docs/math.md §7 (paper 002): the limit masks agree with 40 levels of actual
 //! subdivision; progressive interpolation (plain and fast) reaches 1e-3 and
 //! 1e-6 on the real meshes of `tests/data/meshes`, the fast one in at most
 //! half the iterations, and the control mesh's limit points — evaluated by

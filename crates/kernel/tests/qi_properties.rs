@@ -1,4 +1,4 @@
-//! SPEC §2: the QI curve (Eqs. 22–26) — unit, end points, rotation equivariance,
+//! docs/math.md §2: the QI curve (Eqs. 22–26) — unit, end points, rotation equivariance,
 //! the great-circle reduction against an independent Cox–de Boor basis, and the
 //! (non-)symmetry the paper notes in Eq. 27.
 

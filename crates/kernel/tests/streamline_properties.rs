@@ -1,4 +1,4 @@
-//! SPEC §4: streamline integration (Eq. 65), placement, flat strips and circular arcs.
+//! docs/math.md §4: streamline integration (Eq. 65), placement, flat strips and circular arcs.
 
 mod common;
 

@@ -1,4 +1,4 @@
-//! SPEC §3 invariants of the tensor-product surface schemes on the sphere.
+//! docs/math.md §3 invariants of the tensor-product surface schemes on the sphere.
 
 mod common;
 

@@ -65,7 +65,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
     let mut edit = p.model.scene.edit_depth;
     if ui
         .add(egui::Slider::new(&mut edit, 0..=MAX_DEPTH).text("edit depth"))
-        .on_hover_text("The level whose tangents the arrows edit: 0 moves control tangents; deeper levels add multiresolution details (SPEC §5)")
+        .on_hover_text("The level whose tangents the arrows edit: 0 moves control tangents; deeper levels add multiresolution details (docs/math.md §5)")
         .changed()
     {
         p.send(Edit::SetEditDepth(edit));

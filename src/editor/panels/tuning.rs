@@ -1,4 +1,4 @@
-//! Fine tuning (paper 003, SPEC §6): turn it on, the control values of
+//! Fine tuning (paper 003, docs/math.md §6): turn it on, the control values of
 //! `α(s, t)` as vertical sliders (rows across the streamlines, columns along them), the
 //! constraint, and a plot of `α` along the selected streamline. Every change
 //! is an edit message; the curvature maps show the effect as it happens.

@@ -1,4 +1,4 @@
-//! Linear constraints on the fine-tuning control values (SPEC §6).
+//! Linear constraints on the fine-tuning control values (docs/math.md §6).
 //!
 //! A constrained quantity (an end point, the chord of a closed curve) is
 //! `A c` for a small matrix `A` (3 or 6 rows); the designer's values `c_u`

@@ -1,4 +1,4 @@
-//! Fine tuning (paper 003; SPEC §6): reshape a curve or a surface without
+//! Fine tuning (paper 003; docs/math.md §6): reshape a curve or a surface without
 //! touching its tangents, by scaling its derivative with a smooth B-spline
 //! scalar function `α`:
 //!

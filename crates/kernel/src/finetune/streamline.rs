@@ -1,4 +1,4 @@
-//! Fine tuning one streamline (SPEC §6): `p(s) = p(σ) + ∫_σ^s α t ds`.
+//! Fine tuning one streamline (docs/math.md §6): `p(s) = p(σ) + ∫_σ^s α t ds`.
 //!
 //! The streamline of Eq. 65 has the constant direction `t_k` on the segment
 //! from point `k` to point `k+1`, which spans the arc lengths `[a_k, a_{k+1}]`

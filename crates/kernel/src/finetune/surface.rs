@@ -1,4 +1,4 @@
-//! Fine tuning a streamline surface (SPEC §6): one tensor function `α(u, v)`
+//! Fine tuning a streamline surface (docs/math.md §6): one tensor function `α(u, v)`
 //! over the surface (`u` along each streamline, `v` across the rows), applied
 //! to each streamline as its restriction `α(·, v_row)`, with the constraint
 //! met streamline by streamline ([`super::fine_tune_into`]). A constraint on

@@ -174,7 +174,7 @@ fn along_with(
 }
 
 /// The unit normal of the point grid at column `c` of the row `here`
-/// (SPEC §4): `∂/∂s × ∂/∂t` by central differences, one-sided at the ends;
+/// (docs/math.md §4): `∂/∂s × ∂/∂t` by central differences, one-sided at the ends;
 /// a degenerate point takes `last`, the normal before it (never NaN).
 #[inline]
 pub fn normal_at(above: &[DVec3], here: &[DVec3], below: &[DVec3], c: usize, last: DVec3) -> DVec3 {
