@@ -121,6 +121,14 @@ fn cited_sections(line: &str) -> Vec<String> {
     out
 }
 
+/// The known sections in reading order (`2` before `10`).
+fn listed(known: &BTreeSet<String>) -> String {
+    let key = |n: &String| -> Vec<u32> { n.split('.').filter_map(|x| x.parse().ok()).collect() };
+    let mut v: Vec<&String> = known.iter().collect();
+    v.sort_by_key(|n| key(n));
+    v.iter().map(|n| n.as_str()).collect::<Vec<_>>().join(", ")
+}
+
 /// What is wrong with one line, if anything.
 fn problems(line: &str, known: &BTreeSet<String>) -> Vec<String> {
     // Built from pieces so that this file does not cite them itself.
@@ -148,7 +156,7 @@ fn problems(line: &str, known: &BTreeSet<String>) -> Vec<String> {
         if !known.contains(&n) {
             out.push(format!(
                 "cites docs/math.md §{n}, which docs/math.md does not have (its sections: {})",
-                known.iter().cloned().collect::<Vec<_>>().join(", ")
+                listed(known)
             ));
         }
     }
