@@ -13,8 +13,17 @@ use std::collections::BTreeSet;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-/// Directories that hold no sources: version control, build and fuzzing output.
-const SKIP_DIRS: &[&str] = &[".git", "target", "corpus", "artifacts", "coverage"];
+/// Directories that hold no sources: version control, build and fuzzing
+/// output, and the inputs fuzzing found (`fuzz/regressions`: arbitrary bytes,
+/// which may spell anything).
+const SKIP_DIRS: &[&str] = &[
+    ".git",
+    "target",
+    "corpus",
+    "artifacts",
+    "coverage",
+    "regressions",
+];
 
 /// Hidden directories that do hold sources (CI scripts).
 const HIDDEN_KEPT: &[&str] = &[".ci", ".github"];
