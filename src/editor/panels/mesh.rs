@@ -82,7 +82,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
         ui.label("boundary");
         for (rule, tip) in [
             (BoundaryRule::Paper, "002's rules (regular boundary vertices of valence 4, ⅝–⅜ edge points): the paper's surface; no renderer draws it, and USD cannot say it"),
-            (BoundaryRule::EdgeOnly, "OpenSubdiv's VTX_BOUNDARY_EDGE_ONLY (USD edgeOnly; RenderMan, Houdini): boundary curves are cubic B-splines, no corners"),
+            (BoundaryRule::EdgeOnly, "OpenSubdiv's VTX_BOUNDARY_EDGE_ONLY (USD edgeOnly; an option of OpenSubdiv-based renderers such as RenderMan and Houdini): boundary curves are cubic B-splines, no corners"),
             (BoundaryRule::EdgeAndCorner, "OpenSubdiv's VTX_BOUNDARY_EDGE_AND_CORNER, USD's default (edgeAndCorner; what a USD renderer draws when the file says nothing): as edge-only, and a boundary vertex with a single face stays put"),
         ] {
             ui.radio_value(&mut boundary, rule, rule.name()).on_hover_text(tip);
