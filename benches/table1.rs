@@ -3,7 +3,8 @@
 //! kept `Builder` on one thread with and without the vector path, and on two). The workloads are the
 //! ones `streamline-studio bench` runs (`src/workloads.rs`); the `incremental`
 //! group times one edit through the ECS against a full rebuild (issue 3), and
-//! one fine-tuning value edit on the car at depth 3 (issue 6).
+//! one fine-tuning value edit on the car at depth 3 (issue 6); the `loop` group
+//! Loop subdivision of a ~20k-vertex open mesh under each boundary rule (issue 22).
 //!
 //! Run: `cargo bench --bench table1`. Figures and ratios: docs/benchmarks.md.
 
@@ -51,5 +52,17 @@ fn incremental(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, table1, surface, incremental);
+/// Loop subdivision of a ~20k-vertex open mesh, each boundary rule, levels 1–3 (issue 22).
+fn loop_subdivision(c: &mut Criterion) {
+    let mut g = c.benchmark_group("loop");
+    g.warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3))
+        .sample_size(10);
+    for mut w in workloads::loop_20k_rows() {
+        g.bench_function(&w.name, |b| b.iter(|| black_box((w.run)())));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, table1, surface, incremental, loop_subdivision);
 criterion_main!(benches);

@@ -13,5 +13,5 @@ if [ ! -x "$VENV/bin/python" ]; then
 fi
 cargo build --release -q
 BIN="${CARGO_TARGET_DIR:-target}/release/streamline-studio"
-"$BIN" bench --json --filter loop/ --millis 1000 > "$VENV/ours.jsonl"
+"$BIN" bench --json --filter loop/subdivide --millis 1000 > "$VENV/ours.jsonl"
 "$VENV/bin/python" scripts/peers.py "$VENV/ours.jsonl"

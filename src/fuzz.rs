@@ -18,7 +18,7 @@ use crate::scene::{Scene, obj};
 use std::path::Path;
 use streamline_kernel::finetune::{Constraint, SurfaceTuning, fine_tune_into};
 use streamline_kernel::interpolate::{Method, Options, interpolate};
-use streamline_kernel::loop_subdiv::{limit_points, subdivide as loop_subdivide};
+use streamline_kernel::loop_subdiv::{BoundaryRule, limit_points, subdivide as loop_subdivide};
 use streamline_kernel::trimesh::TriMesh;
 use streamline_kernel::{
     BlendOrder, CurveScheme, DVec3, Design, Grid, SurfaceScheme, Tangent, curve, sphere, sphere_pi,
@@ -181,17 +181,24 @@ fn check_mesh(mesh: &TriMesh, topo: &streamline_kernel::trimesh::Topology) {
     if mesh.faces.len() > 20_000 {
         return;
     }
-    let mut limits = Vec::new();
-    limit_points(&mesh.positions, topo, &mut limits);
-    finite("limit points", &limits);
-    let fine = loop_subdivide(mesh, topo)
-        .unwrap_or_else(|e| panic!("a valid mesh does not subdivide: {e}"));
-    finite("Loop subdivision", &fine.positions);
-    for method in [Method::Plain, Method::Fast] {
+    for rule in BoundaryRule::ALL {
+        let mut limits = Vec::new();
+        limit_points(&mesh.positions, topo, rule, &mut limits);
+        finite("limit points", &limits);
+        let fine = loop_subdivide(mesh, topo, rule)
+            .unwrap_or_else(|e| panic!("a valid mesh does not subdivide: {e}"));
+        finite("Loop subdivision", &fine.positions);
+    }
+    for (method, boundary) in [
+        (Method::Plain, BoundaryRule::Paper),
+        (Method::Fast, BoundaryRule::EdgeAndCorner),
+        (Method::Fast, BoundaryRule::EdgeOnly),
+    ] {
         let opts = Options {
             tolerance: 1e-6,
             max_iterations: 8,
             method,
+            boundary,
         };
         let (control, report) = interpolate(mesh, topo, &opts);
         finite("interpolated control mesh", &control);

@@ -141,14 +141,18 @@ fn test_mesh(name: &str) -> Option<streamline_kernel::trimesh::TriMesh> {
     crate::scene::obj::read(&path).ok().map(|(m, _)| m)
 }
 
-/// Loop subdivision (topology and one step per level) of a small, a medium
-/// and the largest test mesh, 1–3 levels (`loop/subdivide/<mesh>/d<k>`), and
+/// Loop subdivision (the topology from the face list, then 1–3 levels, each
+/// level's topology derived from the one before) of a small, a medium and the
+/// largest test mesh (`loop/subdivide/<mesh>/d<k>`, 002's rule); the same for
+/// a 19,730-vertex open mesh (fairing-cross subdivided once, 4 boundary loops)
+/// under each boundary rule (`loop/20k/<rule>/d<k>`, issue 22: beside
+/// OpenSubdiv in `docs/loop.md`); and
 /// progressive interpolation to 1e-3 of a 1,151,994-vertex mesh (fertility
 /// subdivided 4 times, every vertex then moved by up to 2 mean edge lengths),
 /// topology included (`pi/1m/<plain|fast>`) — issue 5.
 pub fn loop_rows() -> Vec<Workload> {
     use streamline_kernel::interpolate::{Method, Options, interpolate};
-    use streamline_kernel::loop_subdiv::subdivide;
+    use streamline_kernel::loop_subdiv::{BoundaryRule, subdivide, subdivide_levels};
     use streamline_kernel::trimesh::TriMesh;
     let mut out = Vec::new();
     for name in ["knight", "spot", "camelhead"] {
@@ -160,20 +164,19 @@ pub fn loop_rows() -> Vec<Workload> {
             out.push(Workload {
                 name: format!("loop/subdivide/{name}/d{depth}"),
                 run: Box::new(move || {
-                    let mut m = mesh.clone();
-                    for _ in 0..depth {
-                        let t = m.topology().expect("valid test mesh");
-                        m = subdivide(&m, &t).expect("within the cap");
-                    }
+                    let t = mesh.topology().expect("valid test mesh");
+                    let m = subdivide_levels(&mesh, &t, BoundaryRule::Paper, depth)
+                        .expect("within the cap");
                     m.positions[m.positions.len() / 2].x
                 }),
             });
         }
     }
+    out.extend(loop_20k_rows());
     if let Some(mut m) = test_mesh("fertility") {
         for _ in 0..4 {
             let t = m.topology().expect("valid test mesh");
-            m = subdivide(&m, &t).expect("within the cap");
+            m = subdivide(&m, &t, BoundaryRule::Paper).expect("within the cap");
         }
         rough_up(&mut m, 4.0);
         for method in [Method::Plain, Method::Fast] {
@@ -191,6 +194,33 @@ pub fn loop_rows() -> Vec<Workload> {
                     ctrl[0].x + rep.max_error
                 }),
             });
+        }
+    }
+    out
+}
+
+/// Loop subdivision of a 19,730-vertex open mesh (fairing-cross subdivided
+/// once, 4 boundary loops) under each boundary rule, levels 1–3, building the
+/// topology from the face list included (`loop/20k/<rule>/d<k>`, issue 22;
+/// beside OpenSubdiv in `docs/loop.md`).
+pub fn loop_20k_rows() -> Vec<Workload> {
+    use streamline_kernel::loop_subdiv::{BoundaryRule, subdivide, subdivide_levels};
+    let mut out = Vec::new();
+    if let Some(base) = test_mesh("fairing-cross") {
+        let t = base.topology().expect("valid test mesh");
+        let mesh = subdivide(&base, &t, BoundaryRule::EdgeAndCorner).expect("within the cap");
+        for rule in BoundaryRule::ALL {
+            for depth in 1..=3 {
+                let mesh = mesh.clone();
+                out.push(Workload {
+                    name: format!("loop/20k/{}/d{depth}", rule.name()),
+                    run: Box::new(move || {
+                        let t = mesh.topology().expect("valid mesh");
+                        let m = subdivide_levels(&mesh, &t, rule, depth).expect("within the cap");
+                        m.positions[m.positions.len() / 2].x
+                    }),
+                });
+            }
         }
     }
     out

@@ -61,6 +61,10 @@ pub struct ScreenshotArgs {
     /// Open this triangle mesh (OBJ) in mesh mode: its interpolating Loop surface.
     #[arg(long)]
     mesh: Option<PathBuf>,
+    /// The Loop surface's boundary rules for --mesh: paper (002), edge-only or
+    /// edge-and-corner (OpenSubdiv's; USD's default) [default: edge-and-corner].
+    #[arg(long, value_enum)]
+    boundary: Option<super::interpolate::BoundaryArg>,
     /// Start running this script (File ▸ Run script); the picture shows its progress.
     #[arg(long)]
     script: Option<PathBuf>,
@@ -122,6 +126,7 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
     let mut req = ScreenshotRequest::new(a.out.clone());
     req.panel = panel;
     req.mesh = a.mesh.clone();
+    req.mesh_boundary = a.boundary.map(Into::into);
     req.script = a.script.clone();
     req.analysis = analysis;
     req.comb = a.comb;

@@ -3,13 +3,13 @@
 //! input's vertices (same vertex order and faces) and prints one JSON line.
 
 use super::input::{CliError, write_stdout};
-use crate::scene::obj;
+use crate::scene::{obj, usd};
 use clap::{Args, ValueEnum};
 use serde::Serialize;
 use std::path::PathBuf;
 use std::time::Instant;
 use streamline_kernel::interpolate::{Method, Options, interpolate};
-use streamline_kernel::loop_subdiv::subdivide;
+use streamline_kernel::loop_subdiv::{BoundaryRule, subdivide_levels};
 
 /// Which iteration.
 #[derive(Debug, Clone, Copy, ValueEnum)]
@@ -18,6 +18,27 @@ pub enum MethodArg {
     Plain,
     /// Conjugate gradients / BiCGSTAB on the same system (fewer iterations).
     Fast,
+}
+
+/// Which boundary rules (`docs/loop.md`).
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum BoundaryArg {
+    /// 002's rules (valence-4 regular boundary vertices, ⅝–⅜ edge points); USD cannot say it.
+    Paper,
+    /// OpenSubdiv's VTX_BOUNDARY_EDGE_ONLY (USD edgeOnly): cubic B-spline boundaries.
+    EdgeOnly,
+    /// OpenSubdiv's VTX_BOUNDARY_EDGE_AND_CORNER, USD's default: single-face corners stay put.
+    EdgeAndCorner,
+}
+
+impl From<BoundaryArg> for BoundaryRule {
+    fn from(b: BoundaryArg) -> Self {
+        match b {
+            BoundaryArg::Paper => BoundaryRule::Paper,
+            BoundaryArg::EdgeOnly => BoundaryRule::EdgeOnly,
+            BoundaryArg::EdgeAndCorner => BoundaryRule::EdgeAndCorner,
+        }
+    }
 }
 
 /// Arguments of `interpolate`.
@@ -34,7 +55,12 @@ pub struct InterpolateArgs {
     /// plain (002) or fast.
     #[arg(long, value_enum, default_value = "plain")]
     method: MethodArg,
-    /// Write the control mesh here (OBJ, same vertex order and faces).
+    /// Boundary rules of the Loop surface: paper (002), edge-only or
+    /// edge-and-corner (OpenSubdiv's; USD's default).
+    #[arg(long, value_enum, default_value = "edge-and-corner")]
+    boundary: BoundaryArg,
+    /// Write the control mesh here: OBJ (same vertex order and faces) or, named
+    /// `.usda`, a USD mesh with `subdivisionScheme = "loop"` and the boundary rule.
     #[arg(long)]
     out: Option<PathBuf>,
     /// Subdivide the control mesh this many times (for --surface).
@@ -52,6 +78,7 @@ struct Report {
     faces: usize,
     boundary_loops: usize,
     method: &'static str,
+    boundary: &'static str,
     tolerance: f64,
     iterations: usize,
     boundary_iterations: usize,
@@ -81,6 +108,12 @@ pub fn run(a: InterpolateArgs) -> Result<(), CliError> {
             a.subdivide, a.subdivide
         )));
     }
+    let boundary: BoundaryRule = a.boundary.into();
+    if let Some(out) = a.out.as_ref().filter(|o| usd::is_usd(o))
+        && let Some(why) = usd::refusal(boundary)
+    {
+        return Err(CliError::Usage(format!("--out {}: {why}", out.display())));
+    }
     let (mesh, topo) = obj::read(&a.input).map_err(CliError::Scene)?;
     let method = match a.method {
         MethodArg::Plain => Method::Plain,
@@ -90,31 +123,35 @@ pub fn run(a: InterpolateArgs) -> Result<(), CliError> {
         tolerance: a.tolerance,
         max_iterations: a.max_iterations,
         method,
+        boundary,
     };
     let t0 = Instant::now();
     let (ctrl, rep) = interpolate(&mesh, &topo, &opts);
     let seconds = t0.elapsed().as_secs_f64();
     let comment = format!(
-        "control mesh of a Loop surface interpolating {} ({} iterations, {}, max error {:e})",
+        "control mesh of a Loop surface interpolating {} ({} iterations, {}, boundary {}, max error {:e})",
         a.input.display(),
         rep.iterations(),
         method.name(),
+        boundary.name(),
         rep.max_error
     );
     if let Some(out) = &a.out {
-        obj::write(out, &ctrl, &mesh.faces, &comment).map_err(CliError::Scene)?;
+        if usd::is_usd(out) {
+            usd::write(out, &ctrl, &mesh.faces, boundary, &comment)
+        } else {
+            obj::write(out, &ctrl, &mesh.faces, &comment)
+        }
+        .map_err(CliError::Scene)?;
     }
     if let Some(surf) = &a.surface {
-        let mut m = streamline_kernel::trimesh::TriMesh {
+        let c = streamline_kernel::trimesh::TriMesh {
             positions: ctrl.clone(),
             faces: mesh.faces.clone(),
         };
-        for _ in 0..a.subdivide {
-            let t = m
-                .topology()
-                .map_err(|e| CliError::Usage(format!("{}: {e}", a.input.display())))?;
-            m = subdivide(&m, &t).map_err(|e| CliError::Usage(format!("--subdivide: {e}")))?;
-        }
+        // the control mesh has the input's faces, so its topology
+        let m = subdivide_levels(&c, &topo, boundary, a.subdivide)
+            .map_err(|e| CliError::Usage(format!("--subdivide: {e}")))?;
         obj::write(
             surf,
             &m.positions,
@@ -129,6 +166,7 @@ pub fn run(a: InterpolateArgs) -> Result<(), CliError> {
         faces: mesh.faces.len(),
         boundary_loops: topo.loops.len(),
         method: method.name(),
+        boundary: opts.boundary.name(),
         tolerance: a.tolerance,
         iterations: rep.iterations(),
         boundary_iterations: rep.boundary_iterations,

@@ -19,7 +19,7 @@ use std::sync::Arc;
 use std::time::Instant;
 use streamline_kernel::DVec3;
 use streamline_kernel::interpolate::{Method, Options, Report, interpolate_observed};
-use streamline_kernel::loop_subdiv::subdivide;
+use streamline_kernel::loop_subdiv::{BoundaryRule, subdivide};
 use streamline_kernel::trimesh::{Topology, TriMesh};
 
 /// The deepest subdivision shown (each level multiplies the faces by 4).
@@ -62,6 +62,8 @@ pub struct MeshView {
     pub seconds: f64,
     /// Plain or fast.
     pub method: Method,
+    /// The boundary rules of the Loop surface.
+    pub boundary: BoundaryRule,
     /// Stop at this error (bounding box's largest side = 1).
     pub tolerance: f64,
     /// Subdivision depth shown.
@@ -90,6 +92,7 @@ impl Default for MeshView {
             report: None,
             seconds: 0.0,
             method: Method::Fast,
+            boundary: BoundaryRule::EdgeAndCorner,
             tolerance: 1e-3,
             depth: 3,
             show_given: true,
@@ -142,6 +145,7 @@ impl MeshView {
             tolerance: self.tolerance,
             max_iterations: 10_000,
             method: self.method,
+            boundary: self.boundary,
         }
     }
 
@@ -153,6 +157,25 @@ impl MeshView {
         self.report = None;
         self.control.clear();
         self.dirty = true;
+    }
+
+    /// Writes the control mesh as USD text (`.usda`, with the boundary rule it
+    /// was interpolated for; refused for 002's rule, which USD cannot say).
+    pub fn export_usd(&mut self, to: PathBuf) {
+        let result = match &self.given {
+            Some(g) => crate::scene::usd::write(
+                &to,
+                &self.control,
+                &g.0.faces,
+                self.boundary,
+                "control mesh of an interpolating Loop surface",
+            ),
+            None => {
+                self.error = Some("nothing to export: open a mesh first".into());
+                return;
+            }
+        };
+        self.error = result.err().map(|e| e.to_string());
     }
 
     /// Writes the shown surface (`control == false`) or the control mesh as OBJ.
@@ -199,7 +222,7 @@ fn compute(given: &Given, opts: &Options, depth: u32, p: &Progress) -> Result<Co
             break;
         }
         let Ok(t) = s.topology() else { break };
-        match subdivide(&s, &t) {
+        match subdivide(&s, &t, opts.boundary) {
             Ok(next) => s = next,
             Err(_) => break,
         }

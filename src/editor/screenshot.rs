@@ -41,6 +41,8 @@ pub struct ScreenshotRequest {
     pub wait_for: Option<PathBuf>,
     /// Open this OBJ in mesh mode.
     pub mesh: Option<PathBuf>,
+    /// With these Loop boundary rules (else the panel's default, edge-and-corner).
+    pub mesh_boundary: Option<streamline_kernel::loop_subdiv::BoundaryRule>,
     /// Start running this script (the picture does not wait for it).
     pub script: Option<PathBuf>,
 }
@@ -61,6 +63,7 @@ impl ScreenshotRequest {
             report: None,
             wait_for: std::env::var_os("STREAMLINE_STUDIO_SHOT_WAIT").map(PathBuf::from),
             mesh: None,
+            mesh_boundary: None,
             script: None,
         }
     }
@@ -119,6 +122,9 @@ fn set_up_view(
     analysis.comb |= req.comb;
     if req.select.is_some() {
         selection.handle = req.select;
+    }
+    if let Some(b) = req.mesh_boundary {
+        mesh.boundary = b;
     }
     if let Some(path) = &req.mesh {
         mesh.input = path.display().to_string();

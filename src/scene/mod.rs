@@ -10,6 +10,7 @@ pub mod io;
 pub mod model;
 pub mod obj;
 pub mod script;
+pub mod usd;
 
 pub use error::SceneError;
 pub use format::SceneFile;

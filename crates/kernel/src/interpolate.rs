@@ -13,10 +13,14 @@
 //!   applications of the limit operator per iteration, like a plain step; the
 //!   iteration counts reported are those applications.
 //!
+//! The boundary rules are [`Options::boundary`] ([`BoundaryRule`]): the
+//! boundary limit masks, so the boundary system, depend on them; the interior
+//! masks do not.
+//!
 //! Errors are measured as in 002 Table 1: `|V^0 − V_∞|` on the mesh scaled so
 //! that its bounding box's largest side is 1.
 
-use crate::loop_subdiv::{limit_beta, limit_point};
+use crate::loop_subdiv::{BoundaryRule, limit_beta, limit_point};
 use crate::trimesh::{Topology, TriMesh};
 use glam::DVec3;
 
@@ -49,14 +53,17 @@ pub struct Options {
     pub max_iterations: usize,
     /// Which iteration.
     pub method: Method,
+    /// Which boundary rules the limit surface follows.
+    pub boundary: BoundaryRule,
 }
 
 impl Options {
-    /// Tolerance 1e-3, at most 10,000 iterations, plain.
+    /// Tolerance 1e-3, at most 10,000 iterations, plain, edge-and-corner (USD's default).
     pub const DEFAULT: Options = Options {
         tolerance: 1e-3,
         max_iterations: 10_000,
         method: Method::Plain,
+        boundary: BoundaryRule::EdgeAndCorner,
     };
 }
 
@@ -110,6 +117,10 @@ pub fn interpolate_observed(
     let tol = opts.tolerance * scale;
     let bnd: Vec<usize> = (0..v0.len()).filter(|&v| topo.boundary[v]).collect();
     let int: Vec<usize> = (0..v0.len()).filter(|&v| !topo.boundary[v]).collect();
+    let lim = Lim {
+        topo,
+        rule: opts.boundary,
+    };
     let mut x = v0.clone();
     let mut report = Report::default();
     let stopped = std::cell::Cell::new(false);
@@ -120,12 +131,12 @@ pub fn interpolate_observed(
         }
         on
     };
-    let (bi, bc) = solve(&mut x, v0, topo, &bnd, tol, opts, false, &observe);
+    let (bi, bc) = solve(&mut x, v0, lim, &bnd, tol, opts, false, &observe);
     let (ii, ic) = if stopped.get() {
         (0, false)
     } else {
         let go_int = |k: usize| observe(bi + k);
-        solve(&mut x, v0, topo, &int, tol, opts, true, &go_int)
+        solve(&mut x, v0, lim, &int, tol, opts, true, &go_int)
     };
     report.boundary_iterations = bi;
     report.interior_iterations = ii;
@@ -133,7 +144,7 @@ pub fn interpolate_observed(
     report.stopped = stopped.get() && !report.converged;
     let all: Vec<usize> = (0..v0.len()).collect();
     let mut r = vec![DVec3::ZERO; v0.len()];
-    residuals(&x, v0, topo, &all, &mut r);
+    residuals(&x, v0, lim, &all, &mut r);
     let errs: Vec<f64> = r.iter().map(|d| d.length() / scale).collect();
     report.max_error = errs.iter().copied().fold(0.0, f64::max);
     report.avg_error = errs.iter().sum::<f64>() / errs.len().max(1) as f64;
@@ -146,7 +157,7 @@ pub fn interpolate_observed(
 fn solve(
     x: &mut [DVec3],
     v0: &[DVec3],
-    topo: &Topology,
+    topo: Lim<'_>,
     set: &[usize],
     tol: f64,
     opts: &Options,
@@ -164,14 +175,28 @@ fn solve(
     }
 }
 
+/// The limit operator: a topology and the boundary rules.
+#[derive(Clone, Copy)]
+struct Lim<'a> {
+    topo: &'a Topology,
+    rule: BoundaryRule,
+}
+
+impl Lim<'_> {
+    #[inline]
+    fn at(&self, x: &[DVec3], v: usize) -> DVec3 {
+        limit_point(x, self.topo, self.rule, v)
+    }
+}
+
 /// Sets at least this large compute their residuals on two threads.
 const PARALLEL_MIN_VERTICES: usize = 65_536;
 
 /// `r_i = v0[set_i] − L(x)[set_i]`, in two halves on two threads when large.
-fn residuals(x: &[DVec3], v0: &[DVec3], topo: &Topology, set: &[usize], r: &mut [DVec3]) {
+fn residuals(x: &[DVec3], v0: &[DVec3], topo: Lim<'_>, set: &[usize], r: &mut [DVec3]) {
     let run = |r: &mut [DVec3], set: &[usize]| {
         for (ri, &v) in r.iter_mut().zip(set) {
-            *ri = v0[v] - limit_point(x, topo, v);
+            *ri = v0[v] - topo.at(x, v);
         }
     };
     if set.len() < PARALLEL_MIN_VERTICES {
@@ -191,7 +216,7 @@ fn max_len(r: &[DVec3]) -> f64 {
 fn plain(
     x: &mut [DVec3],
     v0: &[DVec3],
-    topo: &Topology,
+    topo: Lim<'_>,
     set: &[usize],
     tol: f64,
     cap: usize,
@@ -215,12 +240,12 @@ fn plain(
 
 /// `L` on `set`, reading `y` for the vertices of `set` and zero elsewhere
 /// (the fixed vertices' part goes into the right-hand side).
-fn apply_on(y: &[DVec3], topo: &Topology, set: &[usize], scratch: &mut [DVec3], out: &mut [DVec3]) {
+fn apply_on(y: &[DVec3], topo: Lim<'_>, set: &[usize], scratch: &mut [DVec3], out: &mut [DVec3]) {
     for (&v, &yi) in set.iter().zip(y) {
         scratch[v] = yi;
     }
     for (o, &v) in out.iter_mut().zip(set) {
-        *o = limit_point(scratch, topo, v);
+        *o = topo.at(scratch, v);
     }
 }
 
@@ -242,17 +267,14 @@ fn safe_div(a: DVec3, b: DVec3) -> DVec3 {
 fn system(
     x: &[DVec3],
     v0: &[DVec3],
-    topo: &Topology,
+    topo: Lim<'_>,
     set: &[usize],
 ) -> (Vec<DVec3>, Vec<DVec3>, Vec<DVec3>) {
     let mut fixed = x.to_vec();
     for &v in set {
         fixed[v] = DVec3::ZERO;
     }
-    let rhs: Vec<DVec3> = set
-        .iter()
-        .map(|&v| v0[v] - limit_point(&fixed, topo, v))
-        .collect();
+    let rhs: Vec<DVec3> = set.iter().map(|&v| v0[v] - topo.at(&fixed, v)).collect();
     let y: Vec<DVec3> = set.iter().map(|&v| x[v]).collect();
     // scratch: zero on `set`'s complement, so `apply_on` sees only `set`
     let scratch = vec![DVec3::ZERO; x.len()];
@@ -263,7 +285,7 @@ fn system(
 fn cg(
     x: &mut [DVec3],
     v0: &[DVec3],
-    topo: &Topology,
+    topo: Lim<'_>,
     set: &[usize],
     tol: f64,
     cap: usize,
@@ -275,14 +297,14 @@ fn cg(
     let dinv: Vec<f64> = set
         .iter()
         .map(|&v| {
-            let k = topo.valence(v);
+            let k = topo.topo.valence(v);
             k as f64 / (1.0 - limit_beta(k))
         })
         .collect();
     let sdiag: Vec<f64> = set
         .iter()
         .map(|&v| {
-            let k = topo.valence(v);
+            let k = topo.topo.valence(v);
             let b = limit_beta(k);
             k as f64 * b / (1.0 - b)
         })
@@ -335,7 +357,7 @@ fn cg(
 fn bicgstab(
     x: &mut [DVec3],
     v0: &[DVec3],
-    topo: &Topology,
+    topo: Lim<'_>,
     set: &[usize],
     tol: f64,
     cap: usize,

@@ -6,6 +6,7 @@ use super::PanelCtx;
 use bevy_egui::egui;
 use std::path::PathBuf;
 use streamline_kernel::interpolate::Method;
+use streamline_kernel::loop_subdiv::BoundaryRule;
 
 pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
     let v = &mut *p.mesh;
@@ -74,6 +75,21 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
     });
     if method != v.method {
         v.method = method;
+        v.dirty = true;
+    }
+    let mut boundary = v.boundary;
+    ui.horizontal(|ui| {
+        ui.label("boundary");
+        for (rule, tip) in [
+            (BoundaryRule::Paper, "002's rules (regular boundary vertices of valence 4, ⅝–⅜ edge points): the paper's surface; no renderer draws it, and USD cannot say it"),
+            (BoundaryRule::EdgeOnly, "OpenSubdiv's VTX_BOUNDARY_EDGE_ONLY (USD edgeOnly; an option of OpenSubdiv-based renderers such as RenderMan and Houdini): boundary curves are cubic B-splines, no corners"),
+            (BoundaryRule::EdgeAndCorner, "OpenSubdiv's VTX_BOUNDARY_EDGE_AND_CORNER, USD's default (edgeAndCorner; what a USD renderer draws when the file says nothing): as edge-only, and a boundary vertex with a single face stays put"),
+        ] {
+            ui.radio_value(&mut boundary, rule, rule.name()).on_hover_text(tip);
+        }
+    });
+    if boundary != v.boundary {
+        v.boundary = boundary;
         v.dirty = true;
     }
     let mut exp = -v.tolerance.log10();
@@ -148,6 +164,18 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
                 p.with_file_name(format!("{stem}-control.obj"))
             });
             v.export(to, true);
+        }
+        if ui
+            .button("Export USD")
+            .on_hover_text(format!(
+                "Write the control mesh to {stem}-control.usda: a USD mesh with subdivisionScheme loop and the boundary rule, so USD renderers draw this surface (not for paper)"
+            ))
+            .clicked()
+        {
+            let to = v.path.as_ref().map_or(PathBuf::from("."), |p| {
+                p.with_file_name(format!("{stem}-control.usda"))
+            });
+            v.export_usd(to);
         }
         if ui
             .button("Close")
