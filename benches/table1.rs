@@ -3,7 +3,8 @@
 //! kept `Builder` on one thread with and without the vector path, and on two). The workloads are the
 //! ones `streamline-studio bench` runs (`src/workloads.rs`); the `incremental`
 //! group times one edit through the ECS against a full rebuild (issue 3), and
-//! one fine-tuning value edit on the car at depth 3 (issue 6).
+//! one fine-tuning value edit on the car at depth 3 (issue 6); the
+//! `authoring` group an insert, an initial-curve edit and the mirrored car (issue 20).
 //!
 //! Run: `cargo bench --bench table1`. Figures and ratios: docs/benchmarks.md.
 
@@ -51,5 +52,17 @@ fn incremental(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, table1, surface, incremental);
+/// Issue 20: an insert, an initial-curve edit and the mirrored car, at depth 5.
+fn authoring(c: &mut Criterion) {
+    let mut g = c.benchmark_group("authoring");
+    g.warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3))
+        .sample_size(10);
+    for mut w in workloads::authoring() {
+        g.bench_function(&w.name, |b| b.iter(|| black_box((w.run)())));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, table1, surface, incremental, authoring);
 criterion_main!(benches);

@@ -40,11 +40,15 @@ pub(crate) fn collect_seeds(
     }
 }
 
-fn streamline_of(model: &Model, level: &LevelState, row: usize) -> StreamlineTangents {
+fn streamline_of(
+    initial: &streamline_kernel::initial_curve::InitialCurve,
+    level: &LevelState,
+    row: usize,
+) -> StreamlineTangents {
     let p = &level.params;
     StreamlineTangents {
         sigma: p.sigma[row],
-        origin: model.scene.design.initial.point(p.t[row]),
+        origin: initial.point(p.t[row]),
         t: p.t[row],
         changed_from: 0,
     }
@@ -98,7 +102,14 @@ pub(crate) fn reblend(
             commands.entity(e).despawn();
         }
         let scene = &model.scene;
-        let design = scene.effective_design();
+        // mirrored: the doubled design (docs/math.md §9)
+        let design = match scene.shown_design() {
+            Ok(d) => d,
+            Err(e) => {
+                log.entries.push(Err(format!("rebuild failed: {e}")));
+                return;
+            }
+        };
         let built = match build_levels(&design, &scene.details, scene.max_depth()) {
             Ok(b) => b,
             Err(e) => {
@@ -111,7 +122,7 @@ pub(crate) fn reblend(
         for row in 0..display.shape().0 {
             new_lines.push((
                 Streamline { row },
-                streamline_of(&model, display, row),
+                streamline_of(&design.initial, display, row),
                 StreamlineAlpha::default(),
                 StreamlinePoints::default(),
             ));

@@ -64,6 +64,11 @@ pub(crate) fn apply_edits(
         let snapshot = before_undoable.then(|| ctx.model.scene.clone());
         match apply(&mut ctx, &msg.edit) {
             Ok(done) => {
+                if ctx.model.scene.mirror && before_undoable {
+                    // both halves come from the doubled net: rebuilt in
+                    // full (docs/math.md §9)
+                    full(&mut ctx);
+                }
                 if let Some(s) = snapshot {
                     let limit = ctx.config.history_limit;
                     let was = ctx.model.unsaved;
@@ -159,6 +164,9 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             Ok(format!("display depth {n}"))
         }
         Edit::SetEditDepth(n) => {
+            if *n > 0 && ctx.model.scene.mirror {
+                return Err(super::authoring::mirror_depth_msg());
+            }
             let depth = (*n).max(ctx.model.scene.display_depth);
             check_design(&ctx.model.scene.design, depth)?;
             ctx.model.scene.edit_depth = *n;
@@ -243,7 +251,66 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             Ok(format!("recovered {}", scene.name))
         }
         Edit::Save(_) | Edit::Export(_) => Ok(String::new()),
+        Edit::RotateMany {
+            handles,
+            axis,
+            radians,
+        } => {
+            let axis = Tangent::new(*axis)
+                .map_err(|_| {
+                    "the rotation axis is zero or not finite; give a non-zero axis".to_string()
+                })?
+                .get();
+            if !radians.is_finite() {
+                return Err("the rotation angle is not finite; give a number of degrees".into());
+            }
+            if handles.is_empty() {
+                return Err("no handles to rotate; give at least one (row, col)".into());
+            }
+            // every handle checked before any is turned: all or nothing
+            let q = DQuat::from_axis_angle(axis, *radians);
+            let dirs = handles
+                .iter()
+                .map(|&(r, c)| current_direction(ctx, r, c).map(|d| q * d))
+                .collect::<Result<Vec<_>, _>>()?;
+            for (&(r, c), d) in handles.iter().zip(dirs) {
+                set_direction(ctx, r, c, d)?;
+            }
+            Ok(format!(
+                "rotated {} handles by {:.3}°",
+                handles.len(),
+                radians.to_degrees()
+            ))
+        }
+        Edit::Author(a) => author(ctx, a),
     }
+}
+
+/// An authoring edit ([`super::authoring`]): the scene changes there; here
+/// the handles and the pipeline follow.
+fn author(ctx: &mut EditCtx, a: &super::authoring::AuthorEdit) -> Result<String, String> {
+    use super::authoring::Effect;
+    let (msg, effect) = super::authoring::apply(&mut ctx.model.scene, a)?;
+    match effect {
+        Effect::NewScene(scene) => {
+            replace(ctx, *scene);
+            ctx.model.path = None;
+            ctx.model.unsaved = true;
+        }
+        Effect::Full => full(ctx),
+        Effect::Place => ctx.model.replace = true,
+        Effect::Row(row) => {
+            if !ctx.model.respawn {
+                let new = ctx.model.scene.design.params.s.row(row).to_vec();
+                for (_, h, _, mut s) in ctx.controls.iter_mut() {
+                    if h.row == row {
+                        s.set_if_neq(ArcParam(new[h.col]));
+                    }
+                }
+            }
+        }
+    }
+    Ok(msg)
 }
 
 fn check_design(d: &Design, depth: u32) -> Result<(), String> {
@@ -335,9 +402,19 @@ fn set_direction(ctx: &mut EditCtx, row: usize, col: usize, dir: DVec3) -> Resul
         })?
         .get();
     let level = ctx.model.scene.edit_depth;
+    if ctx.model.scene.mirror && level > 0 {
+        return Err(super::authoring::mirror_depth_msg());
+    }
     if level == 0 {
         let net = &ctx.model.scene.design.net;
         check_cell(net.rows(), net.cols(), row, col, 0)?;
+        // mirrored: a seam (row 0) tangent stays in the mirror plane
+        let dir = if ctx.model.scene.mirror && row == 0 {
+            let plane = ctx.model.scene.design.mirror_plane();
+            plane.project_dir(dir, col).map_err(|e| e.to_string())?
+        } else {
+            dir
+        };
         ctx.model.scene.design.net.set(row, col, dir);
         if ctx.model.respawn {
             return Ok(format!("control ({row}, {col})"));
@@ -431,6 +508,8 @@ fn restore(ctx: &mut EditCtx, target: Scene) {
         && a.anchor == b.anchor
         && a.params.t == b.params.t
         && cur.interpolate_tangents == target.interpolate_tangents
+        && !cur.mirror
+        && !target.mirror
         && cur.initial == target.initial
         && cur.display_depth == target.display_depth
         && cur.edit_depth == target.edit_depth;

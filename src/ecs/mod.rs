@@ -4,6 +4,7 @@
 //! (edit → blend → integrate → mesh → output), recomputing only what an edit
 //! made dirty. Runs headless under `MinimalPlugins` ([`headless_app`]).
 
+pub mod authoring;
 mod blend;
 pub mod components;
 mod edit;
@@ -79,7 +80,11 @@ impl Plugin for ModelPlugin {
             .add_systems(Update, edit::apply_edits.in_set(ModelSet::Edit))
             .add_systems(
                 Update,
-                (blend::collect_seeds, blend::reblend)
+                (
+                    blend::collect_seeds,
+                    blend::reblend,
+                    authoring::replace_streamlines,
+                )
                     .chain()
                     .in_set(ModelSet::Blend),
             )

@@ -23,6 +23,9 @@ pub struct Model {
     pub(crate) full: bool,
     /// Handles must be spawned again from the scene (end of the edit stage).
     pub(crate) respawn: bool,
+    /// The initial curve or the anchor changed: every streamline is placed
+    /// again, no tangent re-blended ([`super::authoring`]).
+    pub(crate) replace: bool,
 }
 
 impl Model {
@@ -34,6 +37,7 @@ impl Model {
             unsaved: false,
             full: true,
             respawn: true,
+            replace: false,
         }
     }
 
@@ -145,6 +149,9 @@ pub struct EditStats {
     pub details_reapplied: usize,
     /// Streamlines re-integrated.
     pub streamlines_reintegrated: usize,
+    /// Streamlines placed again on a changed initial curve or anchor, with
+    /// no tangent re-blended (an initial-curve edit moves each rigidly, Eq. 1).
+    pub streamlines_replaced: usize,
     /// Mesh rows rewritten.
     pub mesh_rows: usize,
     /// Microseconds in each stage.
