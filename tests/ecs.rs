@@ -493,3 +493,51 @@ fn bad_edits_are_refused() {
     }
     assert_eq!(app.world().resource::<ecs::History>().undo_len(), 0);
 }
+
+/// Issue 19: an edit of the initial curve is "place every streamline again,
+/// re-blend nothing" ([`ecs::Dirty::replace_streamlines`]): no tangent is
+/// re-blended, every streamline is integrated again, and the surface has the
+/// very bits of a build from scratch of the new scene.
+#[test]
+fn replacing_the_streamlines_equals_a_fresh_build() {
+    let mut app = car_app(0, 3);
+    let c = scene(&app).design.initial.clone();
+    let moved = streamline_kernel::initial_curve::InitialCurve::new(
+        c.qi().tangents(),
+        c.qi().order(),
+        c.length() * 1.3,
+        c.origin() + DVec3::new(0.5, -0.2, 0.1),
+    )
+    .expect("a valid initial curve");
+    {
+        let w = app.world_mut();
+        let mut m = w.resource_mut::<ecs::Model>();
+        m.scene.initial = streamline_studio::scene::format::InitialSpec::from_kernel(&moved);
+        m.scene.design.initial = moved;
+        w.resource_mut::<ecs::Dirty>().replace_streamlines();
+        w.resource_mut::<Stats>().last = Default::default();
+    }
+    app.update();
+    let stats = app.world().resource::<Stats>().clone();
+    assert_eq!(stats.last.tangents_reblended, 0, "{:?}", stats.last);
+    assert!(!stats.last.full_rebuild);
+    assert_eq!(stats.last.streamlines_reintegrated, stats.streamlines);
+    let fresh = ecs::headless_app(scene(&app));
+    let bits = |g: &Grid<DVec3>| {
+        g.data()
+            .iter()
+            .map(|p| p.to_array().map(f64::to_bits))
+            .collect::<Vec<_>>()
+    };
+    let (got, want) = (points(&app), points(&fresh));
+    assert!(
+        bits(&got) == bits(&want),
+        "re-placed streamlines differ from a fresh build"
+    );
+    let before = points(&car_app(0, 3));
+    assert!(max_diff(&got, &before) > 1e-3, "the surface moved");
+    assert_eq!(
+        app.world().resource::<SurfaceData>().mesh(),
+        fresh.world().resource::<SurfaceData>().mesh()
+    );
+}

@@ -1,18 +1,21 @@
 //! Scene files: the shipped scenes, save → load identity, located errors,
 //! atomic saving.
 
+mod expectations;
+
 use proptest::prelude::*;
 use std::path::Path;
 use streamline_studio::scene::{Scene, builtin, io};
 
 /// The shipped scenes are the kernel presets written out (set
-/// `REGENERATE_SCENES=1` to write them again after changing a preset).
+/// `REGENERATE_SCENES=1` to write them again after changing a preset; never
+/// in CI).
 #[test]
 fn shipped_scenes_match_presets() {
     for (name, _) in builtin::SCENES {
         let preset = builtin::preset(name).expect("every shipped scene has a preset");
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{name}.ron"));
-        if std::env::var_os("REGENERATE_SCENES").is_some() {
+        if expectations::rewriting("REGENERATE_SCENES") {
             std::fs::write(&path, preset.to_ron()).unwrap();
             continue; // the compiled-in copies are stale until the next build
         }

@@ -6,15 +6,14 @@
 //!   multiresolution details are dropped in the same undo step (a changed net
 //!   cannot keep their meaning), which the message says;
 //! * an initial-curve or anchor edit: every streamline is placed again, moved
-//!   rigidly (Eq. 1), and no tangent is re-blended ([`replace_streamlines`]);
+//!   rigidly (Eq. 1), and no tangent is re-blended (`Dirty::replace_streamlines`,
+//!   `σ` of every level from [`sigma_of_levels`]);
 //! * a streamline length: that row's `s`, through its handles.
 
-use super::components::{LevelData, Streamline, StreamlineTangents, SubdivisionLevel};
-use super::resources::{Model, Stats};
+use super::components::{LevelData, SubdivisionLevel};
 use crate::scene::Scene;
 use crate::scene::format::InitialSpec;
 use bevy::prelude::*;
-use std::time::Instant;
 use streamline_kernel::authoring::{Axis, Template};
 use streamline_kernel::incremental::check_params;
 use streamline_kernel::{DQuat, DVec3, Design, SurfaceScheme, Tangent};
@@ -297,56 +296,32 @@ fn initial_edit(d: &Design, e: &AuthorEdit) -> Result<Design, String> {
     }
 }
 
-/// Places every streamline of the display depth again after an initial-curve
-/// or anchor edit: `σ` of every level from level 0's by the scheme's scalar
-/// step (the same step a full rebuild takes, so the same bits), each row's
-/// start point on the new curve. No tangent is re-blended; the integrate
-/// stage re-places the rows (Eq. 65, the same polyline moved rigidly).
-pub(crate) fn replace_streamlines(
-    mut model: ResMut<Model>,
-    mut levels: Query<(&SubdivisionLevel, &mut LevelData)>,
-    mut lines: Query<(&Streamline, &mut StreamlineTangents)>,
-    mut stats: ResMut<Stats>,
-) {
-    if !model.replace {
-        return;
-    }
-    model.replace = false;
-    let t0 = Instant::now();
-    let scene = &model.scene;
-    let design = &scene.design;
-    let mut ls: Vec<_> = levels.iter_mut().collect();
-    ls.sort_by_key(|(l, _)| l.0);
+/// `σ` of every level after an initial-curve or anchor edit: level 0's
+/// (`s` of the anchor column) refined level by level with the scheme's scalar
+/// step, the very step [`streamline_kernel::params::ParamGrid::refine`] takes
+/// in a full build (so the same bits), written into the levels where it
+/// differs. Returns them by level. No tangent is touched.
+pub(crate) fn sigma_of_levels(
+    design: &Design,
+    levels: &mut Query<(Entity, &SubdivisionLevel, &mut LevelData)>,
+) -> Vec<Vec<f64>> {
+    let mut ls: Vec<_> = levels.iter_mut().map(|(_, l, d)| (l.0, d)).collect();
+    ls.sort_by_key(|(l, _)| *l);
     let c = design.scheme.curve();
-    let mut sigma = design.params.sigma.clone();
-    let mut buf = Vec::new();
+    let mut out: Vec<Vec<f64>> = Vec::with_capacity(ls.len());
     for (l, data) in &mut ls {
-        if l.0 > 0 {
-            c.refine_scalars(&sigma, &mut buf);
-            std::mem::swap(&mut sigma, &mut buf);
+        let sigma = match out.last() {
+            Some(prev) if *l > 0 => {
+                let mut next = Vec::new();
+                c.refine_scalars(prev, &mut next);
+                next
+            }
+            _ => design.params.sigma.clone(),
+        };
+        if data.0.params.sigma != sigma {
+            data.0.params.sigma.clone_from(&sigma);
         }
-        data.bypass_change_detection()
-            .0
-            .params
-            .sigma
-            .clone_from(&sigma);
+        out.push(sigma);
     }
-    let display = scene.display_depth;
-    let Some((_, level)) = ls.iter().find(|(l, _)| l.0 == display) else {
-        return;
-    };
-    let p = &level.0.params;
-    let mut n = 0;
-    for (line, mut t) in &mut lines {
-        if line.row >= p.t.len() {
-            continue;
-        }
-        t.sigma = p.sigma[line.row];
-        t.origin = design.initial.point(p.t[line.row]);
-        t.t = p.t[line.row];
-        t.changed_from = 0;
-        n += 1;
-    }
-    stats.last.streamlines_replaced += n;
-    stats.last.us_blend += t0.elapsed().as_secs_f64() * 1e6;
+    out
 }

@@ -1,44 +1,15 @@
-//! The blend stage: collects the cells that edits changed (`Changed<…>` on the
-//! handles) and re-blends only the dirty window of each level
-//! ([`streamline_kernel::incremental::propagate`]); rows of the display depth
-//! whose tangents changed get new [`StreamlineTangents`].
+//! The blend stage: takes what the edits marked [`Dirty`] and re-blends only
+//! the dirty window of each level
+//! ([`streamline_kernel::incremental::propagate`]), or builds everything
+//! afresh; rows of the display depth whose tangents changed, or every row
+//! when the initial curve changed, get new [`StreamlineTangents`].
 
 use super::components::*;
 use super::resources::*;
 use bevy::prelude::*;
 use std::time::Instant;
 use streamline_kernel::incremental::{LevelState, build_levels, propagate};
-use streamline_kernel::window::{Span, Window};
-
-/// Control handles whose direction or parameter changed.
-type ChangedControls<'w, 's> =
-    Query<'w, 's, &'static ControlHandle, Or<(Changed<Direction>, Changed<ArcParam>)>>;
-
-pub(crate) fn collect_seeds(
-    meter: Res<super::meter::CpuMeter>,
-    model: Res<Model>,
-    mut seeds: ResMut<Seeds>,
-    controls: ChangedControls,
-    details: Query<&DetailHandle, Changed<DetailLocal>>,
-) {
-    let _meter = meter.start();
-    if model.full {
-        return;
-    }
-    let mut add = |level: u32, w: Window| {
-        let l = level as usize;
-        if seeds.0.len() <= l {
-            seeds.0.resize(l + 1, None);
-        }
-        seeds.0[l] = Some(Window::merge(seeds.0[l], w));
-    };
-    for h in &controls {
-        add(0, Window::cell(h.row, h.col));
-    }
-    for h in &details {
-        add(h.level, Window::cell(h.row, h.col));
-    }
-}
+use streamline_kernel::window::Span;
 
 fn streamline_of(
     initial: &streamline_kernel::initial_curve::InitialCurve,
@@ -57,10 +28,10 @@ fn streamline_of(
 /// [`streamline_of`] in place, which marks the row changed for the integrate
 /// stage (the row's tangents and `s` are read from the level there, not
 /// copied: copying them was 9 % of an interior edit on the car at depth 5).
-/// Incremental edits never change the initial curve or the rows' `t` (those
-/// rebuild in full), so the row's start point is kept unless its `t` moved
-/// (evaluating the initial curve, a QI curve under Gauss quadrature, was
-/// about 1.5 % of such an edit).
+/// Re-blending never changes the initial curve (an edit of it asks for
+/// [`Dirty::replace_streamlines`], which places every row again), so the
+/// row's start point is kept unless its `t` moved (evaluating the initial
+/// curve, a QI curve under Gauss quadrature, was about 1.5 % of such an edit).
 /// `from` is the first column whose tangent may have changed, `0` when the
 /// parameters changed too.
 fn refresh(model: &Model, level: &LevelState, row: usize, from: usize, t: &mut StreamlineTangents) {
@@ -77,8 +48,8 @@ fn refresh(model: &Model, level: &LevelState, row: usize, from: usize, t: &mut S
 pub(crate) fn reblend(
     meter: Res<super::meter::CpuMeter>,
     mut commands: Commands,
-    mut model: ResMut<Model>,
-    mut seeds: ResMut<Seeds>,
+    model: Res<Model>,
+    mut dirty: ResMut<Dirty>,
     mut levels: Query<(Entity, &SubdivisionLevel, &mut LevelData)>,
     mut lines: Query<(Entity, &Streamline, &mut StreamlineTangents)>,
     mut stats: ResMut<Stats>,
@@ -86,15 +57,17 @@ pub(crate) fn reblend(
 ) {
     let _meter = meter.start();
     let t0 = Instant::now();
+    if dirty.is_clean() {
+        return;
+    }
     // interpolated control tangents depend on the whole net: any change of a
     // control tangent rebuilds everything from the interpolated net
     let interpolated = model.scene.interpolates_tangents();
-    if interpolated && seeds.0.first().is_some_and(Option::is_some) {
-        model.full = true;
+    if interpolated && dirty.touches(0) {
+        dirty.rebuild();
     }
-    if model.full {
-        model.full = false;
-        seeds.0.clear();
+    let (full, replace, mut sd) = dirty.take();
+    if full {
         for (e, ..) in &levels {
             commands.entity(e).despawn();
         }
@@ -140,8 +113,25 @@ pub(crate) fn reblend(
         stats.last.us_blend += t0.elapsed().as_secs_f64() * 1e6;
         return;
     }
-    let mut sd = std::mem::take(&mut seeds.0);
+    if replace {
+        // a new initial curve or anchor: every streamline starts elsewhere;
+        // its tangents and `s` are as they were, and its `σ` is level 0's
+        // taken down by the scheme's scalar step (the step a full build takes)
+        let sigma = super::authoring::sigma_of_levels(&model.scene.design, &mut levels);
+        let display = model.scene.display_depth as usize;
+        let mut n = 0;
+        for (_, line, mut t) in lines.iter_mut() {
+            if let Some(&s) = sigma.get(display).and_then(|s| s.get(line.row)) {
+                t.sigma = s;
+            }
+            t.origin = model.scene.design.initial.point(t.t);
+            t.changed_from = 0;
+            n += 1;
+        }
+        stats.last.streamlines_replaced += n;
+    }
     if sd.iter().all(Option::is_none) {
+        stats.last.us_blend += t0.elapsed().as_secs_f64() * 1e6;
         return;
     }
     let mut ls: Vec<_> = levels.iter_mut().map(|(_, l, d)| (l.0, d)).collect();
@@ -169,7 +159,7 @@ pub(crate) fn reblend(
             log.entries.push(Err(format!(
                 "incremental update refused ({e}); rebuilding in full"
             )));
-            model.full = true;
+            dirty.rebuild();
         }
     }
     stats.last.us_blend += t0.elapsed().as_secs_f64() * 1e6;

@@ -1,42 +1,11 @@
-//! Components: tangent handles, subdivision levels and streamlines are entities.
+//! Components: subdivision levels and streamlines are entities (the
+//! control tangents and details live in the scene, [`super::Model`]).
 
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
 use streamline_kernel::bspline::BSpline;
 use streamline_kernel::finetune::Constraint;
 use streamline_kernel::incremental::LevelState;
-
-/// A control tangent of level 0 at `(row, col)`.
-#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
-pub struct ControlHandle {
-    /// Row (streamline).
-    pub row: usize,
-    /// Column (along `s`).
-    pub col: usize,
-}
-
-/// The unit direction of a control handle.
-#[derive(Component, Debug, Clone, Copy, PartialEq)]
-pub struct Direction(pub DVec3);
-
-/// The arc-length parameter `s` of a control handle.
-#[derive(Component, Debug, Clone, Copy, PartialEq)]
-pub struct ArcParam(pub f64);
-
-/// A multiresolution detail handle at `(level, row, col)` (SPEC §5).
-#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
-pub struct DetailHandle {
-    /// Level (≥ 1).
-    pub level: u32,
-    /// Row at that level.
-    pub row: usize,
-    /// Column at that level.
-    pub col: usize,
-}
-
-/// The detail in its local frame (unit; `z` = the subdivided tangent).
-#[derive(Component, Debug, Clone, Copy, PartialEq)]
-pub struct DetailLocal(pub DVec3);
 
 /// A subdivision level entity.
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]

@@ -1,10 +1,10 @@
 //! The edit stage: the only system that changes the model. It applies each
-//! [`EditMessage`] to the handle components (and the scene they mirror),
-//! records undo steps, and marks what the blend stage must redo: handle
-//! components it changes are seen there through `Changed<…>`; edits that
-//! change the shape of the levels ask for a full rebuild.
+//! [`EditMessage`] to the scene, records undo steps, and marks in [`Dirty`]
+//! what the blend stage must redo: the cells an edit changed (only when a
+//! value really changed), or a full rebuild for edits that change the shape
+//! of the levels.
 
-use super::components::*;
+use super::components::{LevelData, SubdivisionLevel};
 use super::messages::{Edit, EditMessage};
 use super::resources::*;
 use crate::scene::{Scene, io};
@@ -14,28 +14,15 @@ use std::time::Instant;
 use streamline_kernel::finetune::SurfaceTuning;
 use streamline_kernel::incremental::check_params;
 use streamline_kernel::multires;
-use streamline_kernel::window::Window;
 use streamline_kernel::{DQuat, DVec3, Design, Tangent};
 
 /// What the edit system reads and writes.
 #[derive(SystemParam)]
 pub(crate) struct EditCtx<'w, 's> {
-    commands: Commands<'w, 's>,
     model: ResMut<'w, Model>,
     history: ResMut<'w, History>,
     config: Res<'w, ModelConfig>,
-    seeds: ResMut<'w, Seeds>,
-    controls: Query<
-        'w,
-        's,
-        (
-            Entity,
-            &'static ControlHandle,
-            &'static mut Direction,
-            &'static mut ArcParam,
-        ),
-    >,
-    details: Query<'w, 's, (Entity, &'static DetailHandle, &'static mut DetailLocal)>,
+    dirty: ResMut<'w, Dirty>,
     levels: Query<'w, 's, (&'static SubdivisionLevel, &'static LevelData)>,
 }
 
@@ -79,10 +66,6 @@ pub(crate) fn apply_edits(
             }
             Err(e) => log.entries.push(Err(e)),
         }
-    }
-    if ctx.model.respawn {
-        respawn_handles(&mut ctx);
-        ctx.model.respawn = false;
     }
     if any {
         stats.last = EditStats {
@@ -128,17 +111,7 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
                     "handle ({row}, {col}) at edit depth {level} has no detail to clear"
                 ));
             }
-            if ctx.model.respawn {
-                return Ok(format!("cleared detail ({row}, {col}) at level {level}"));
-            }
-            if let Some((e, ..)) = ctx
-                .details
-                .iter()
-                .find(|(_, h, _)| (h.level, h.row, h.col) == key)
-            {
-                ctx.commands.entity(e).despawn();
-            }
-            seed(&mut ctx.seeds, level, Window::cell(*row, *col));
+            ctx.dirty.cell(level, *row, *col);
             Ok(format!("cleared detail ({row}, {col}) at level {level}"))
         }
         Edit::SetScheme(s) => {
@@ -298,15 +271,10 @@ fn author(ctx: &mut EditCtx, a: &super::authoring::AuthorEdit) -> Result<String,
             ctx.model.unsaved = true;
         }
         Effect::Full => full(ctx),
-        Effect::Place => ctx.model.replace = true,
+        Effect::Place => ctx.dirty.replace_streamlines(),
         Effect::Row(row) => {
-            if !ctx.model.respawn {
-                let new = ctx.model.scene.design.params.s.row(row).to_vec();
-                for (_, h, _, mut s) in ctx.controls.iter_mut() {
-                    if h.row == row {
-                        s.set_if_neq(ArcParam(new[h.col]));
-                    }
-                }
+            for col in 0..ctx.model.scene.design.net.cols() {
+                ctx.dirty.cell(0, row, col);
             }
         }
     }
@@ -320,19 +288,9 @@ fn check_design(d: &Design, depth: u32) -> Result<(), String> {
     check_params(d, depth).map_err(|e| e.to_string())
 }
 
-/// Asks for a full rebuild; handles are spawned again from the scene at the
-/// end of the frame's edits (entity operations before that are skipped).
+/// Asks for a full rebuild (the levels' shapes may change).
 fn full(ctx: &mut EditCtx) {
-    ctx.model.full = true;
-    ctx.model.respawn = true;
-}
-
-fn seed(seeds: &mut Seeds, level: u32, w: Window) {
-    let l = level as usize;
-    if seeds.0.len() <= l {
-        seeds.0.resize(l + 1, None);
-    }
-    seeds.0[l] = Some(Window::merge(seeds.0[l], w));
+    ctx.dirty.rebuild();
 }
 
 /// Drops details that no longer fit their level (after a scheme change).
@@ -415,14 +373,9 @@ fn set_direction(ctx: &mut EditCtx, row: usize, col: usize, dir: DVec3) -> Resul
         } else {
             dir
         };
-        ctx.model.scene.design.net.set(row, col, dir);
-        if ctx.model.respawn {
-            return Ok(format!("control ({row}, {col})"));
-        }
-        for (_, h, mut d, _) in ctx.controls.iter_mut() {
-            if h.row == row && h.col == col {
-                d.set_if_neq(Direction(dir));
-            }
+        if net.get(row, col) != dir {
+            ctx.model.scene.design.net.set(row, col, dir);
+            ctx.dirty.cell(0, row, col);
         }
         return Ok(format!(
             "control ({row}, {col}) set to ({:.4}, {:.4}, {:.4})",
@@ -433,20 +386,8 @@ fn set_direction(ctx: &mut EditCtx, row: usize, col: usize, dir: DVec3) -> Resul
     let (rows, cols) = l.shape();
     check_cell(rows, cols, row, col, level)?;
     let local = multires::to_local(l.base(), row, col, dir);
-    let key = (level, row, col);
-    ctx.model.scene.details.insert(key, local);
-    if ctx.model.respawn {
-        return Ok(format!("detail ({row}, {col}) at level {level}"));
-    }
-    let existing = ctx
-        .details
-        .iter_mut()
-        .find(|(_, h, _)| (h.level, h.row, h.col) == key);
-    match existing {
-        Some((_, _, mut d)) => {
-            d.set_if_neq(DetailLocal(local));
-        }
-        None => spawn_detail(&mut ctx.commands, key, local),
+    if ctx.model.scene.details.insert((level, row, col), local) != Some(local) {
+        ctx.dirty.cell(level, row, col);
     }
     Ok(format!("detail ({row}, {col}) at level {level}"))
 }
@@ -476,16 +417,12 @@ fn set_length(ctx: &mut EditCtx, row: usize, col: usize, k: f64) -> Result<Strin
     }
     check_params(&d, ctx.model.scene.max_depth())
         .map_err(|e| format!("length coefficient {k} at ({row}, {col}) refused: {e}"))?;
-    let new = d.params.s.row(row).to_vec();
-    ctx.model.scene.design = d;
-    if ctx.model.respawn {
-        return Ok(format!("length coefficient {k} at ({row}, {col})"));
-    }
-    for (_, h, _, mut a) in ctx.controls.iter_mut() {
-        if h.row == row {
-            a.set_if_neq(ArcParam(new[h.col]));
+    for (c, (a, b)) in old.iter().zip(d.params.s.row(row)).enumerate() {
+        if a != b {
+            ctx.dirty.cell(0, row, c);
         }
     }
+    ctx.model.scene.design = d;
     Ok(format!("length coefficient {k} at ({row}, {col})"))
 }
 
@@ -496,8 +433,8 @@ fn replace(ctx: &mut EditCtx, scene: Scene) {
     full(ctx);
 }
 
-/// Restores a scene from history: cells that differ are set on their handles
-/// (so only they are rebuilt); a different shape or setting rebuilds everything.
+/// Restores a scene from history: cells that differ are marked dirty (so
+/// only they are rebuilt); a different shape or setting rebuilds everything.
 fn restore(ctx: &mut EditCtx, target: Scene) {
     let cur = &ctx.model.scene;
     let (a, b) = (&cur.design, &target.design);
@@ -513,66 +450,26 @@ fn restore(ctx: &mut EditCtx, target: Scene) {
         && cur.initial == target.initial
         && cur.display_depth == target.display_depth
         && cur.edit_depth == target.edit_depth;
-    if !same || ctx.model.respawn {
+    if !same {
         ctx.model.scene = target;
         full(ctx);
         return;
     }
-    for (_, h, mut d, mut s) in ctx.controls.iter_mut() {
-        d.set_if_neq(Direction(b.net.get(h.row, h.col)));
-        s.set_if_neq(ArcParam(b.params.s.get(h.row, h.col)));
-    }
-    let old = cur.details.clone();
-    for (e, h, mut d) in ctx.details.iter_mut() {
-        let key = (h.level, h.row, h.col);
-        match target.details.get(&key) {
-            Some(&v) => {
-                d.set_if_neq(DetailLocal(v));
-            }
-            None => {
-                ctx.commands.entity(e).despawn();
-                seed(&mut ctx.seeds, h.level, Window::cell(h.row, h.col));
+    for row in 0..a.net.rows() {
+        for col in 0..a.net.cols() {
+            if a.net.get(row, col) != b.net.get(row, col)
+                || a.params.s.get(row, col) != b.params.s.get(row, col)
+            {
+                ctx.dirty.cell(0, row, col);
             }
         }
     }
-    for (&(level, row, col), &v) in &target.details {
-        if !old.contains_key(&(level, row, col)) {
-            spawn_detail(&mut ctx.commands, (level, row, col), v);
+    let (old, new) = (&cur.details, &target.details);
+    for key in old.keys().chain(new.keys()) {
+        if old.get(key) != new.get(key) {
+            let &(level, row, col) = key;
+            ctx.dirty.cell(level, row, col);
         }
     }
     ctx.model.scene = target;
-}
-
-/// Despawns every handle and spawns them again from the scene.
-fn respawn_handles(ctx: &mut EditCtx) {
-    for (e, ..) in ctx.controls.iter() {
-        ctx.commands.entity(e).despawn();
-    }
-    for (e, ..) in ctx.details.iter() {
-        ctx.commands.entity(e).despawn();
-    }
-    let d = &ctx.model.scene.design;
-    for row in 0..d.net.rows() {
-        for col in 0..d.net.cols() {
-            ctx.commands.spawn((
-                ControlHandle { row, col },
-                Direction(d.net.get(row, col)),
-                ArcParam(d.params.s.get(row, col)),
-            ));
-        }
-    }
-    let details: Vec<_> = ctx
-        .model
-        .scene
-        .details
-        .iter()
-        .map(|(&k, &v)| (k, v))
-        .collect();
-    for (key, v) in details {
-        spawn_detail(&mut ctx.commands, key, v);
-    }
-}
-
-fn spawn_detail(commands: &mut Commands, (level, row, col): (u32, usize, usize), local: DVec3) {
-    commands.spawn((DetailHandle { level, row, col }, DetailLocal(local)));
 }

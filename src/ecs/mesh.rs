@@ -1,8 +1,9 @@
 //! The mesh stage: the normals around the points that moved (the integrate
-//! stage wrote the points themselves into the surface's rows).
+//! stage wrote the points themselves into the surface's rows), announced to
+//! the surface's readers as a [`SurfaceChanged`] message.
 
 use super::components::*;
-use super::resources::{Stats, SurfaceData};
+use super::resources::{Stats, SurfaceChanged, SurfaceData};
 use bevy::prelude::*;
 use std::time::Instant;
 use streamline_kernel::mesh::{normals_and_indices, normals_window};
@@ -13,6 +14,7 @@ pub(crate) fn patch_mesh(
     changed: Query<(&Streamline, &StreamlinePoints), Changed<StreamlinePoints>>,
     mut surface: ResMut<SurfaceData>,
     mut stats: ResMut<Stats>,
+    mut changes: MessageWriter<SurfaceChanged>,
 ) {
     let _meter = meter.start();
     let t0 = Instant::now();
@@ -31,10 +33,10 @@ pub(crate) fn patch_mesh(
         stats.collecting = false;
         return;
     };
-    if s.reshaped || s.normals.len() != rows * cols {
+    let window = if s.reshaped || s.normals.len() != rows * cols {
         normals_and_indices(&s.points, &mut s.normals, &mut s.indices);
-        s.changed = None;
         s.reshaped = false;
+        None
     } else {
         // same shape: the triangles stay, only the normals around the points
         // that moved are rewritten (a drag on the car at depth 5 moves nearly
@@ -55,9 +57,9 @@ pub(crate) fn patch_mesh(
             around.cols.lo,
             &mut s.normals,
         );
-        s.changed = Some(around);
-    }
-    s.generation += 1;
+        Some(around)
+    };
+    changes.write(SurfaceChanged { window });
     stats.last.mesh_rows += span.len();
     stats.last.us_mesh += t0.elapsed().as_secs_f64() * 1e6;
     stats.collecting = false;

@@ -1,8 +1,14 @@
-//! The ECS layer (DESIGN, "The shape in one picture"): tangent handles,
-//! subdivision levels and streamlines are entities; edits arrive as
-//! [`EditMessage`]s; systems in named, ordered sets carry a change down
+//! The ECS layer (DESIGN, "The shape in one picture"): subdivision levels
+//! and streamlines are entities; edits arrive as [`EditMessage`]s and change
+//! the scene ([`Model`]); systems in named, ordered sets carry a change down
 //! (edit → blend → integrate → mesh → output), recomputing only what an edit
-//! made dirty. Runs headless under `MinimalPlugins` ([`headless_app`]).
+//! made dirty. One path records what changed: the edit stage writes
+//! [`Dirty`] (cells of a level, every streamline's start, or everything),
+//! the blend stage takes it; below it, changed components mark the
+//! streamlines to integrate, and the mesh stage announces each change of
+//! the surface as a [`SurfaceChanged`] message, which every reader follows
+//! with its own cursor ([`SurfaceChanges`]). Runs headless under
+//! `MinimalPlugins` ([`headless_app`]).
 
 pub mod authoring;
 mod blend;
@@ -25,7 +31,7 @@ pub use resources::*;
 /// The pipeline's phases, run in this order in `Update`.
 #[derive(SystemSet, Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ModelSet {
-    /// Edit messages change handles and settings.
+    /// Edit messages change the scene and mark what is [`Dirty`].
     Edit,
     /// Dirty windows of the levels are re-blended.
     Blend,
@@ -58,6 +64,7 @@ impl ModelPlugin {
 impl Plugin for ModelPlugin {
     fn build(&self, app: &mut App) {
         app.add_message::<EditMessage>()
+            .add_message::<SurfaceChanged>()
             .insert_resource(Model::new(self.scene.clone()))
             .insert_resource(self.config.clone())
             .init_resource::<History>()
@@ -65,7 +72,7 @@ impl Plugin for ModelPlugin {
             .init_resource::<meter::CpuMeter>()
             .init_resource::<EditLog>()
             .init_resource::<SurfaceData>()
-            .init_resource::<resources::Seeds>()
+            .init_resource::<Dirty>()
             .configure_sets(
                 Update,
                 (
@@ -78,16 +85,7 @@ impl Plugin for ModelPlugin {
                     .chain(),
             )
             .add_systems(Update, edit::apply_edits.in_set(ModelSet::Edit))
-            .add_systems(
-                Update,
-                (
-                    blend::collect_seeds,
-                    blend::reblend,
-                    authoring::replace_streamlines,
-                )
-                    .chain()
-                    .in_set(ModelSet::Blend),
-            )
+            .add_systems(Update, blend::reblend.in_set(ModelSet::Blend))
             .add_systems(
                 Update,
                 (integrate::retune, integrate::integrate)

@@ -9,8 +9,8 @@ use streamline_kernel::multires::Details;
 use streamline_kernel::window::Window;
 use streamline_kernel::{DVec3, Grid};
 
-/// The scene being edited (kept equal to the handle components by the edit
-/// system) and what the pipeline must redo.
+/// The scene being edited: the edit stage is the only writer, and it records
+/// what each edit changed in [`Dirty`].
 #[derive(Resource, Debug)]
 pub struct Model {
     /// The current scene.
@@ -19,25 +19,16 @@ pub struct Model {
     pub path: Option<PathBuf>,
     /// Changed since the last save or load.
     pub unsaved: bool,
-    /// Set by edits that change the shape of the levels: rebuild everything.
-    pub(crate) full: bool,
-    /// Handles must be spawned again from the scene (end of the edit stage).
-    pub(crate) respawn: bool,
-    /// The initial curve or the anchor changed: every streamline is placed
-    /// again, no tangent re-blended ([`super::authoring`]).
-    pub(crate) replace: bool,
 }
 
 impl Model {
-    /// A model that builds in full on the first update.
+    /// A model of `scene` (built in full on the first update: [`Dirty`]
+    /// starts out asking for it).
     pub fn new(scene: Scene) -> Self {
         Model {
             scene,
             path: None,
             unsaved: false,
-            full: true,
-            respawn: true,
-            replace: false,
         }
     }
 
@@ -197,7 +188,8 @@ pub struct EditLog {
 
 /// The surface at the display depth: points (rows × (cols + 1)), which are
 /// the mesh's positions (kept once), the mesh's normals and triangles, and
-/// each row's bounding box.
+/// each row's bounding box. Every change of it is announced by a
+/// [`SurfaceChanged`] message (read with [`SurfaceChanges`]).
 #[derive(Resource, Debug, Clone)]
 pub struct SurfaceData {
     /// Streamline points, one row per streamline: the mesh's vertices, row-major.
@@ -208,11 +200,6 @@ pub struct SurfaceData {
     pub indices: Vec<u32>,
     /// Each row's bounding box `[min, max]`, written with the row.
     pub row_bounds: Vec<[DVec3; 2]>,
-    /// Increases whenever the mesh changes.
-    pub generation: u64,
-    /// The points (rows × columns) whose position or normal the last change
-    /// rewrote (`None`: all).
-    pub changed: Option<Window>,
     /// Set by the integrate stage when it gave the points a new shape (the
     /// mesh stage then makes the normals and triangles afresh).
     pub(crate) reshaped: bool,
@@ -225,8 +212,6 @@ impl Default for SurfaceData {
             normals: Vec::new(),
             indices: Vec::new(),
             row_bounds: Vec::new(),
-            generation: 0,
-            changed: None,
             reshaped: false,
         }
     }
@@ -256,6 +241,133 @@ impl SurfaceData {
     }
 }
 
-/// Dirty windows seeded by edits, per level, for the blend stage.
-#[derive(Resource, Debug, Default)]
-pub(crate) struct Seeds(pub Vec<Option<Window>>);
+/// What the edits since the last blend stage changed, and so what the
+/// pipeline must redo: the one record of "what changed" (DESIGN,
+/// "Incremental rebuild, exactly"). The edit stage writes it, the blend
+/// stage takes it. Three kinds of change:
+/// - cells of a level (a control tangent or its `s`, a detail): the blend
+///   stage re-blends the window they make dirty, level by level;
+/// - every streamline's start point (an edit of the initial curve): each
+///   streamline is placed again, nothing is re-blended;
+/// - everything (a new net shape, scheme, depth or scene): the levels and
+///   streamlines are built afresh.
+#[derive(Resource, Debug)]
+pub struct Dirty {
+    full: bool,
+    replace: bool,
+    windows: Vec<Option<Window>>,
+}
+
+impl Default for Dirty {
+    /// Asks for a full build (nothing is built yet).
+    fn default() -> Self {
+        Dirty {
+            full: true,
+            replace: false,
+            windows: Vec::new(),
+        }
+    }
+}
+
+impl Dirty {
+    /// Cell `(row, col)` of level `level` changed.
+    pub fn cell(&mut self, level: u32, row: usize, col: usize) {
+        let l = level as usize;
+        if self.windows.len() <= l {
+            self.windows.resize(l + 1, None);
+        }
+        self.windows[l] = Some(Window::merge(self.windows[l], Window::cell(row, col)));
+    }
+
+    /// Every streamline must be placed again on the initial curve (its
+    /// tangents, `s` and `σ` are as they were).
+    pub fn replace_streamlines(&mut self) {
+        self.replace = true;
+    }
+
+    /// Everything must be built afresh (the levels' shapes may change).
+    pub fn rebuild(&mut self) {
+        self.full = true;
+    }
+
+    /// Whether a full build is pending.
+    pub fn is_full(&self) -> bool {
+        self.full
+    }
+
+    /// Whether nothing is pending.
+    pub fn is_clean(&self) -> bool {
+        !self.full && !self.replace && self.windows.iter().all(Option::is_none)
+    }
+
+    /// Whether cells of level `level` changed.
+    pub fn touches(&self, level: u32) -> bool {
+        self.windows
+            .get(level as usize)
+            .is_some_and(Option::is_some)
+    }
+
+    /// Takes what is pending, leaving nothing: `(full, replace, windows)`.
+    pub(crate) fn take(&mut self) -> (bool, bool, Vec<Option<Window>>) {
+        let full = std::mem::take(&mut self.full);
+        let replace = std::mem::take(&mut self.replace);
+        (full, replace, std::mem::take(&mut self.windows))
+    }
+}
+
+/// A change of [`SurfaceData`], written by the mesh stage: the points whose
+/// position or normal it rewrote, `None` when the surface was made afresh (a
+/// new shape: new triangles too).
+#[derive(Message, Debug, Clone, Copy, PartialEq)]
+pub struct SurfaceChanged {
+    /// Points (rows × columns of [`SurfaceData::points`]) rewritten; `None`: all.
+    pub window: Option<Window>,
+}
+
+/// What a reader of the surface must redo since it last looked.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SurfaceChange {
+    /// Nothing changed.
+    Unchanged,
+    /// Only these points (the union of the windows of the changes).
+    Window(Window),
+    /// Everything (a new surface, or changes the reader did not see).
+    All,
+}
+
+impl SurfaceChange {
+    /// Whether anything changed.
+    pub fn any(self) -> bool {
+        self != SurfaceChange::Unchanged
+    }
+}
+
+/// A reader of [`SurfaceChanged`] with its own cursor: a system that takes
+/// [`SurfaceChanges::take`] learns everything that changed since it last
+/// ran, however many frames it skipped (messages it was too late to see
+/// count as a change of everything), so what it derives stays exact.
+#[derive(bevy::ecs::system::SystemParam)]
+pub struct SurfaceChanges<'w, 's> {
+    messages: Res<'w, Messages<SurfaceChanged>>,
+    cursor: Local<'s, bevy::ecs::message::MessageCursor<SurfaceChanged>>,
+}
+
+impl SurfaceChanges<'_, '_> {
+    /// The changes since the last call, merged.
+    pub fn take(&mut self) -> SurfaceChange {
+        let missed = self.cursor.missed_messages(&self.messages) > 0;
+        let mut out = if missed {
+            SurfaceChange::All
+        } else {
+            SurfaceChange::Unchanged
+        };
+        for m in self.cursor.read(&self.messages) {
+            out = match (out, m.window) {
+                (SurfaceChange::All, _) | (_, None) => SurfaceChange::All,
+                (SurfaceChange::Unchanged, Some(w)) => SurfaceChange::Window(w),
+                (SurfaceChange::Window(a), Some(w)) => SurfaceChange::Window(a.union(w)),
+            };
+        }
+        out
+    }
+}

@@ -6,9 +6,9 @@
 
 use super::camera::{MainCamera, OrbitCamera, SceneBounds};
 use super::coords::to_view;
-use super::surface::{ShadedMaterial, ShownSurface, SurfaceEntity};
+use super::surface::{ShadedMaterial, SurfaceEntity};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
-use crate::ecs::{Model, ModelSet, SurfaceData};
+use crate::ecs::{Model, ModelSet, SurfaceChanges, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
 use bevy::prelude::*;
@@ -101,7 +101,8 @@ pub struct CurvatureField {
     pub limit: f64,
     /// Microseconds the last curvature computation took.
     pub us: f64,
-    generation: u64,
+    /// The surface changed since `values` were computed.
+    stale: bool,
 }
 
 #[derive(Resource)]
@@ -210,16 +211,20 @@ fn apply_mode(
     meter: Res<crate::ecs::meter::CpuMeter>,
     settings: Res<AnalysisSettings>,
     data: Res<SurfaceData>,
-    shown: Res<ShownSurface>,
+    mut changes: SurfaceChanges,
     shaded: Res<ShadedMaterial>,
     mats: Res<AnalysisMaterials>,
     mut field: ResMut<CurvatureField>,
     mut meshes: ResMut<Assets<Mesh>>,
     surface: Single<(&Mesh3d, &mut MeshMaterial3d<StandardMaterial>), With<SurfaceEntity>>,
     camera: Query<&OrbitCamera, With<MainCamera>>,
-    mut last: Local<Option<(AnalysisSettings, u64, Option<DVec3>)>>,
+    mut last: Local<Option<(AnalysisSettings, Option<DVec3>)>>,
 ) {
     let _meter = meter.start();
+    let surface_changed = changes.take().any();
+    if surface_changed {
+        field.stale = true;
+    }
     let (mesh, mut material) = surface.into_inner();
     let want = match settings.mode {
         SurfaceMode::Shaded => &shaded.0,
@@ -235,21 +240,21 @@ fn apply_mode(
         .unwrap_or(DVec3::new(10.0, -10.0, 10.0));
     let zebra = settings.mode == SurfaceMode::Zebra;
     // zebra stripes are reflections: they move with the eye
-    let key = (settings.clone(), shown.generation, zebra.then_some(eye));
-    let unchanged = last.as_ref() == Some(&key);
+    let key = (settings.clone(), zebra.then_some(eye));
+    let unchanged = !surface_changed && last.as_ref() == Some(&key);
     *last = Some(key);
     if settings.mode == SurfaceMode::Shaded || unchanged {
         return;
     }
     let uv: Vec<[f32; 2]> = match settings.mode {
         SurfaceMode::Gaussian | SurfaceMode::Mean => {
-            if field.generation != data.generation || field.values.is_none() {
+            if field.stale || field.values.is_none() {
                 let t0 = std::time::Instant::now();
                 let c = surface_curvature(&data.points);
                 field.gaussian_range = SurfaceCurvature::range(&c.gaussian);
                 field.mean_range = SurfaceCurvature::range(&c.mean);
                 field.values = Some(c);
-                field.generation = data.generation;
+                field.stale = false;
                 field.us = t0.elapsed().as_secs_f64() * 1e6;
             }
             let Some(c) = field.values.as_ref() else {

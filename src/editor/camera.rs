@@ -4,7 +4,7 @@
 //! the pointer is over an egui panel.
 
 use super::coords::to_view;
-use crate::ecs::{Model, ModelSet, SurfaceData};
+use crate::ecs::{Model, ModelSet, SurfaceChanges, SurfaceData};
 use crate::scene::format::ViewSpec;
 use bevy::camera::Viewport;
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
@@ -70,7 +70,6 @@ pub struct SceneBounds {
     pub min: DVec3,
     /// Largest corner.
     pub max: DVec3,
-    generation: u64,
 }
 
 impl Default for SceneBounds {
@@ -78,7 +77,6 @@ impl Default for SceneBounds {
         SceneBounds {
             min: DVec3::splat(-1.0),
             max: DVec3::splat(1.0),
-            generation: u64::MAX,
         }
     }
 }
@@ -144,10 +142,11 @@ fn spawn(mut commands: Commands, model: Res<Model>) {
 fn bounds(
     meter: Res<crate::ecs::meter::CpuMeter>,
     data: Res<SurfaceData>,
+    mut changes: SurfaceChanges,
     mut b: ResMut<SceneBounds>,
 ) {
     let _meter = meter.start();
-    if data.generation == b.generation {
+    if !changes.take().any() {
         return;
     }
     // the rows' boxes, kept by the mesh stage as it writes each row
@@ -156,7 +155,6 @@ fn bounds(
     };
     b.min = lo;
     b.max = hi;
-    b.generation = data.generation;
 }
 
 /// A newly opened scene brings its own view (edits never change the view).

@@ -243,7 +243,7 @@ fn drive(
         exit.write(AppExit::error());
         return;
     }
-    if shown.generation == 0 {
+    if !shown.built {
         return; // not built yet
     }
     if !p.position_written && p.frame >= 10 {

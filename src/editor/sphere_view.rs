@@ -10,7 +10,7 @@ use super::coords::{from_view, to_view};
 use super::handles::{HandleArrows, HandleSettings};
 use super::picking::{ActiveDrag, Drag, DragGroups, DragKind, Selection};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
-use crate::ecs::{EditMessage, Model, ModelSet, SurfaceData};
+use crate::ecs::{EditMessage, Model, ModelSet, SurfaceChange, SurfaceChanges};
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::Viewport;
 use bevy::camera::visibility::RenderLayers;
@@ -212,10 +212,9 @@ fn update_points(
     settings: Res<SphereSettings>,
     levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
     points: Single<(&Mesh3d, &mut Visibility), With<SubdividedPoints>>,
-    surface: Res<SurfaceData>,
+    mut surface: SurfaceChanges,
     mut meshes: ResMut<Assets<Mesh>>,
     mut shown: Local<Option<u32>>,
-    mut seen_surface: Local<u64>,
 ) {
     let _meter = meter.start();
     let (mesh, mut vis) = points.into_inner();
@@ -227,16 +226,13 @@ fn update_points(
     if *vis != want {
         *vis = want;
     }
+    // an edit of the display level moves its streamlines too: the rows the
+    // mesh stage rewrote since the last run hold every row whose tangents changed
+    let changed = surface.take();
     let depth = model.scene.display_depth;
     let Some((_, data)) = levels.iter().find(|(l, _)| l.0 == depth) else {
         return;
     };
-    // an edit of the display level moves its streamlines too: the rows the
-    // mesh stage rewrote this frame hold every row whose tangents changed
-    let changed = (surface.generation == *seen_surface + 1)
-        .then_some(surface.changed)
-        .flatten();
-    *seen_surface = surface.generation;
     if !data.is_changed() && *shown == Some(depth) {
         return;
     }
@@ -255,7 +251,7 @@ fn update_points(
         match changed {
             // tangent j moves points j + 1 on: the window's columns (points,
             // from one before the first that moved) hold every changed tangent
-            Some(w) if same_depth && w.rows.hi * cols < p.len() => {
+            SurfaceChange::Window(w) if same_depth && w.rows.hi * cols < p.len() => {
                 for r in w.rows.iter() {
                     let range = r * cols + w.cols.lo.min(cols)..(r + 1) * cols;
                     for (p, &t) in p[range.clone()].iter_mut().zip(&tangents[range]) {

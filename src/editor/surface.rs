@@ -1,7 +1,8 @@
-//! The shaded surface: one mesh entity mirroring [`SurfaceData`]; rows an edit
-//! rewrote are patched in place, anything else rebuilds the Bevy mesh. Lights.
+//! The shaded surface: one mesh entity mirroring [`SurfaceData`]; the points
+//! the surface's changes rewrote since the last copy ([`SurfaceChanges`])
+//! are patched in place, anything else rebuilds the Bevy mesh. Lights.
 
-use crate::ecs::{ModelSet, SurfaceData};
+use crate::ecs::{ModelSet, SurfaceChange, SurfaceChanges, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
@@ -13,12 +14,12 @@ use super::coords::kernel_to_view;
 #[derive(Component)]
 pub struct SurfaceEntity;
 
-/// The generation of [`SurfaceData`] the Bevy mesh shows, and what changed last.
+/// What the Bevy mesh shows of [`SurfaceData`].
 #[derive(Resource, Default)]
 pub struct ShownSurface {
-    /// `SurfaceData::generation` last copied.
-    pub generation: u64,
-    /// The last copy rewrote every vertex (analysis must redo all).
+    /// A surface has been copied into it.
+    pub built: bool,
+    /// The last copy rewrote every vertex.
     pub full: bool,
 }
 
@@ -78,21 +79,23 @@ fn setup(
 pub(super) fn sync_mesh(
     meter: Res<crate::ecs::meter::CpuMeter>,
     data: Res<SurfaceData>,
+    mut changes: SurfaceChanges,
     mut shown: ResMut<ShownSurface>,
     mut meshes: ResMut<Assets<Mesh>>,
     surface: Single<&Mesh3d, With<SurfaceEntity>>,
 ) {
     let _meter = meter.start();
-    if data.generation == shown.generation {
+    let change = changes.take();
+    if !change.any() {
         return;
     }
-    shown.generation = data.generation;
     let Some(mut mesh) = meshes.get_mut(&surface.0) else {
         return;
     };
+    shown.built = true;
     let points = data.points.data();
     let cols = data.points.cols();
-    if let Some(w) = data.changed
+    if let SurfaceChange::Window(w) = change
         && mesh.count_vertices() == points.len()
         && cols > 0
     {
@@ -140,4 +143,192 @@ pub fn to_bevy_mesh(positions: &[DVec3], normals: &[DVec3], indices: &[u32]) -> 
     .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, nrm)
     .with_inserted_attribute(Mesh::ATTRIBUTE_UV_0, uv)
     .with_inserted_indices(Indices::U32(indices.to_vec()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ecs::{Edit, EditMessage, ModelPlugin};
+    use crate::scene::Scene;
+    use bevy::math::DVec3;
+
+    /// Runs the mesh sync only on every `every`-th frame.
+    #[derive(Resource)]
+    struct SyncEvery(u64, u64);
+
+    /// Counts the frames (before the model's systems).
+    fn count(mut every: ResMut<SyncEvery>) {
+        every.1 += 1;
+    }
+
+    fn due(every: Res<SyncEvery>) -> bool {
+        (every.1 - 1).is_multiple_of(every.0)
+    }
+
+    /// The model with the mesh sync (no window, no renderer). Without the
+    /// time plugin's fixed steps, messages are dropped after two frames, as
+    /// strictly as Bevy ever drops them: a reader that skips two frames
+    /// misses some.
+    fn app(every: u64) -> App {
+        let mut s = Scene::from_design("car1", streamline_kernel::presets::car1(), 3);
+        s.edit_depth = 0;
+        let mut app = App::new();
+        app.add_plugins(TaskPoolPlugin::default())
+            .add_plugins(ModelPlugin::new(s))
+            .init_resource::<Assets<Mesh>>()
+            .init_resource::<ShownSurface>()
+            .insert_resource(SyncEvery(every, 0))
+            .add_systems(First, count)
+            .add_systems(Update, sync_mesh.after(ModelSet::Output).run_if(due));
+        let mesh = app
+            .world_mut()
+            .resource_mut::<Assets<Mesh>>()
+            .add(to_bevy_mesh(&[], &[], &[]));
+        app.world_mut().spawn((SurfaceEntity, Mesh3d(mesh)));
+        app
+    }
+
+    /// The Bevy mesh holds the model's surface, bit for bit (as `f32`).
+    fn mesh_is_model(app: &mut App) -> Result<(), String> {
+        let w = app.world_mut();
+        let handle = w
+            .query_filtered::<&Mesh3d, With<SurfaceEntity>>()
+            .single(w)
+            .map_err(|e| e.to_string())?
+            .0
+            .clone();
+        let data = w.resource::<SurfaceData>();
+        let meshes = w.resource::<Assets<Mesh>>();
+        let mesh = meshes.get(&handle).ok_or("no mesh")?;
+        let bits = |v: &[DVec3]| -> Vec<[u32; 3]> {
+            v.iter()
+                .map(|p| p.as_vec3().to_array().map(f32::to_bits))
+                .collect()
+        };
+        let got = |a| match mesh.attribute(a) {
+            Some(VertexAttributeValues::Float32x3(v)) => {
+                Ok(v.iter().map(|p| p.map(f32::to_bits)).collect::<Vec<_>>())
+            }
+            _ => Err("no attribute".to_string()),
+        };
+        if got(Mesh::ATTRIBUTE_POSITION)? != bits(data.points.data()) {
+            return Err("positions differ".into());
+        }
+        if got(Mesh::ATTRIBUTE_NORMAL)? != bits(&data.normals) {
+            return Err("normals differ".into());
+        }
+        match mesh.indices() {
+            Some(Indices::U32(i)) if *i == data.indices => Ok(()),
+            _ => Err("triangles differ".into()),
+        }
+    }
+
+    /// A scripted drag: a control tangent turned a little each frame (one
+    /// undo group), a second one turned, the drag cancelled (Esc), an undo,
+    /// a redo and a depth change, so the changed windows move about.
+    fn script() -> Vec<Vec<Edit>> {
+        let mut frames = Vec::new();
+        for k in 0..20 {
+            let a = 0.02 * k as f64;
+            frames.push(vec![Edit::SetDirection {
+                row: 4,
+                col: 2,
+                dir: DVec3::new(a.cos(), a.sin(), 0.3 * a),
+            }]);
+        }
+        frames.push(vec![]);
+        for k in 0..7 {
+            frames.push(vec![Edit::Rotate {
+                row: 0,
+                col: 5,
+                axis: DVec3::Z,
+                radians: 0.03 * k as f64,
+            }]);
+        }
+        frames.push(vec![Edit::CancelGroup(7)]);
+        frames.push(vec![Edit::Undo]);
+        frames.push(vec![]);
+        frames.push(vec![
+            Edit::Redo,
+            Edit::SetLength {
+                row: 8,
+                col: 1,
+                coefficient: 1.1,
+            },
+        ]);
+        frames.push(vec![Edit::SetDisplayDepth(2)]);
+        frames.push(vec![Edit::SetDirection {
+            row: 2,
+            col: 3,
+            dir: DVec3::new(0.2, 1.0, 0.1),
+        }]);
+        frames.push(vec![]);
+        frames.push(vec![]);
+        frames
+    }
+
+    /// Plays [`script`] with the sync every `every` frames, checking the mesh
+    /// after each frame the sync ran; also returns how many of those copies
+    /// rewrote the whole mesh.
+    fn drag(every: u64) -> (App, usize) {
+        let mut app = app(every);
+        app.update();
+        let mut whole = 0;
+        for (n, edits) in script().into_iter().enumerate() {
+            for e in edits {
+                // the second handle's turns are one group: Esc cancels them
+                let group = matches!(e, Edit::Rotate { .. }).then_some(7);
+                app.world_mut()
+                    .write_message(EditMessage { edit: e, group });
+            }
+            // set again by a copy of the whole mesh in this frame
+            app.world_mut().resource_mut::<ShownSurface>().full = false;
+            app.update();
+            let synced = (app.world().resource::<SyncEvery>().1 - 1).is_multiple_of(every);
+            if synced {
+                if let Err(e) = mesh_is_model(&mut app) {
+                    panic!("frame {n}, sync every {every} frames: {e}");
+                }
+                whole += usize::from(app.world().resource::<ShownSurface>().full);
+            }
+        }
+        // the last frames synced or not, a frame with the sync brings it up
+        while !(app.world().resource::<SyncEvery>().1).is_multiple_of(every) {
+            app.update();
+        }
+        app.update();
+        (app, whole)
+    }
+
+    /// Issue 19: the surface's changes reach the mesh sync as messages with
+    /// their windows, read with its own cursor; run only every second or
+    /// third frame during a drag, the mesh still equals the model bit for bit.
+    #[test]
+    fn mesh_sync_that_skips_frames_ends_up_exact() {
+        for every in [1, 2, 3] {
+            let (mut app, _) = drag(every);
+            mesh_is_model(&mut app).unwrap_or_else(|e| panic!("sync every {every}: {e}"));
+            assert!(app.world().resource::<ShownSurface>().built);
+        }
+    }
+
+    /// Every second frame the sync misses no message: it patches the union
+    /// of the windows, and copies the whole mesh only for the depth change
+    /// (a new shape); every third frame it has missed changes and copies all.
+    #[test]
+    fn mesh_sync_patches_windows_unless_it_missed_changes() {
+        let frames = script().len();
+        let (_, whole) = drag(1);
+        assert_eq!(whole, 1, "every frame: only the depth change copies all");
+        let (_, whole) = drag(2);
+        assert_eq!(
+            whole, 1,
+            "every other frame: only the depth change copies all"
+        );
+        let (_, whole) = drag(3);
+        assert!(
+            whole > frames / 6,
+            "every third frame the sync missed changes: {whole} whole copies in {frames} frames"
+        );
+    }
 }
