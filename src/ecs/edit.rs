@@ -37,6 +37,7 @@ pub(crate) fn apply_edits(
     let t0 = Instant::now();
     let mut labels = Vec::new();
     let mut any = false;
+    let mut mirrored_edit = false;
     for msg in reader.read() {
         if !any {
             log.entries.clear();
@@ -51,11 +52,7 @@ pub(crate) fn apply_edits(
         let snapshot = before_undoable.then(|| ctx.model.scene.clone());
         match apply(&mut ctx, &msg.edit) {
             Ok(done) => {
-                if ctx.model.scene.mirror && before_undoable {
-                    // both halves come from the doubled net: rebuilt in
-                    // full (docs/math.md §9)
-                    full(&mut ctx);
-                }
+                mirrored_edit |= ctx.model.scene.mirror && before_undoable;
                 if let Some(s) = snapshot {
                     let limit = ctx.config.history_limit;
                     let was = ctx.model.unsaved;
@@ -66,6 +63,13 @@ pub(crate) fn apply_edits(
             }
             Err(e) => log.entries.push(Err(e)),
         }
+    }
+    if mirrored_edit && ctx.model.scene.mirror {
+        // both halves come from the doubled net (docs/math.md §9): the cells
+        // the frame's edits marked are dirty in both copies (once a frame:
+        // the windows are in half rows until here)
+        let m = ctx.model.scene.design.net.rows();
+        ctx.dirty.mirror_rows(m);
     }
     if any {
         stats.last = EditStats {
