@@ -74,6 +74,56 @@ fn every_script_passes() {
     let tris = u32::from_le_bytes(stl[80..84].try_into().unwrap()) as usize;
     assert_eq!(tris, faces);
     assert_eq!(stl.len(), 84 + 50 * tris);
+    walkthrough_export_has_both_halves(&dir);
+}
+
+/// Script 21 (the authoring walk-through) exported a mirrored design: one
+/// mesh of both halves (9 doubled control rows → 129 streamlines of 82
+/// points at depth 4), equal to its reflection in the plane y = 0 (the
+/// initial curve starts at 0 along +y), read back by tobj.
+fn walkthrough_export_has_both_halves(dir: &Path) {
+    let (models, _) = tobj::load_obj(
+        dir.join("out/21-walkthrough.obj"),
+        &tobj::LoadOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(models.len(), 1, "both halves in one mesh");
+    let m = &models[0].mesh;
+    let v = m.positions.len() / 3;
+    assert_eq!(v, 129 * 82, "129 streamlines of 82 points");
+    assert_eq!(
+        m.indices.len(),
+        3 * 2 * 128 * 81,
+        "one mesh over both halves"
+    );
+    let key = |x: f64, y: f64, z: f64| {
+        (
+            (x * 1e4).round() as i64,
+            (y * 1e4).round() as i64,
+            (z * 1e4).round() as i64,
+        )
+    };
+    let points: std::collections::HashSet<_> = m
+        .positions
+        .chunks(3)
+        .map(|p| key(p[0], p[1], p[2]))
+        .collect();
+    let mirrored = m
+        .positions
+        .chunks(3)
+        .filter(|p| points.contains(&key(p[0], -p[1], p[2])))
+        .count();
+    assert!(
+        mirrored as f64 >= 0.99 * v as f64,
+        "{mirrored} of {v} vertices have their reflection (y → −y)"
+    );
+    assert!(
+        m.positions.chunks(3).any(|p| p[1] < -0.5) && m.positions.chunks(3).any(|p| p[1] > 0.5),
+        "both sides of y = 0"
+    );
+    let stl = std::fs::read(dir.join("out/21-walkthrough.stl")).unwrap();
+    let tris = u32::from_le_bytes(stl[80..84].try_into().unwrap()) as usize;
+    assert_eq!(tris, 2 * 128 * 81, "the STL holds both halves too");
 }
 
 #[test]

@@ -141,6 +141,7 @@ fn random_scene() -> impl Strategy<Value = Scene> {
                         ][(rnd().abs() * 2.99) as usize],
                     });
                 }
+                scene.mirror = rnd() > 0.0;
                 scene.validate(Path::new("<random>"), "").ok()?;
                 Some(scene)
             },
@@ -177,7 +178,7 @@ fn bad_scenes_have_located_errors() {
             .expect("a scene ends with )");
         format!("{end}    tuning: {t},\n)\n")
     };
-    let cases: [(&str, String, &str); 12] = [
+    let cases: [(&str, String, &str); 13] = [
         (
             "tuning: too few values for the degree",
             tuned("Some((degree_s: 3, degree_t: 1, values: [[1.0, 1.0], [1.0, 1.0]]))"),
@@ -233,8 +234,13 @@ fn bad_scenes_have_located_errors() {
         ),
         (
             "wrong version",
-            good.replace("version: 1,", "version: 2,"),
-            "version 2 is not supported",
+            good.replace("version: 1,", "version: 3,"),
+            "version 3 is not supported; this build reads versions 1 and 2",
+        ),
+        (
+            "mirror in a version-1 file",
+            tuned("None").replace("tuning: None,", "mirror: true,"),
+            "mirror symmetry is a version 2 field; write `version: 2`",
         ),
         ("truncated", good[..good.len() / 2].to_string(), "truncated"),
         (
@@ -282,5 +288,135 @@ fn failed_save_keeps_the_old_file() {
     // Saving into a folder that does not exist fails with a message and writes nothing.
     let e = io::save(&scene, &dir.join("missing/x.ron")).unwrap_err();
     assert!(e.to_string().contains("cannot create"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Version 1 files open unchanged (the shipped scenes are version 1); saving
+/// writes version 2 with `mirror`, and a version-2 file reads back the same.
+#[test]
+fn version_1_opens_and_saves_as_version_2() {
+    let dir = tmpdir("v2");
+    for (name, text) in builtin::SCENES {
+        assert!(text.contains("version: 1,"), "{name} is a version-1 file");
+        let v1 = Scene::parse(text, Path::new(name)).unwrap();
+        assert!(!v1.mirror, "{name}: no mirror in version 1");
+        let path = dir.join(format!("{name}.ron"));
+        io::save(&v1, &path).unwrap();
+        let written = std::fs::read_to_string(&path).unwrap();
+        assert!(
+            written.contains("version: 2,") && written.contains("mirror: false"),
+            "{name}: {written}"
+        );
+        let back = io::load(&path).unwrap();
+        assert_eq!(back.to_file(), v1.to_file(), "{name}: v1 → v2 → read");
+        assert_eq!(back.design.net, v1.design.net, "{name}: the same net");
+    }
+    // a mirrored version-2 scene round-trips, and its doubled design is built
+    let mut s = builtin::scene("car1").unwrap();
+    s.mirror = true;
+    let path = dir.join("mirrored.ron");
+    io::save(&s, &path).unwrap();
+    let back = io::load(&path).unwrap();
+    assert!(back.mirror);
+    let m = back.mirrored_design().unwrap().unwrap();
+    assert_eq!(m.net.rows(), 2 * s.design.net.rows() - 1);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A mirrored scene whose seam tangent points along the plane's normal is
+/// refused at `mirror`, with the fix.
+#[test]
+fn mirror_with_a_seam_tangent_along_the_normal_is_located() {
+    let mut s = builtin::scene("minimal").unwrap();
+    s.mirror = true;
+    // minimal: initial curve along +y, so the plane's normal is +y
+    s.design
+        .set_tangent(0, 1, streamline_kernel::DVec3::Y)
+        .unwrap();
+    let text = s.to_ron();
+    let e = Scene::parse(&text, Path::new("m.ron"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("points along the mirror plane's normal"), "{e}");
+    let line = text
+        .lines()
+        .position(|l| l.trim_start().starts_with("mirror:"))
+        .unwrap()
+        + 1;
+    assert!(
+        e.starts_with(&format!("m.ron:{line}:")),
+        "located at `mirror`: {e}"
+    );
+}
+
+/// `Scene::new_design`: the templates, a sensible depth, a framing view, and
+/// the kernel's errors with the fix.
+#[test]
+fn new_design_from_templates() {
+    use streamline_kernel::SurfaceScheme;
+    use streamline_kernel::authoring::Template;
+    let s = Scene::new_design(
+        5,
+        7,
+        4.0,
+        Template::Flat { width: 2.0 },
+        SurfaceScheme::default(),
+    )
+    .unwrap();
+    assert_eq!((s.design.net.rows(), s.design.net.cols()), (5, 7));
+    assert_eq!(
+        (s.display_depth, s.edit_depth),
+        (4, 0),
+        "a small net is shown at depth 4"
+    );
+    assert!(
+        (s.view.target.0 - 2.0).abs() < 1e-9 && (s.view.target.1 - 1.0).abs() < 1e-9,
+        "the view frames the rectangle: {:?}",
+        s.view.target
+    );
+    let big = Scene::new_design(
+        64,
+        64,
+        4.0,
+        Template::Flat { width: 2.0 },
+        SurfaceScheme::default(),
+    )
+    .unwrap();
+    assert!(
+        big.display_depth <= 1,
+        "a 64 × 64 net is shown shallow: depth {}",
+        big.display_depth
+    );
+    let e = Scene::new_design(
+        3,
+        3,
+        1.0,
+        Template::Cylinder {
+            radius: 1.0,
+            degrees: 360.0,
+        },
+        SurfaceScheme::default(),
+    )
+    .unwrap_err();
+    assert!(
+        e.to_string().contains("strictly between 0 and 360 degrees"),
+        "{e}"
+    );
+    // saved and read back as a version-2 scene
+    let dir = tmpdir("new");
+    let path = dir.join("new.ron");
+    let c = Scene::new_design(
+        4,
+        4,
+        3.0,
+        Template::Cylinder {
+            radius: 1.5,
+            degrees: 150.0,
+        },
+        SurfaceScheme::default(),
+    )
+    .unwrap();
+    io::save(&c, &path).unwrap();
+    assert_eq!(io::load(&path).unwrap().to_file(), c.to_file());
     let _ = std::fs::remove_dir_all(&dir);
 }

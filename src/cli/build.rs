@@ -50,7 +50,10 @@ struct BuildReport {
 pub fn build(a: BuildArgs) -> Result<(), CliError> {
     let mut scene = scene_arg(&a.scene)?;
     if let Some(d) = a.depth {
-        let design = &scene.design;
+        // mirrored: the doubled net is what is built (docs/math.md §9)
+        let design = &scene
+            .shown_design()
+            .map_err(|e| CliError::Usage(format!("mirror: {e}")))?;
         design
             .scheme
             .check_depth(

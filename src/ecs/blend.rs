@@ -11,11 +11,15 @@ use std::time::Instant;
 use streamline_kernel::incremental::{LevelState, build_levels, propagate};
 use streamline_kernel::window::Span;
 
-fn streamline_of(model: &Model, level: &LevelState, row: usize) -> StreamlineTangents {
+fn streamline_of(
+    initial: &streamline_kernel::initial_curve::InitialCurve,
+    level: &LevelState,
+    row: usize,
+) -> StreamlineTangents {
     let p = &level.params;
     StreamlineTangents {
         sigma: p.sigma[row],
-        origin: model.scene.design.initial.point(p.t[row]),
+        origin: initial.point(p.t[row]),
         t: p.t[row],
         changed_from: 0,
     }
@@ -71,7 +75,14 @@ pub(crate) fn reblend(
             commands.entity(e).despawn();
         }
         let scene = &model.scene;
-        let design = scene.effective_design();
+        // mirrored: the doubled design (docs/math.md §9)
+        let design = match scene.shown_design() {
+            Ok(d) => d,
+            Err(e) => {
+                log.entries.push(Err(format!("rebuild failed: {e}")));
+                return;
+            }
+        };
         let built = match build_levels(&design, &scene.details, scene.max_depth()) {
             Ok(b) => b,
             Err(e) => {
@@ -84,7 +95,7 @@ pub(crate) fn reblend(
         for row in 0..display.shape().0 {
             new_lines.push((
                 Streamline { row },
-                streamline_of(&model, display, row),
+                streamline_of(&design.initial, display, row),
                 StreamlineAlpha::default(),
                 StreamlinePoints::default(),
             ));
@@ -103,12 +114,21 @@ pub(crate) fn reblend(
         return;
     }
     if replace {
-        // a new initial curve: every streamline starts elsewhere; its tangents
-        // and parameters are as they were
-        for (_, _, mut t) in lines.iter_mut() {
+        // a new initial curve or anchor: every streamline starts elsewhere;
+        // its tangents and `s` are as they were, and its `σ` is level 0's
+        // taken down by the scheme's scalar step (the step a full build takes)
+        let sigma = super::authoring::sigma_of_levels(&model.scene.design, &mut levels);
+        let display = model.scene.display_depth as usize;
+        let mut n = 0;
+        for (_, line, mut t) in lines.iter_mut() {
+            if let Some(&s) = sigma.get(display).and_then(|s| s.get(line.row)) {
+                t.sigma = s;
+            }
             t.origin = model.scene.design.initial.point(t.t);
             t.changed_from = 0;
+            n += 1;
         }
+        stats.last.streamlines_replaced += n;
     }
     if sd.iter().all(Option::is_none) {
         stats.last.us_blend += t0.elapsed().as_secs_f64() * 1e6;
@@ -118,7 +138,19 @@ pub(crate) fn reblend(
     ls.sort_by_key(|(l, _)| *l);
     let mut refs: Vec<&mut LevelState> = ls.iter_mut().map(|(_, d)| &mut d.0).collect();
     sd.resize(refs.len(), None);
-    let result = propagate(&model.scene.design, &model.scene.details, &mut refs, &sd);
+    // mirrored: the levels are the doubled net's (docs/math.md §9)
+    let doubled = match model.scene.mirror {
+        true => match model.scene.shown_design() {
+            Ok(d) => Some(d),
+            Err(e) => {
+                log.entries.push(Err(format!("rebuild failed: {e}")));
+                return;
+            }
+        },
+        false => None,
+    };
+    let design = doubled.as_ref().unwrap_or(&model.scene.design);
+    let result = propagate(design, &model.scene.details, &mut refs, &sd);
     match result {
         Ok(p) => {
             stats.last.tangents_reblended += p.reblended;

@@ -37,6 +37,7 @@ pub(crate) fn apply_edits(
     let t0 = Instant::now();
     let mut labels = Vec::new();
     let mut any = false;
+    let mut mirrored_edit = false;
     for msg in reader.read() {
         if !any {
             log.entries.clear();
@@ -51,6 +52,7 @@ pub(crate) fn apply_edits(
         let snapshot = before_undoable.then(|| ctx.model.scene.clone());
         match apply(&mut ctx, &msg.edit) {
             Ok(done) => {
+                mirrored_edit |= ctx.model.scene.mirror && before_undoable;
                 if let Some(s) = snapshot {
                     let limit = ctx.config.history_limit;
                     let was = ctx.model.unsaved;
@@ -61,6 +63,13 @@ pub(crate) fn apply_edits(
             }
             Err(e) => log.entries.push(Err(e)),
         }
+    }
+    if mirrored_edit && ctx.model.scene.mirror {
+        // both halves come from the doubled net (docs/math.md §9): the cells
+        // the frame's edits marked are dirty in both copies (once a frame:
+        // the windows are in half rows until here)
+        let m = ctx.model.scene.design.net.rows();
+        ctx.dirty.mirror_rows(m);
     }
     if any {
         stats.last = EditStats {
@@ -113,7 +122,7 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             let s = s.validate().map_err(|e| e.to_string())?;
             let mut d = ctx.model.scene.design.clone();
             d.scheme = s;
-            check_design(&d, ctx.model.scene.max_depth())?;
+            check_design(&d, ctx.model.scene.max_depth(), ctx.model.scene.mirror)?;
             ctx.model.scene.design = d;
             let dropped = prune_details(&mut ctx.model.scene);
             full(ctx);
@@ -126,14 +135,17 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
         }
         Edit::SetDisplayDepth(n) => {
             let depth = (*n).max(ctx.model.scene.edit_depth);
-            check_design(&ctx.model.scene.design, depth)?;
+            check_design(&ctx.model.scene.design, depth, ctx.model.scene.mirror)?;
             ctx.model.scene.display_depth = *n;
             full(ctx);
             Ok(format!("display depth {n}"))
         }
         Edit::SetEditDepth(n) => {
+            if *n > 0 && ctx.model.scene.mirror {
+                return Err(super::authoring::mirror_depth_msg());
+            }
             let depth = (*n).max(ctx.model.scene.display_depth);
-            check_design(&ctx.model.scene.design, depth)?;
+            check_design(&ctx.model.scene.design, depth, ctx.model.scene.mirror)?;
             ctx.model.scene.edit_depth = *n;
             full(ctx);
             Ok(format!("edit depth {n}"))
@@ -216,14 +228,78 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             Ok(format!("recovered {}", scene.name))
         }
         Edit::Save(_) | Edit::Export(_) => Ok(String::new()),
+        Edit::RotateMany {
+            handles,
+            axis,
+            radians,
+        } => {
+            let axis = Tangent::new(*axis)
+                .map_err(|_| {
+                    "the rotation axis is zero or not finite; give a non-zero axis".to_string()
+                })?
+                .get();
+            if !radians.is_finite() {
+                return Err("the rotation angle is not finite; give a number of degrees".into());
+            }
+            if handles.is_empty() {
+                return Err("no handles to rotate; give at least one (row, col)".into());
+            }
+            // every handle checked before any is turned: all or nothing
+            let q = DQuat::from_axis_angle(axis, *radians);
+            let dirs = handles
+                .iter()
+                .map(|&(r, c)| current_direction(ctx, r, c).map(|d| q * d))
+                .collect::<Result<Vec<_>, _>>()?;
+            for (&(r, c), d) in handles.iter().zip(dirs) {
+                set_direction(ctx, r, c, d)?;
+            }
+            Ok(format!(
+                "rotated {} handles by {:.3}°",
+                handles.len(),
+                radians.to_degrees()
+            ))
+        }
+        Edit::Author(a) => author(ctx, a),
     }
 }
 
-fn check_design(d: &Design, depth: u32) -> Result<(), String> {
+/// An authoring edit ([`super::authoring`]): the scene changes there; here
+/// the handles and the pipeline follow.
+fn author(ctx: &mut EditCtx, a: &super::authoring::AuthorEdit) -> Result<String, String> {
+    use super::authoring::Effect;
+    let (msg, effect) = super::authoring::apply(&mut ctx.model.scene, a)?;
+    match effect {
+        Effect::NewScene(scene) => {
+            replace(ctx, *scene);
+            ctx.model.path = None;
+            ctx.model.unsaved = true;
+        }
+        Effect::Full => full(ctx),
+        Effect::Place => ctx.dirty.replace_streamlines(),
+        Effect::Row(row) => {
+            for col in 0..ctx.model.scene.design.net.cols() {
+                ctx.dirty.cell(0, row, col);
+            }
+        }
+    }
+    Ok(msg)
+}
+
+/// `d` can be built to `depth`; mirrored, its doubled design too
+/// (`docs/math.md §9`: the levels are the doubled net's).
+fn check_design(d: &Design, depth: u32, mirror: bool) -> Result<(), String> {
     d.scheme
         .check_depth(d.net.rows(), d.net.cols(), depth)
         .map_err(|e| e.to_string())?;
-    check_params(d, depth).map_err(|e| e.to_string())
+    check_params(d, depth).map_err(|e| e.to_string())?;
+    if mirror {
+        let m = d.mirrored().map_err(|e| e.to_string())?;
+        m.scheme
+            .check_depth(m.net.rows(), m.net.cols(), depth)
+            .and_then(|_| check_params(&m, depth))
+            .map_err(|e| format!("the mirrored surface: {e}"))?;
+    }
+    Ok(())
 }
 
 /// Asks for a full rebuild (the levels' shapes may change).
@@ -298,9 +374,19 @@ fn set_direction(ctx: &mut EditCtx, row: usize, col: usize, dir: DVec3) -> Resul
         })?
         .get();
     let level = ctx.model.scene.edit_depth;
+    if ctx.model.scene.mirror && level > 0 {
+        return Err(super::authoring::mirror_depth_msg());
+    }
     if level == 0 {
         let net = &ctx.model.scene.design.net;
         check_cell(net.rows(), net.cols(), row, col, 0)?;
+        // mirrored: a seam (row 0) tangent stays in the mirror plane
+        let dir = if ctx.model.scene.mirror && row == 0 {
+            let plane = ctx.model.scene.design.mirror_plane();
+            plane.project_dir(dir, col).map_err(|e| e.to_string())?
+        } else {
+            dir
+        };
         if net.get(row, col) != dir {
             ctx.model.scene.design.net.set(row, col, dir);
             ctx.dirty.cell(0, row, col);
@@ -343,7 +429,7 @@ fn set_length(ctx: &mut EditCtx, row: usize, col: usize, k: f64) -> Result<Strin
             "length coefficient {k} makes s overflow; use a smaller one"
         ));
     }
-    check_params(&d, ctx.model.scene.max_depth())
+    check_design(&d, ctx.model.scene.max_depth(), ctx.model.scene.mirror)
         .map_err(|e| format!("length coefficient {k} at ({row}, {col}) refused: {e}"))?;
     for (c, (a, b)) in old.iter().zip(d.params.s.row(row)).enumerate() {
         if a != b {
@@ -373,6 +459,8 @@ fn restore(ctx: &mut EditCtx, target: Scene) {
         && a.anchor == b.anchor
         && a.params.t == b.params.t
         && cur.interpolate_tangents == target.interpolate_tangents
+        && !cur.mirror
+        && !target.mirror
         && cur.initial == target.initial
         && cur.display_depth == target.display_depth
         && cur.edit_depth == target.edit_depth;

@@ -67,6 +67,16 @@ pub enum Edit {
     Save(PathBuf),
     /// Export the surface mesh (`.obj` or `.stl`).
     Export(PathBuf),
+    /// Turns handles `(row, col)` of the edit depth by one rotation about
+    /// `axis` (one undo step; refused whole if one handle is out of range).
+    RotateMany {
+        handles: Vec<(usize, usize)>,
+        axis: DVec3,
+        radians: f64,
+    },
+    /// An authoring edit (`docs/math.md §9`): new design, structure, initial
+    /// curve, anchor, streamline length, mirror.
+    Author(super::authoring::AuthorEdit),
 }
 
 impl Edit {
@@ -106,11 +116,22 @@ impl Edit {
             Edit::Recover { scene, .. } => format!("recover {}", scene.name),
             Edit::Save(p) => format!("save {}", p.display()),
             Edit::Export(p) => format!("export {}", p.display()),
+            Edit::RotateMany {
+                handles, radians, ..
+            } => format!(
+                "rotate {} handles by {:.3}°",
+                handles.len(),
+                radians.to_degrees()
+            ),
+            Edit::Author(a) => a.label(),
         }
     }
 
     /// Whether the edit changes the model (and so gets an undo step).
     pub fn is_undoable(&self) -> bool {
+        if let Edit::Author(a) = self {
+            return a.is_undoable();
+        }
         !matches!(
             self,
             Edit::Undo

@@ -10,6 +10,7 @@
 //! with its own cursor ([`SurfaceChanges`]). Runs headless under
 //! `MinimalPlugins` ([`headless_app`]).
 
+pub mod authoring;
 mod blend;
 pub mod components;
 mod edit;

@@ -1,6 +1,7 @@
 //! Scripted playback: each step of a [`Script`] is an edit message sent to a
 //! headless app (one update per step) or an expectation checked against it.
 
+use super::authoring::AuthorEdit;
 use super::messages::Edit;
 use super::resources::*;
 use super::{headless_app, send};
@@ -83,9 +84,14 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
             report.lines.push(format!("step {n:>3} {label}: error {e}"));
         } else {
             report.lines.push(format!(
-                "step {n:>3} {label}: ok (re-blended {}, re-integrated {}, {:.0} µs{})",
+                "step {n:>3} {label}: ok (re-blended {}, re-integrated {}{}, {:.0} µs{})",
                 stats.tangents_reblended,
                 stats.streamlines_reintegrated,
+                if stats.streamlines_replaced > 0 {
+                    format!(", {} placed again", stats.streamlines_replaced)
+                } else {
+                    String::new()
+                },
                 stats.us_total(),
                 if stats.full_rebuild {
                     ", full rebuild"
@@ -181,7 +187,78 @@ pub(crate) fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
         Step::SetInterpolateTangents(on) => Edit::SetInterpolateTangents(*on),
         Step::Undo => Edit::Undo,
         Step::Redo => Edit::Redo,
-        _ => return Err("not an edit".into()),
+        Step::RotateMany {
+            handles,
+            axis,
+            degrees,
+        } => Edit::RotateMany {
+            handles: handles.clone(),
+            axis: v(axis),
+            radians: degrees.0.to_radians(),
+        },
+        step => match author_edit(step, v) {
+            Some(a) => Edit::Author(a),
+            None => return Err("not an edit".into()),
+        },
+    })
+}
+
+/// The authoring steps (`docs/math.md §9`) as their edits.
+fn author_edit(step: &Step, v: impl Fn(&Dir) -> DVec3) -> Option<AuthorEdit> {
+    use streamline_kernel::authoring::Axis;
+    Some(match step {
+        Step::NewDesign {
+            rows,
+            cols,
+            length,
+            template,
+            scheme,
+        } => AuthorEdit::NewDesign {
+            rows: *rows,
+            cols: *cols,
+            length: length.0,
+            template: template.to_kernel(),
+            scheme: scheme.map_or_else(Default::default, |s| s.to_kernel()),
+        },
+        Step::InsertRow { at } => AuthorEdit::Insert {
+            axis: Axis::Row,
+            at: *at,
+        },
+        Step::InsertColumn { at } => AuthorEdit::Insert {
+            axis: Axis::Column,
+            at: *at,
+        },
+        Step::DeleteRow(at) => AuthorEdit::Delete {
+            axis: Axis::Row,
+            at: *at,
+        },
+        Step::DeleteColumn(at) => AuthorEdit::Delete {
+            axis: Axis::Column,
+            at: *at,
+        },
+        Step::SetInitialDirection { index, dir } => AuthorEdit::SetInitialDirection {
+            index: *index,
+            dir: v(dir),
+        },
+        Step::RotateInitial {
+            index,
+            axis,
+            degrees,
+        } => AuthorEdit::RotateInitial {
+            index: *index,
+            axis: v(axis),
+            radians: degrees.0.to_radians(),
+        },
+        Step::SetInitialLength(l) => AuthorEdit::SetInitialLength(l.0),
+        Step::SetInitialOrigin(p) => AuthorEdit::SetInitialOrigin(p.vec()),
+        Step::SetInitialOrder(k) => AuthorEdit::SetInitialOrder(*k),
+        Step::SetAnchor(c) => AuthorEdit::SetAnchor(*c),
+        Step::SetStreamlineLength { row, length } => AuthorEdit::SetStreamlineLength {
+            row: *row,
+            length: length.0,
+        },
+        Step::SetMirror(on) => AuthorEdit::SetMirror(*on),
+        _ => return None,
     })
 }
 
@@ -289,6 +366,11 @@ fn check(
             can_redo,
             tuning,
             interpolate_tangents,
+            rows,
+            cols,
+            mirror,
+            anchor,
+            initial_order,
         } => {
             let s = &model.scene;
             let mut bad = Vec::new();
@@ -349,6 +431,31 @@ fn check(
                 interpolate_tangents.map(|x| x.to_string()),
                 s.interpolate_tangents.to_string(),
             );
+            cmp(
+                "control rows",
+                rows.map(|x| x.to_string()),
+                s.design.net.rows().to_string(),
+            );
+            cmp(
+                "control columns",
+                cols.map(|x| x.to_string()),
+                s.design.net.cols().to_string(),
+            );
+            cmp(
+                "mirror",
+                mirror.map(|x| x.to_string()),
+                s.mirror.to_string(),
+            );
+            cmp(
+                "anchor",
+                anchor.map(|x| x.to_string()),
+                s.design.anchor.to_string(),
+            );
+            cmp(
+                "initial curve order",
+                initial_order.map(|x| x.to_string()),
+                s.design.initial.qi().order().to_string(),
+            );
             if bad.is_empty() {
                 Ok(String::new())
             } else {
@@ -405,6 +512,75 @@ fn check(
                 Err(format!(
                     "an end moved by {d:.3e} from `{mark}` (tolerance {})",
                     tolerance.0
+                ))
+            }
+        }
+        Step::ExpectStreamlineLength {
+            row,
+            length,
+            tolerance,
+        } => {
+            let d = &model.scene.design;
+            let got = d.streamline_length(*row).ok_or_else(|| {
+                format!("no control row {row}: the net has {} rows", d.net.rows())
+            })?;
+            let e = (got - length.0).abs();
+            if e <= tolerance.0 {
+                Ok(format!("({got}, off by {e:.2e})"))
+            } else {
+                Err(format!(
+                    "streamline {row} is {got} long, {e:.3e} from {} (tolerance {})",
+                    length.0, tolerance.0
+                ))
+            }
+        }
+        Step::ExpectMirrorSymmetric { tolerance } => {
+            if !model.scene.mirror {
+                return Err("the mirror is off".into());
+            }
+            let plane = model.scene.design.mirror_plane();
+            let p = &surface.points;
+            let n = p.rows();
+            let mut worst = 0.0_f64;
+            for r in 0..n {
+                for k in 0..p.cols() {
+                    let e = (plane.reflect_point(p.get(r, k)) - p.get(n - 1 - r, k)).length();
+                    worst = worst.max(e);
+                }
+            }
+            if worst <= tolerance.0 {
+                Ok(format!("(largest asymmetry {worst:.2e})"))
+            } else {
+                Err(format!(
+                    "the surface differs from its reflection by {worst:.3e} (tolerance {})",
+                    tolerance.0
+                ))
+            }
+        }
+        Step::ExpectShifted {
+            mark,
+            by,
+            tolerance,
+        } => {
+            let m = marks
+                .get(mark)
+                .ok_or_else(|| format!("no mark `{mark}`; add a Mark(\"{mark}\") step first"))?;
+            let p = &surface.points;
+            if (m.rows(), m.cols()) != (p.rows(), p.cols()) {
+                return Err(format!("the surface's shape differs from mark `{mark}`"));
+            }
+            let d = m
+                .data()
+                .iter()
+                .zip(p.data())
+                .map(|(a, b)| (*b - *a - by.vec()).length())
+                .fold(0.0, f64::max);
+            if d <= tolerance.0 {
+                Ok(format!("(off by at most {d:.2e})"))
+            } else {
+                Err(format!(
+                    "a point is {d:.3e} off the mark `{mark}` moved by ({}, {}, {}) (tolerance {})",
+                    by.0, by.1, by.2, tolerance.0
                 ))
             }
         }

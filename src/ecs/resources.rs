@@ -140,6 +140,9 @@ pub struct EditStats {
     pub details_reapplied: usize,
     /// Streamlines re-integrated.
     pub streamlines_reintegrated: usize,
+    /// Streamlines placed again on a changed initial curve or anchor, with
+    /// no tangent re-blended (an initial-curve edit moves each rigidly, Eq. 1).
+    pub streamlines_replaced: usize,
     /// Mesh rows rewritten.
     pub mesh_rows: usize,
     /// Microseconds in each stage.
@@ -302,6 +305,18 @@ impl Dirty {
         self.windows
             .get(level as usize)
             .is_some_and(Option::is_some)
+    }
+
+    /// Mirror symmetry (`docs/math.md §9`): the level-0 cells marked so far
+    /// are rows of the half, whose `m` rows are rows `m − 1 ..` of the
+    /// doubled net the levels are built from, and whose reflections are rows
+    /// `.. m − 1`: a window of half rows `lo ..= hi` becomes doubled rows
+    /// `m − 1 − hi ..= m − 1 + hi` (both copies and the rows between).
+    pub fn mirror_rows(&mut self, m: usize) {
+        if let Some(Some(w)) = self.windows.first_mut() {
+            let (lo, hi) = (m - 1 - w.rows.hi.min(m - 1), m - 1 + w.rows.hi);
+            w.rows = streamline_kernel::window::Span::new(lo, hi);
+        }
     }
 
     /// Takes what is pending, leaving nothing: `(full, replace, windows)`.

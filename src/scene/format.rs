@@ -1,11 +1,12 @@
-//! The scene file, version 1 (RON). Every field is checked while it is read,
+//! The scene file, version 2 (RON; version 1, the same without `mirror`,
+//! is read unchanged and saved as version 2). Every field is checked while it is read,
 //! so an error carries the line and column of the bad value: tangents must be
 //! finite and non-zero ([`Dir`]), each row of `s` finite and strictly
 //! increasing ([`SRow`]), ω in range; unknown fields are errors.
 //!
 //! ```ron
 //! (
-//!     version: 1,
+//!     version: 2,
 //!     name: "car1",
 //!     tangents: [[(1.0, 0.0, 0.3), …], …],   // one row per streamline
 //!     s: [[0.0, 0.55, …], …],               // arc length of each tangent
@@ -19,6 +20,7 @@
 //!     details: [],                           // (level, row, col, local: (x, y, z))
 //!     view: (yaw: 35.0, pitch: 25.0, distance: 8.0, target: (2.2, 0.0, 0.5)),
 //!     tuning: None,                          // or Some((degree_s: 2, degree_t: 2, values: [[…]], constraint: Free))
+//!     mirror: false,                         // version 2: mirror symmetry about row 0 (docs/math.md §9)
 //! )
 //! ```
 
@@ -27,14 +29,17 @@ use serde::{Deserialize, Deserializer, Serialize};
 use streamline_kernel::DVec3;
 use streamline_kernel::curve::OMEGA_MAX;
 
-/// The only version this build reads and writes.
-pub const VERSION: u32 = 1;
+/// The version this build writes (and the newest it reads).
+pub const VERSION: u32 = 2;
+
+/// The oldest version this build reads.
+pub const OLDEST_VERSION: u32 = 1;
 
 /// A scene file as written on disk.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
-    /// Must be 1.
+    /// 1 or 2.
     pub version: Version,
     /// A display name.
     #[serde(default)]
@@ -74,6 +79,11 @@ pub struct SceneFile {
     /// tangents at the limit (progressive interpolation on the sphere).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub interpolate_tangents: bool,
+    /// Version 2: the design is the half of a surface symmetric about the
+    /// plane through the initial curve's start, perpendicular to its first
+    /// tangent (`docs/math.md §9`); row 0 is the seam.
+    #[serde(default)]
+    pub mirror: bool,
 }
 
 /// Fine tuning: a tensor B-spline scalar function `α(u, v)` scaling the
@@ -112,7 +122,7 @@ fn default_display_depth() -> u32 {
     3
 }
 
-/// The file version; anything but 1 is refused while reading.
+/// The file version; anything but 1 or 2 is refused while reading.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(transparent)]
 pub struct Version(pub u32);
@@ -120,9 +130,9 @@ pub struct Version(pub u32);
 impl<'de> Deserialize<'de> for Version {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         let v = u32::deserialize(d)?;
-        if v != VERSION {
+        if !(OLDEST_VERSION..=VERSION).contains(&v) {
             return Err(D::Error::custom(format!(
-                "scene version {v} is not supported; this build reads version {VERSION} (write `version: 1`, or open the file with the build that wrote it)"
+                "scene version {v} is not supported; this build reads versions {OLDEST_VERSION} and {VERSION} (write `version: {VERSION}`, or open the file with the build that wrote it)"
             )));
         }
         Ok(Version(v))
@@ -218,6 +228,42 @@ pub struct InitialSpec {
     pub length: Finite,
     /// Start point.
     pub origin: Point,
+}
+
+/// A template for a new design (`docs/math.md §9`).
+///
+/// ```ron
+/// template: Flat(width: 2.0)
+/// template: Cylinder(radius: 1.0, degrees: 120.0)
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum TemplateSpec {
+    /// The rectangle `[0, length] × [0, width]` in `z = 0`.
+    Flat {
+        /// Extent across the streamlines.
+        width: Finite,
+    },
+    /// Part of the cylinder `y² + (z − radius)² = radius²` over `degrees` (0 < φ < 360).
+    Cylinder {
+        /// The radius.
+        radius: Finite,
+        /// The arc's angle, degrees.
+        degrees: Finite,
+    },
+}
+
+impl TemplateSpec {
+    /// The kernel's template.
+    pub fn to_kernel(self) -> streamline_kernel::authoring::Template {
+        use streamline_kernel::authoring::Template;
+        match self {
+            TemplateSpec::Flat { width } => Template::Flat { width: width.0 },
+            TemplateSpec::Cylinder { radius, degrees } => Template::Cylinder {
+                radius: radius.0,
+                degrees: degrees.0,
+            },
+        }
+    }
 }
 
 /// A finite point `(x, y, z)`.

@@ -11,6 +11,10 @@ use streamline_kernel::initial_curve::InitialCurve;
 use streamline_kernel::multires::Details;
 use streamline_kernel::{BlendOrder, DVec3, Design, Grid, KernelError, SurfaceScheme};
 
+/// The most tangents the finest shown level of a new design gets
+/// ([`Scene::new_design`] picks the display depth by it).
+pub const NEW_DESIGN_TANGENTS: usize = 20_000;
+
 /// A validated scene.
 #[derive(Debug, Clone)]
 pub struct Scene {
@@ -33,6 +37,10 @@ pub struct Scene {
     /// Make the approximating schemes pass through the interior control
     /// tangents at the limit (progressive interpolation on the sphere, docs/math.md §7).
     pub interpolate_tangents: bool,
+    /// Mirror symmetry (`docs/math.md §9`): the design is the half `t ≥ t₀`
+    /// of a surface symmetric about [`Design::mirror_plane`]; both halves are
+    /// shown, analysed and exported ([`Scene::mirrored_design`]).
+    pub mirror: bool,
 }
 
 impl SchemeSpec {
@@ -177,7 +185,54 @@ impl Scene {
             view: ViewSpec::default(),
             tuning: None,
             interpolate_tangents: false,
+            mirror: false,
         }
+    }
+
+    /// A new, unsaved design from a template (`docs/math.md §9`) with a
+    /// display depth that keeps the finest level under
+    /// [`NEW_DESIGN_TANGENTS`] tangents (at most 4), edit depth 0, and the
+    /// camera framing it.
+    pub fn new_design(
+        rows: usize,
+        cols: usize,
+        length: f64,
+        template: streamline_kernel::authoring::Template,
+        scheme: SurfaceScheme,
+    ) -> Result<Self, KernelError> {
+        let design =
+            Design::from_template(rows, cols, length, template, scheme, BlendOrder::SFirst)?;
+        let mut depth = 0;
+        while depth < 4
+            && scheme
+                .check_depth(rows, cols, depth + 1)
+                .is_ok_and(|(r, c)| r * c <= NEW_DESIGN_TANGENTS)
+        {
+            depth += 1;
+        }
+        let mut scene = Scene::from_design("untitled", design, depth);
+        scene.view = scene.framing_view()?;
+        Ok(scene)
+    }
+
+    /// A view of the default angles that frames the surface at the display depth.
+    pub fn framing_view(&self) -> Result<ViewSpec, KernelError> {
+        let built = self.design.build(self.display_depth)?;
+        let [lo, hi] = streamline_kernel::mesh::bounds(built.mesh.positions.iter().copied());
+        let centre = (lo + hi) * 0.5;
+        let diag = (hi - lo).length().max(1e-3);
+        Ok(ViewSpec {
+            distance: Finite(1.7 * diag),
+            target: Point::from_vec(centre),
+            ..ViewSpec::default()
+        })
+    }
+
+    /// The doubled design of a mirrored scene (`docs/math.md §9`), or `None`
+    /// when the mirror is off; an error when a seam tangent lies along the
+    /// plane's normal. Built from [`Scene::effective_design`].
+    pub fn mirrored_design(&self) -> Option<Result<Design, KernelError>> {
+        self.mirror.then(|| self.effective_design().mirrored())
     }
 
     /// Whether the control tangents are interpolated (the option is on and
@@ -204,6 +259,13 @@ impl Scene {
         d
     }
 
+    /// The design the levels are built from: [`Scene::effective_design`],
+    /// doubled when mirrored (`docs/math.md §9`).
+    pub fn shown_design(&self) -> Result<Design, KernelError> {
+        let d = self.effective_design();
+        if self.mirror { d.mirrored() } else { Ok(d) }
+    }
+
     /// The deepest level the scene needs.
     pub fn max_depth(&self) -> u32 {
         self.display_depth.max(self.edit_depth)
@@ -224,6 +286,14 @@ impl Scene {
             return Err(at(key, e.to_string()));
         }
         check_params(d, depth).map_err(|e| at("s", e.to_string()))?;
+        if let Some(m) = self.mirrored_design() {
+            let m = m.map_err(|e| at("mirror", e.to_string()))?;
+            m.scheme
+                .check_depth(m.net.rows(), m.net.cols(), depth)
+                .map_err(|e| at("mirror", format!("the mirrored surface: {e}")))?;
+            check_params(&m, depth)
+                .map_err(|e| at("mirror", format!("the mirrored surface: {e}")))?;
+        }
         let mut shape = (d.net.rows(), d.net.cols());
         let c = d.scheme.curve();
         let mut shapes = vec![shape];
@@ -355,6 +425,12 @@ impl Scene {
             None => None,
             Some(t) => Some(t.to_kernel().map_err(|e| at("tuning", e))?),
         };
+        if f.version.0 < 2 && f.mirror {
+            return Err(at(
+                "mirror",
+                "mirror symmetry is a version 2 field; write `version: 2`".into(),
+            ));
+        }
         let scene = Scene {
             name: f.name,
             design,
@@ -365,6 +441,7 @@ impl Scene {
             view: f.view,
             tuning,
             interpolate_tangents: f.interpolate_tangents,
+            mirror: f.mirror,
         };
         scene.validate(file, text)?;
         Ok(scene)
@@ -402,6 +479,7 @@ impl Scene {
             view: self.view,
             tuning: self.tuning.as_ref().map(TuningSpec::from_kernel),
             interpolate_tangents: self.interpolate_tangents,
+            mirror: self.mirror,
         }
     }
 
@@ -412,7 +490,7 @@ impl Scene {
                 file,
                 1,
                 1,
-                "the file is empty; a scene is a RON record `( version: 1, tangents: …, … )` — start from scenes/car1.ron",
+                "the file is empty; a scene is a RON record `( version: 2, tangents: …, … )` — start from scenes/car1.ron",
             ));
         }
         let f: SceneFile = ron::Options::default()

@@ -12,7 +12,9 @@
 //! ```
 
 use super::error::SceneError;
-use super::format::{ConstraintSpec, Dir, Finite, OrderSpec, Point, SchemeSpec, TuningSpec};
+use super::format::{
+    ConstraintSpec, Dir, Finite, OrderSpec, Point, SchemeSpec, TemplateSpec, TuningSpec,
+};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -74,6 +76,50 @@ pub enum Step {
     SetTuningConstraint(ConstraintSpec),
     /// Makes Catmull–Clark and Doo–Sabin pass through the interior control tangents, or not.
     SetInterpolateTangents(bool),
+    /// Replaces the scene with a new, unsaved design from a template
+    /// (`docs/math.md §9`); the scheme defaults to Kobbelt.
+    NewDesign {
+        rows: usize,
+        cols: usize,
+        length: Finite,
+        template: TemplateSpec,
+        #[serde(default)]
+        scheme: Option<SchemeSpec>,
+    },
+    /// Inserts a control row (a streamline) so that it gets index `at` (0 ..= rows).
+    InsertRow { at: usize },
+    /// Inserts a control column so that it gets index `at` (0 ..= columns).
+    InsertColumn { at: usize },
+    /// Deletes control row `i` (the net keeps at least 2).
+    DeleteRow(usize),
+    /// Deletes control column `j` (the net keeps at least 2).
+    DeleteColumn(usize),
+    /// Points the initial curve's control tangent `index` in `dir`.
+    SetInitialDirection { index: usize, dir: Dir },
+    /// Rotates the initial curve's control tangent `index` about `axis` by `degrees`.
+    RotateInitial {
+        index: usize,
+        axis: Dir,
+        degrees: Finite,
+    },
+    /// The initial curve's arc length.
+    SetInitialLength(Finite),
+    /// The initial curve's start point.
+    SetInitialOrigin(Point),
+    /// The initial curve's QI order.
+    SetInitialOrder(usize),
+    /// The anchor column (where every streamline meets the initial curve).
+    SetAnchor(usize),
+    /// Makes control row `row`'s streamline exactly `length` long (Eq. 65).
+    SetStreamlineLength { row: usize, length: Finite },
+    /// Turns several handles `(row, col)` of the edit depth by one rotation.
+    RotateMany {
+        handles: Vec<(usize, usize)>,
+        axis: Dir,
+        degrees: Finite,
+    },
+    /// Mirror symmetry on or off (`docs/math.md §9`).
+    SetMirror(bool),
     /// Undoes the last edit.
     Undo,
     /// Redoes the last undone edit.
@@ -118,7 +164,31 @@ pub enum Step {
         tuning: Option<bool>,
         #[serde(default)]
         interpolate_tangents: Option<bool>,
+        /// Control rows of the net.
+        #[serde(default)]
+        rows: Option<usize>,
+        /// Control columns of the net.
+        #[serde(default)]
+        cols: Option<usize>,
+        /// Mirror symmetry on.
+        #[serde(default)]
+        mirror: Option<bool>,
+        /// The anchor column.
+        #[serde(default)]
+        anchor: Option<usize>,
+        /// The initial curve's QI order.
+        #[serde(default)]
+        initial_order: Option<usize>,
     },
+    /// Control row `row`'s streamline is `length` long, within `tolerance`.
+    ExpectStreamlineLength {
+        row: usize,
+        length: Finite,
+        tolerance: Finite,
+    },
+    /// The surface shown (both halves when mirrored) equals its reflection in
+    /// the mirror plane within `tolerance`, and the mirror is on.
+    ExpectMirrorSymmetric { tolerance: Finite },
     /// The previous step failed with a message containing this text.
     ExpectError(String),
     /// Remembers every streamline point under a name.
@@ -129,6 +199,12 @@ pub enum Step {
     ExpectChanged { mark: String, tolerance: Finite },
     /// The first and last points of every streamline are within `tolerance` of those under `mark`.
     ExpectEndsSame { mark: String, tolerance: Finite },
+    /// Every streamline point is the one under `mark` moved by `by`, within `tolerance`.
+    ExpectShifted {
+        mark: String,
+        by: Point,
+        tolerance: Finite,
+    },
 }
 
 impl Step {
@@ -144,6 +220,9 @@ impl Step {
                 | Step::ExpectSame { .. }
                 | Step::ExpectChanged { .. }
                 | Step::ExpectEndsSame { .. }
+                | Step::ExpectStreamlineLength { .. }
+                | Step::ExpectShifted { .. }
+                | Step::ExpectMirrorSymmetric { .. }
         )
     }
 }

@@ -71,6 +71,23 @@ pub enum KernelError {
     BadFunction { what: &'static str, problem: String },
     /// A coordinate or parameter is beyond [`crate::limits::MAX_COORDINATE`].
     TooLargeValue { what: &'static str, value: f64 },
+    /// An authored net would be larger than [`crate::authoring::MAX_NET_SIDE`] a side.
+    NetTooLarge {
+        rows: usize,
+        cols: usize,
+        max: usize,
+    },
+    /// A delete would leave fewer than 2 rows or columns.
+    NetTooSmall { what: &'static str, count: usize },
+    /// An angle outside its open range `(lo, hi)` degrees.
+    AngleOutOfRange {
+        what: &'static str,
+        degrees: f64,
+        lo: f64,
+        hi: f64,
+    },
+    /// A seam (row 0) tangent along the mirror plane's normal has no projection into the plane.
+    SeamTangentAlongNormal { col: usize },
 }
 
 impl fmt::Display for KernelError {
@@ -164,6 +181,27 @@ impl fmt::Display for KernelError {
                 f,
                 "{what} is {value:e}, beyond ±{:e}, the largest coordinate the kernel works with; scale the model down",
                 crate::limits::MAX_COORDINATE
+            ),
+            NetTooLarge { rows, cols, max } => write!(
+                f,
+                "a {rows} x {cols} control net is past the {max} x {max} an authored net may have; use at most {max} rows and {max} columns"
+            ),
+            NetTooSmall { what, count } => write!(
+                f,
+                "the net has {count} {what}s and must keep at least 2; insert one before deleting this {what}"
+            ),
+            AngleOutOfRange {
+                what,
+                degrees,
+                lo,
+                hi,
+            } => write!(
+                f,
+                "{what} is {degrees} degrees; it must lie strictly between {lo} and {hi} degrees"
+            ),
+            SeamTangentAlongNormal { col } => write!(
+                f,
+                "the seam tangent at row 0, column {col} points along the mirror plane's normal, so it has no direction in the plane; turn it away from the initial curve's first tangent before mirroring"
             ),
         }
     }

@@ -12,6 +12,7 @@
 //! curve and against a much finer rule ([`InitialCurve::quadrature_error_estimate`]).
 //! Outside `[0, L]` the curve continues along its end tangents.
 
+use crate::authoring::MirrorPlane;
 use crate::error::{KernelError, Place};
 use crate::qi::QiCurve;
 use glam::DVec3;
@@ -42,6 +43,9 @@ pub struct InitialCurve {
     /// Panel ends in `u` and the integral `∫₀ᵘ t` there.
     nodes_u: Vec<f64>,
     nodes_int: Vec<DVec3>,
+    /// Mirror symmetry (`docs/math.md §9`): below `t₀` the curve is the
+    /// reflection `R(C(2t₀ − t))` of its part above.
+    mirror: Option<(f64, MirrorPlane)>,
 }
 
 impl InitialCurve {
@@ -108,6 +112,7 @@ impl InitialCurve {
             origin,
             nodes_u,
             nodes_int,
+            mirror: None,
         }
     }
 
@@ -136,8 +141,30 @@ impl InitialCurve {
         self.nodes_int[i] + gauss(&self.qi, self.nodes_u[i], u)
     }
 
-    /// The point at arc length `t` (extended along the end tangents outside `[0, L]`).
+    /// The same curve, reflected in `plane` below `t0`: `R(C(2t₀ − t))` for
+    /// `t < t₀` (the initial curve of a mirrored design, `docs/math.md §9`).
+    pub fn mirrored_about(&self, t0: f64, plane: MirrorPlane) -> Self {
+        InitialCurve {
+            mirror: Some((t0, plane)),
+            ..self.clone()
+        }
+    }
+
+    /// The reflection below `t₀`, when this is a mirrored design's curve.
+    pub fn mirror(&self) -> Option<(f64, MirrorPlane)> {
+        self.mirror
+    }
+
+    /// The point at arc length `t` (extended along the end tangents outside
+    /// `[0, L]`; reflected below `t₀` when mirrored).
     pub fn point(&self, t: f64) -> DVec3 {
+        match self.mirror {
+            Some((t0, plane)) if t < t0 => plane.reflect_point(self.own_point(2.0 * t0 - t)),
+            _ => self.own_point(t),
+        }
+    }
+
+    fn own_point(&self, t: f64) -> DVec3 {
         let u = t / self.length;
         if u < 0.0 {
             return self.origin + self.qi.tangent(0.0) * t;
@@ -150,9 +177,15 @@ impl InitialCurve {
         self.origin + self.integral(u) * self.length
     }
 
-    /// The unit tangent at arc length `t`.
+    /// The unit tangent at arc length `t` (of the reflected part below `t₀`
+    /// when mirrored: `−R(t(2t₀ − t))`).
     pub fn tangent(&self, t: f64) -> DVec3 {
-        self.qi.tangent(t / self.length)
+        match self.mirror {
+            Some((t0, plane)) if t < t0 => {
+                -plane.reflect_dir(self.qi.tangent((2.0 * t0 - t) / self.length))
+            }
+            _ => self.qi.tangent(t / self.length),
+        }
     }
 
     /// `m ≥ 2` points at evenly spaced arc lengths, for drawing.

@@ -14,7 +14,9 @@
 //! degenerate geometry is a documented branch, never a NaN; invalid input is a
 //! [`KernelError`] that names the place and the fix. This crate never imports Bevy.
 
+pub mod aesthetic;
 pub mod analysis;
+pub mod authoring;
 pub mod bspline;
 pub mod builder;
 pub mod curve;

@@ -1,5 +1,5 @@
 //! The benchmark workloads, shared by `streamline-studio bench` and `cargo bench`
-//! so both measure exactly the same thing.
+//! (`benches/table1.rs`) so both measure exactly the same thing.
 
 use streamline_kernel::curve::{CurveScheme, subdivide_into};
 use streamline_kernel::qi::QiCurve;
@@ -129,7 +129,97 @@ pub fn all() -> Vec<Workload> {
     rows.extend(incremental());
     rows.extend(fine_tuning());
     rows.extend(loop_rows());
+    rows.extend(authoring());
     rows
+}
+
+/// Authoring on the car at depth 5 (issue 20, `docs/math.md §9`), each
+/// from message to updated mesh: a row inserted and deleted in turn
+/// (`ecs/car/d5/insert-row`, a full rebuild each), an initial-curve tangent
+/// turned back and forth (`ecs/car/d5/initial-curve`: every streamline
+/// placed again, no tangent re-blended; compare `ecs/car/d5/edit-interior`),
+/// and the mirrored car (11 doubled rows): its full build beside the plain
+/// one's (`surface/kobbelt/9x6-mirrored/d5/full`) and a tangent edit
+/// (`ecs/car-mirrored/d5/edit-interior`: both copies of the cell re-blended).
+pub fn authoring() -> Vec<Workload> {
+    use crate::ecs::{self, Edit, SurfaceData, authoring::AuthorEdit};
+    use crate::scene::Scene;
+    use streamline_kernel::authoring::Axis;
+    let depth = 5;
+    let app_of = |mirror: bool| {
+        let mut scene = Scene::from_design("car", presets::car1(), depth);
+        scene.mirror = mirror;
+        ecs::headless_app(scene)
+    };
+    let point = |app: &bevy::prelude::App| app.world().resource::<SurfaceData>().points.data()[0].x;
+    let mut out = Vec::new();
+    let mut app = app_of(false);
+    let mut inserted = false;
+    out.push(Workload {
+        name: format!("ecs/car/d{depth}/insert-row"),
+        run: Box::new(move || {
+            let axis = Axis::Row;
+            inserted = !inserted;
+            let edit = if inserted {
+                AuthorEdit::Insert { axis, at: 3 }
+            } else {
+                AuthorEdit::Delete { axis, at: 3 }
+            };
+            ecs::send(&mut app, Edit::Author(edit));
+            app.update();
+            point(&app)
+        }),
+    });
+    let mut app = app_of(false);
+    let mut sign = 1.0;
+    out.push(Workload {
+        name: format!("ecs/car/d{depth}/initial-curve"),
+        run: Box::new(move || {
+            sign = -sign;
+            let edit = AuthorEdit::RotateInitial {
+                index: 1,
+                axis: DVec3::X,
+                radians: 0.01 * sign,
+            };
+            ecs::send(&mut app, Edit::Author(edit));
+            app.update();
+            point(&app)
+        }),
+    });
+    let mirrored = presets::car1().mirrored().expect("the car mirrors");
+    out.push(surface_row_named(
+        mirrored,
+        format!("surface/kobbelt/9x6-mirrored/d{depth}/full"),
+        depth,
+    ));
+    let mut app = app_of(true);
+    let mut sign = 1.0;
+    out.push(Workload {
+        name: format!("ecs/car-mirrored/d{depth}/edit-interior"),
+        run: Box::new(move || {
+            sign = -sign;
+            let edit = Edit::Rotate {
+                row: 2,
+                col: 4,
+                axis: DVec3::Y,
+                radians: 0.01 * sign,
+            };
+            ecs::send(&mut app, edit);
+            app.update();
+            point(&app)
+        }),
+    });
+    out
+}
+
+fn surface_row_named(design: Design, name: String, depth: u32) -> Workload {
+    Workload {
+        name,
+        run: Box::new(move || {
+            let b = design.build(depth).expect("valid");
+            b.mesh.positions[b.mesh.positions.len() / 2].x
+        }),
+    }
 }
 
 /// The test meshes, where the checkout keeps them (rows that need one are

@@ -1,0 +1,327 @@
+//! Authoring edits (`docs/math.md §9`): a new design, structure edits, the
+//! initial curve, the anchor and streamline lengths as handles, mirror
+//! symmetry. Each is computed on the scene by a kernel function on `Design`;
+//! this file only decides what the pipeline must redo ([`Effect`]):
+//! * a new net shape (insert, delete, mirror on or off): everything, and the
+//!   multiresolution details are dropped in the same undo step (a changed net
+//!   cannot keep their meaning), which the message says;
+//! * an initial-curve or anchor edit: every streamline is placed again, moved
+//!   rigidly (Eq. 1), and no tangent is re-blended (`Dirty::replace_streamlines`,
+//!   `σ` of every level from [`sigma_of_levels`]);
+//! * a streamline length: that row's `s`, through its handles.
+
+use super::components::{LevelData, SubdivisionLevel};
+use crate::scene::Scene;
+use crate::scene::format::InitialSpec;
+use bevy::prelude::*;
+use streamline_kernel::authoring::{Axis, Template};
+use streamline_kernel::incremental::check_params;
+use streamline_kernel::{DQuat, DVec3, Design, SurfaceScheme, Tangent};
+
+/// One authoring edit (the [`super::Edit::Author`] payload).
+#[derive(Debug, Clone, PartialEq)]
+pub enum AuthorEdit {
+    /// A new, unsaved design from a template.
+    NewDesign {
+        /// Control rows (2–64).
+        rows: usize,
+        /// Control columns (2–64).
+        cols: usize,
+        /// Streamline length.
+        length: f64,
+        /// Flat or Cylinder.
+        template: Template,
+        /// The scheme.
+        scheme: SurfaceScheme,
+    },
+    /// A new row or column that gets index `at`.
+    Insert { axis: Axis, at: usize },
+    /// Deletes row or column `at`.
+    Delete { axis: Axis, at: usize },
+    /// Points the initial curve's control tangent `index` in `dir`.
+    SetInitialDirection { index: usize, dir: DVec3 },
+    /// Rotates the initial curve's control tangent `index`.
+    RotateInitial {
+        index: usize,
+        axis: DVec3,
+        radians: f64,
+    },
+    /// The initial curve's length.
+    SetInitialLength(f64),
+    /// The initial curve's start point.
+    SetInitialOrigin(DVec3),
+    /// The initial curve's QI order.
+    SetInitialOrder(usize),
+    /// The anchor column.
+    SetAnchor(usize),
+    /// Control row `row`'s streamline length.
+    SetStreamlineLength { row: usize, length: f64 },
+    /// Mirror symmetry on or off.
+    SetMirror(bool),
+}
+
+impl AuthorEdit {
+    /// A short description.
+    pub fn label(&self) -> String {
+        match self {
+            AuthorEdit::NewDesign {
+                rows,
+                cols,
+                template,
+                ..
+            } => format!("new {rows} × {cols} design ({template:?})"),
+            AuthorEdit::Insert { axis, at } => format!("insert {} {at}", axis.name()),
+            AuthorEdit::Delete { axis, at } => format!("delete {} {at}", axis.name()),
+            AuthorEdit::SetInitialDirection { index, .. } => {
+                format!("initial tangent {index} direction")
+            }
+            AuthorEdit::RotateInitial { index, radians, .. } => {
+                format!(
+                    "rotate initial tangent {index} by {:.3}°",
+                    radians.to_degrees()
+                )
+            }
+            AuthorEdit::SetInitialLength(l) => format!("initial curve length {l}"),
+            AuthorEdit::SetInitialOrigin(o) => {
+                format!("initial curve origin ({}, {}, {})", o.x, o.y, o.z)
+            }
+            AuthorEdit::SetInitialOrder(k) => format!("initial curve order {k}"),
+            AuthorEdit::SetAnchor(c) => format!("anchor column {c}"),
+            AuthorEdit::SetStreamlineLength { row, length } => {
+                format!("streamline {row} length {length}")
+            }
+            AuthorEdit::SetMirror(on) => format!("mirror {}", if *on { "on" } else { "off" }),
+        }
+    }
+
+    /// Whether it gets an undo step (a new design replaces the scene and its history).
+    pub fn is_undoable(&self) -> bool {
+        !matches!(self, AuthorEdit::NewDesign { .. })
+    }
+}
+
+/// What the pipeline must redo after an authoring edit.
+#[derive(Debug)]
+pub(crate) enum Effect {
+    /// A new scene replaces the old one (history cleared).
+    NewScene(Box<Scene>),
+    /// The levels change shape or every tangent may change: rebuild in full.
+    Full,
+    /// Only the streamlines' placement changed: re-place them, re-blend nothing.
+    Place,
+    /// The `s` of this control row changed (new values in the scene).
+    Row(usize),
+}
+
+/// A kernel error as an edit's message.
+fn k(e: streamline_kernel::KernelError) -> String {
+    e.to_string()
+}
+
+/// Checks a scene after an authoring edit: its design (and with the mirror
+/// on, the doubled one) can be built to the scene's depth.
+pub(crate) fn check_scene(scene: &Scene) -> Result<(), String> {
+    let depth = scene.max_depth();
+    let check = |d: &Design| -> Result<(), String> {
+        d.scheme
+            .check_depth(d.net.rows(), d.net.cols(), depth)
+            .map_err(k)?;
+        check_params(d, depth).map_err(k)
+    };
+    check(&scene.design)?;
+    if let Some(m) = scene.mirrored_design() {
+        check(&m.map_err(k)?).map_err(|e| format!("the mirrored surface: {e}"))?;
+    }
+    Ok(())
+}
+
+/// Drops the details (a structure edit), saying how many.
+fn drop_details(scene: &mut Scene) -> String {
+    let n = scene.details.len();
+    scene.details.clear();
+    if n == 0 {
+        String::new()
+    } else {
+        format!(
+            " ({n} multiresolution detail{} dropped: a changed net cannot keep their meaning; undo brings them back)",
+            if n == 1 { "" } else { "s" }
+        )
+    }
+}
+
+/// Applies `e` to a copy of `scene`; on success the copy replaces it and
+/// the effect says what to redo. On failure the scene is unchanged.
+pub(crate) fn apply(scene: &mut Scene, e: &AuthorEdit) -> Result<(String, Effect), String> {
+    let mut s = scene.clone();
+    let d = &scene.design;
+    let label = e.label();
+    let (msg, effect) = match e {
+        AuthorEdit::NewDesign {
+            rows,
+            cols,
+            length,
+            template,
+            scheme,
+        } => {
+            let new = Scene::new_design(*rows, *cols, *length, *template, *scheme).map_err(k)?;
+            let msg = format!(
+                "new {rows} × {cols} design, display depth {}",
+                new.display_depth
+            );
+            return Ok((msg, Effect::NewScene(Box::new(new))));
+        }
+        AuthorEdit::Insert { axis, at } | AuthorEdit::Delete { axis, at } => {
+            if s.mirror && s.edit_depth > 0 {
+                return Err(mirror_depth_msg());
+            }
+            s.design = match e {
+                AuthorEdit::Insert { .. } => d.inserted(*axis, *at),
+                _ => d.deleted(*axis, *at),
+            }
+            .map_err(|x| format!("{label} refused: {x}"))?;
+            if s.mirror {
+                s.design = s.design.with_seam_in_plane().map_err(k)?;
+            }
+            let dropped = drop_details(&mut s);
+            (
+                format!(
+                    "{label}: the net is {} × {}{dropped}",
+                    s.design.net.rows(),
+                    s.design.net.cols()
+                ),
+                Effect::Full,
+            )
+        }
+        AuthorEdit::SetInitialDirection { .. }
+        | AuthorEdit::RotateInitial { .. }
+        | AuthorEdit::SetInitialLength(_)
+        | AuthorEdit::SetInitialOrigin(_)
+        | AuthorEdit::SetInitialOrder(_) => {
+            s.design = initial_edit(d, e)?;
+            s.initial = InitialSpec::from_kernel(&s.design.initial);
+            if s.mirror {
+                // the mirror plane follows the curve: the seam is projected again
+                s.design = s.design.with_seam_in_plane().map_err(k)?;
+                (
+                    format!("{label} (mirrored: seam re-projected)"),
+                    Effect::Full,
+                )
+            } else {
+                (label.clone(), Effect::Place)
+            }
+        }
+        AuthorEdit::SetAnchor(col) => {
+            s.design = d.with_anchor(*col).map_err(k)?;
+            let eff = if s.mirror {
+                Effect::Full
+            } else {
+                Effect::Place
+            };
+            (label.clone(), eff)
+        }
+        AuthorEdit::SetStreamlineLength { row, length } => {
+            s.design = d
+                .with_streamline_length(*row, *length)
+                .map_err(|x| format!("{label} refused: {x}"))?;
+            let eff = if s.mirror {
+                Effect::Full
+            } else {
+                Effect::Row(*row)
+            };
+            (label.clone(), eff)
+        }
+        AuthorEdit::SetMirror(on) => {
+            if *on && s.edit_depth > 0 {
+                return Err(mirror_depth_msg());
+            }
+            let mut dropped = String::new();
+            if *on {
+                s.design = d
+                    .with_seam_in_plane()
+                    .map_err(|x| format!("mirror refused: {x}"))?;
+                dropped = drop_details(&mut s);
+            }
+            s.mirror = *on;
+            (format!("{label}{dropped}"), Effect::Full)
+        }
+    };
+    check_scene(&s).map_err(|x| format!("{label} refused: {x}"))?;
+    *scene = s;
+    Ok((msg, effect))
+}
+
+/// The message for an edit at depth > 0 with the mirror on.
+pub(crate) fn mirror_depth_msg() -> String {
+    "with the mirror on, the handles are the control tangents: set the edit depth to 0 first".into()
+}
+
+fn unit(v: DVec3, what: &str) -> Result<DVec3, String> {
+    Tangent::new(v).map(Tangent::get).map_err(|_| {
+        format!(
+            "{what} ({}, {}, {}) is zero or not finite; give a non-zero direction",
+            v.x, v.y, v.z
+        )
+    })
+}
+
+fn initial_edit(d: &Design, e: &AuthorEdit) -> Result<Design, String> {
+    match *e {
+        AuthorEdit::SetInitialDirection { index, dir } => d
+            .with_initial_direction(index, unit(dir, "direction")?)
+            .map_err(k),
+        AuthorEdit::RotateInitial {
+            index,
+            axis,
+            radians,
+        } => {
+            let axis = unit(axis, "the rotation axis")?;
+            if !radians.is_finite() {
+                return Err("the rotation angle is not finite; give a number of degrees".into());
+            }
+            let ts = d.initial.qi().tangents();
+            let cur = *ts.get(index).ok_or_else(|| {
+                format!(
+                    "initial curve tangent {index} is out of range (there are {}); use 0 to {}",
+                    ts.len(),
+                    ts.len() - 1
+                )
+            })?;
+            d.with_initial_direction(index, DQuat::from_axis_angle(axis, radians) * cur)
+                .map_err(k)
+        }
+        AuthorEdit::SetInitialLength(l) => d.with_initial_length(l).map_err(k),
+        AuthorEdit::SetInitialOrigin(o) => d.with_initial_origin(o).map_err(k),
+        AuthorEdit::SetInitialOrder(o) => d.with_initial_order(o).map_err(k),
+        _ => unreachable!("initial_edit is called for initial-curve edits only"),
+    }
+}
+
+/// `σ` of every level after an initial-curve or anchor edit: level 0's
+/// (`s` of the anchor column) refined level by level with the scheme's scalar
+/// step, the very step [`streamline_kernel::params::ParamGrid::refine`] takes
+/// in a full build (so the same bits), written into the levels where it
+/// differs. Returns them by level. No tangent is touched.
+pub(crate) fn sigma_of_levels(
+    design: &Design,
+    levels: &mut Query<(Entity, &SubdivisionLevel, &mut LevelData)>,
+) -> Vec<Vec<f64>> {
+    let mut ls: Vec<_> = levels.iter_mut().map(|(_, l, d)| (l.0, d)).collect();
+    ls.sort_by_key(|(l, _)| *l);
+    let c = design.scheme.curve();
+    let mut out: Vec<Vec<f64>> = Vec::with_capacity(ls.len());
+    for (l, data) in &mut ls {
+        let sigma = match out.last() {
+            Some(prev) if *l > 0 => {
+                let mut next = Vec::new();
+                c.refine_scalars(prev, &mut next);
+                next
+            }
+            _ => design.params.sigma.clone(),
+        };
+        if data.0.params.sigma != sigma {
+            data.0.params.sigma.clone_from(&sigma);
+        }
+        out.push(sigma);
+    }
+    out
+}
