@@ -1,0 +1,333 @@
+//! The streamline surface as one B-spline surface (SPEC §10, `docs/math.md
+//! §10`; Piegl & Tiller, *The NURBS Book*, §9.4).
+//!
+//! 1. Start from the Bézier knots (`p + 1` × `q + 1` poles): a surface that
+//!    is bilinear in its parameters, such as a flat template, is already exact.
+//! 2. Fit: with the parameters shared along rows and columns, least squares
+//!    separates. Every row of points is fitted with the `u` basis (one
+//!    banded normal matrix, factored once), then every column of the rows'
+//!    poles with the `v` basis; both passes interpolate their end points, so
+//!    the four corners (and the boundary rows' poles) are exact.
+//! 3. Measure the distance at every check sample (the grid one depth finer)
+//!    and stop when the largest is within the tolerance.
+//! 4. Otherwise insert knots in the spans whose deviation is over the
+//!    tolerance, each at the average of the data parameters in that span (a
+//!    local form of the averaged knots of Eq. 9.69, so every span keeps
+//!    data on both sides of its new knot). A span is split in the direction
+//!    that carries the error: the row pass' residual says how much of it
+//!    `u` explains, the column pass' residual (in the poles, an upper bound
+//!    by convexity) how much `v` does; spans are split where their own
+//!    residual is at least half the tolerance, and if none is, a quarter,
+//!    then any over-tolerance span in both directions.
+
+use super::deviation::{Deviation, measure};
+use super::error::{Direction, FitError};
+use super::knots::{KnotVector, MAX_DEGREE, MIN_DEGREE};
+use super::lsq::EndFixedFit;
+use super::samples::Samples;
+use super::surface::BSplineSurface;
+use crate::design::Design;
+use crate::grid::Grid;
+use glam::DVec3;
+
+/// The default relative tolerance: this fraction of the bounding box's diagonal.
+pub const DEFAULT_RELATIVE_TOLERANCE: f64 = 1e-4;
+
+/// How close the fit must come.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Tolerance {
+    /// A fraction of the diagonal of the fitted points' bounding box.
+    Relative(f64),
+    /// A distance in scene units.
+    Absolute(f64),
+}
+
+/// Degrees and tolerance of a fit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FitOptions {
+    /// `(p, q)`: degree in `u` (along the streamlines) and `v`, each 2–5.
+    pub degree: (usize, usize),
+    /// The largest allowed deviation.
+    pub tolerance: Tolerance,
+}
+
+impl FitOptions {
+    /// Bicubic, within `1e-4` of the diagonal.
+    pub const DEFAULT: FitOptions = FitOptions {
+        degree: (3, 3),
+        tolerance: Tolerance::Relative(DEFAULT_RELATIVE_TOLERANCE),
+    };
+}
+
+impl Default for FitOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// What a fit reached.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FitReport {
+    /// `(p, q)`.
+    pub degree: (usize, usize),
+    /// Pole counts `(in u, in v)`.
+    pub poles: (usize, usize),
+    /// The absolute tolerance met.
+    pub tolerance: f64,
+    /// Largest and mean distance at the check samples.
+    pub deviation: Deviation,
+    /// `(rows, columns)` of the check grid.
+    pub checked: (usize, usize),
+    /// Fit-and-measure rounds.
+    pub rounds: usize,
+}
+
+/// A fitted surface and its report.
+#[derive(Debug, Clone)]
+pub struct Fit {
+    /// The B-spline surface.
+    pub surface: BSplineSurface,
+    /// Its figures.
+    pub report: FitReport,
+}
+
+/// Checks the options; returns the absolute tolerance for `data`.
+pub fn check_options(opts: &FitOptions, data: &Samples) -> Result<f64, FitError> {
+    let (p, q) = opts.degree;
+    for (direction, degree) in [(Direction::U, p), (Direction::V, q)] {
+        if !(MIN_DEGREE..=MAX_DEGREE).contains(&degree) {
+            return Err(FitError::BadDegree { direction, degree });
+        }
+    }
+    let (value, tol) = match opts.tolerance {
+        Tolerance::Relative(r) => (r, r * data.diagonal()),
+        Tolerance::Absolute(a) => (a, a),
+    };
+    if !(value.is_finite() && value > 0.0) {
+        return Err(FitError::BadTolerance { value });
+    }
+    if !(tol.is_finite() && tol > 0.0) {
+        // a relative tolerance on points that all coincide
+        return Err(FitError::BadTolerance { value: tol });
+    }
+    Ok(tol)
+}
+
+/// Fits the design built at `depth`, checked against `depth + 1`.
+pub fn fit_design(design: &Design, depth: u32, opts: &FitOptions) -> Result<Fit, FitError> {
+    let data = Samples::build(design, depth)?;
+    let check = Samples::build(design, depth + 1)?;
+    fit(&data, &check, opts)
+}
+
+/// The rows' and columns' fits for one pair of knot vectors.
+struct Pass {
+    surface: BSplineSurface,
+    /// Largest row-pass residual per `u` span.
+    res_u: Vec<f64>,
+    /// Largest column-pass residual per `v` span (in the poles).
+    res_v: Vec<f64>,
+}
+
+fn too_few(direction: Direction, data: &Samples, tolerance: f64, reached: f64) -> FitError {
+    let points = match direction {
+        Direction::U => data.u.len(),
+        Direction::V => data.v.len(),
+    };
+    FitError::TooFewPoints {
+        direction,
+        points,
+        tolerance,
+        reached,
+    }
+}
+
+fn pass(
+    ku: &KnotVector,
+    kv: &KnotVector,
+    data: &Samples,
+    tol: f64,
+    reached: f64,
+) -> Result<Pass, FitError> {
+    let (mv, mu) = (data.v.len(), data.u.len());
+    if ku.count() > mu {
+        return Err(too_few(Direction::U, data, tol, reached));
+    }
+    if kv.count() > mv {
+        return Err(too_few(Direction::V, data, tol, reached));
+    }
+    let rows =
+        EndFixedFit::new(ku, &data.u).map_err(|_| too_few(Direction::U, data, tol, reached))?;
+    let cols =
+        EndFixedFit::new(kv, &data.v).map_err(|_| too_few(Direction::V, data, tol, reached))?;
+    let nu = rows.count();
+    // row pass, with its residual per u span
+    let mut row_poles = vec![DVec3::ZERO; mv * nu];
+    let mut res_u = vec![0.0f64; ku.spans()];
+    for (j, out) in row_poles.chunks_mut(nu).enumerate() {
+        let q = data.points.row(j);
+        rows.fit_row(q, out);
+        for (k, pt) in q.iter().enumerate() {
+            let r = &mut res_u[rows.span_of(k)];
+            *r = r.max((rows.point(out, k) - *pt).length());
+        }
+    }
+    // column pass, with its residual per v span
+    let mut poles = Vec::new();
+    cols.fit_columns(&row_poles, nu, &mut poles);
+    let poles = Grid::new(kv.count(), nu, poles).expect("count × nu");
+    let surface = BSplineSurface {
+        knots_u: ku.clone(),
+        knots_v: kv.clone(),
+        poles,
+    };
+    let mut res_v = vec![0.0f64; kv.spans()];
+    let mut curve = Vec::with_capacity(nu);
+    for (l, &v) in data.v.iter().enumerate() {
+        surface.curve_at_into(v, &mut curve);
+        let worst = curve
+            .iter()
+            .zip(&row_poles[l * nu..(l + 1) * nu])
+            .map(|(a, b)| (*a - *b).length())
+            .fold(0.0f64, f64::max);
+        let r = &mut res_v[cols.span_of(l)];
+        *r = r.max(worst);
+    }
+    Ok(Pass {
+        surface,
+        res_u,
+        res_v,
+    })
+}
+
+/// The separable least-squares fit of `data` on given knot vectors alone
+/// (no refinement): rows with `knots_u`, then columns with `knots_v`, ends
+/// interpolated.
+pub fn fit_knots(
+    data: &Samples,
+    knots_u: &KnotVector,
+    knots_v: &KnotVector,
+) -> Result<BSplineSurface, FitError> {
+    Ok(pass(knots_u, knots_v, data, f64::NAN, f64::NAN)?.surface)
+}
+
+/// Knots that split span `j` of `knots` into `pieces` with about as many
+/// of the data parameters in each (Eq. 9.69 within the span: knot `i` is
+/// `(1 − α) ū_{k−1} + α ū_k` over the span's own parameters, `k = ⌊i d⌋`,
+/// `α = i d − k`, `d` = parameters per piece). Fewer pieces when the span
+/// holds fewer than two parameters a piece; none when it cannot be split.
+fn split_points(knots: &KnotVector, params: &[f64], j: usize, pieces: usize, out: &mut Vec<f64>) {
+    let (a, b) = knots.span_range(j);
+    let last = j + 1 == knots.spans();
+    let lo = params.partition_point(|x| *x < a);
+    let hi = if last {
+        params.len()
+    } else {
+        params.partition_point(|x| *x < b)
+    };
+    let inside = &params[lo..hi];
+    let pieces = pieces.min(inside.len() / 2);
+    if pieces < 2 {
+        return;
+    }
+    let d = inside.len() as f64 / pieces as f64;
+    let mut prev = a;
+    for i in 1..pieces {
+        let id = i as f64 * d;
+        let k = (id.floor() as usize).clamp(1, inside.len() - 1);
+        let alpha = id - k as f64;
+        let knot = (1.0 - alpha) * inside[k - 1] + alpha * inside[k];
+        if knot > prev && knot < b {
+            out.push(knot);
+            prev = knot;
+        }
+    }
+}
+
+/// How many pieces bring a span's error `e` of a degree-`p` fit under half
+/// the tolerance, the error of a spline shrinking as `h^{p+1}`.
+fn pieces_for(e: f64, tol: f64, p: usize) -> usize {
+    let ratio = (2.0 * e / tol).max(1.0);
+    (ratio.powf(1.0 / (p + 1) as f64).ceil() as usize).clamp(2, 8)
+}
+
+/// Fits `data` until the largest distance to `check` is within the tolerance.
+pub fn fit(data: &Samples, check: &Samples, opts: &FitOptions) -> Result<Fit, FitError> {
+    let tol = check_options(opts, data)?;
+    let (p, q) = opts.degree;
+    let mut ku = KnotVector::bezier(p);
+    let mut kv = KnotVector::bezier(q);
+    let mut reached = f64::INFINITY;
+    // rounds are measured at the fitted points (a quarter of the check
+    // samples) until those are within the tolerance, then at the check grid
+    let mut on_check = false;
+    for round in 1.. {
+        let pass = pass(&ku, &kv, data, tol, reached)?;
+        let mut m = measure(&pass.surface, if on_check { check } else { data }, None);
+        if !on_check && m.deviation.max <= tol {
+            on_check = true;
+            m = measure(&pass.surface, check, None);
+        }
+        if on_check {
+            reached = reached.min(m.deviation.max);
+        }
+        if m.deviation.max <= tol {
+            let report = FitReport {
+                degree: (p, q),
+                poles: pass.surface.pole_counts(),
+                tolerance: tol,
+                deviation: m.deviation,
+                checked: (check.v.len(), check.u.len()),
+                rounds: round,
+            };
+            return Ok(Fit {
+                surface: pass.surface,
+                report,
+            });
+        }
+        let over = |e: &[f64]| -> Vec<usize> { (0..e.len()).filter(|&j| e[j] > tol).collect() };
+        let (over_u, over_v) = (over(&m.span_u), over(&m.span_v));
+        let mut pick_u = Vec::new();
+        let mut pick_v = Vec::new();
+        for gamma in [0.5, 0.25, 0.0] {
+            pick_u = over_u
+                .iter()
+                .copied()
+                .filter(|&j| pass.res_u[j] >= gamma * tol)
+                .collect();
+            pick_v = over_v
+                .iter()
+                .copied()
+                .filter(|&j| pass.res_v[j] >= gamma * tol)
+                .collect();
+            if !(pick_u.is_empty() && pick_v.is_empty()) {
+                break;
+            }
+        }
+        let mut new_u = Vec::new();
+        for &j in &pick_u {
+            let pieces = pieces_for(pass.res_u[j].max(m.span_u[j] * 0.5), tol, p);
+            split_points(&ku, &data.u, j, pieces, &mut new_u);
+        }
+        let mut new_v = Vec::new();
+        for &j in &pick_v {
+            let pieces = pieces_for(pass.res_v[j].max(m.span_v[j] * 0.5), tol, q);
+            split_points(&kv, &data.v, j, pieces, &mut new_v);
+        }
+        if new_u.is_empty() && new_v.is_empty() {
+            let dir = if pick_u.is_empty() {
+                Direction::V
+            } else {
+                Direction::U
+            };
+            return Err(too_few(dir, data, tol, reached));
+        }
+        for k in new_u {
+            ku.insert(k);
+        }
+        for k in new_v {
+            kv.insert(k);
+        }
+    }
+    unreachable!("the loop returns")
+}
