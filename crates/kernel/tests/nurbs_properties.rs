@@ -36,6 +36,7 @@ fn cox(k: &[f64], i: usize, p: usize, u: f64) -> f64 {
 }
 
 /// The surface evaluated from the definition, over every pole.
+#[allow(clippy::needless_range_loop)]
 fn eval_ref(s: &BSplineSurface, u: f64, v: f64) -> DVec3 {
     let (p, q) = s.degree();
     let (nu, nv) = s.pole_counts();
