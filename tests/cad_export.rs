@@ -232,3 +232,40 @@ fn refused_exports_write_nothing_and_keep_the_old_file() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The points the fit sees are the surface the editor shows: multiresolution
+/// details and fine tuning included (the ECS pipeline's points, to rounding).
+#[test]
+fn the_fitted_points_are_the_edited_surface() {
+    use streamline_studio::ecs::{self, Edit, SurfaceData};
+    for name in ["car1", "car1-tuned"] {
+        let mut app = ecs::headless_app(builtin::scene(name).unwrap());
+        for edit in [
+            Edit::SetEditDepth(1),
+            Edit::Rotate {
+                row: 5,
+                col: 8,
+                axis: streamline_kernel::DVec3::Z,
+                radians: 0.4,
+            },
+            Edit::SetDisplayDepth(3),
+        ] {
+            ecs::apply(&mut app, edit).unwrap();
+        }
+        let scene = app.world().resource::<ecs::Model>().scene.clone();
+        assert_eq!(scene.details.len(), 1, "{name}: one detail");
+        let ecs_points = app.world().resource::<SurfaceData>().points.clone();
+        let ours = cad::samples(&scene, 3).unwrap().points;
+        assert_eq!(
+            (ours.rows(), ours.cols()),
+            (ecs_points.rows(), ecs_points.cols())
+        );
+        let worst = ours
+            .data()
+            .iter()
+            .zip(ecs_points.data())
+            .map(|(a, b)| (*a - *b).length())
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-12, "{name}: {worst:e}");
+    }
+}

@@ -65,7 +65,8 @@ pub enum Edit {
     },
     /// Save to a file (atomic, verified).
     Save(PathBuf),
-    /// Export the surface mesh (`.obj` or `.stl`).
+    /// Export the surface: the mesh (`.obj`, `.stl`, `.glb`) or its fitted
+    /// B-spline surface (`.step`/`.stp`, `.igs`/`.iges`), by the extension.
     Export(PathBuf),
 }
 

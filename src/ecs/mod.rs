@@ -7,6 +7,7 @@
 mod blend;
 pub mod components;
 mod edit;
+pub mod exchange;
 mod integrate;
 mod mesh;
 pub mod messages;
@@ -65,6 +66,8 @@ impl Plugin for ModelPlugin {
             .init_resource::<EditLog>()
             .init_resource::<SurfaceData>()
             .init_resource::<resources::Seeds>()
+            .init_resource::<exchange::ExportSettings>()
+            .init_resource::<exchange::LastExport>()
             .configure_sets(
                 Update,
                 (

@@ -68,6 +68,29 @@ impl Banded {
         Ok(())
     }
 
+    /// Solves `L Lᵀ x = r` in place for one vector of points.
+    pub fn solve_vec(&self, r: &mut [glam::DVec3]) {
+        let b = self.width - 1;
+        let n = self.n;
+        debug_assert_eq!(r.len(), n);
+        for i in 0..n {
+            let row = &self.band[i * self.width..(i + 1) * self.width];
+            let mut x = r[i];
+            for k in i.saturating_sub(b)..i {
+                x -= r[k] * row[i - k];
+            }
+            r[i] = x / row[0];
+        }
+        for i in (0..n).rev() {
+            let mut x = r[i];
+            let hi = (i + b + 1).min(n);
+            for (k, rk) in r.iter().enumerate().take(hi).skip(i + 1) {
+                x -= *rk * self.band[k * self.width + (k - i)];
+            }
+            r[i] = x / self.band[i * self.width];
+        }
+    }
+
     /// Solves `L Lᵀ X = R` in place for `R` with `n` rows of `cols` entries
     /// (row-major), after [`Self::factor`].
     pub fn solve_rows<T>(&self, r: &mut [T], cols: usize)
@@ -133,9 +156,21 @@ mod tests {
             .map(|i| (0..n).map(|j| dense[i][j] * x[j]).sum())
             .collect();
         a.factor().unwrap();
+        let mut rv: Vec<glam::DVec3> = r
+            .iter()
+            .map(|&v| glam::DVec3::new(v, -v, 2.0 * v))
+            .collect();
         a.solve_rows(&mut r, 1);
+        a.solve_vec(&mut rv);
         for i in 0..n {
             assert!((r[i] - x[i]).abs() < 1e-13, "x{i}: {} vs {}", r[i], x[i]);
+            let want = glam::DVec3::new(x[i], -x[i], 2.0 * x[i]);
+            assert!(
+                (rv[i] - want).length() < 1e-13,
+                "x{i}: {} vs {}",
+                rv[i],
+                want
+            );
         }
     }
 

@@ -5,7 +5,7 @@
 //! a fit within the tolerance by this measure is within it by any other.
 
 use super::samples::Samples;
-use super::surface::{BSplineSurface, BasisTable, curve_point};
+use super::surface::{BSplineSurface, BasisTable};
 use crate::grid::Grid;
 
 /// Largest and mean distance over a grid of samples.
@@ -31,9 +31,23 @@ pub(crate) struct Measured {
 pub(crate) fn measure(
     surface: &BSplineSurface,
     samples: &Samples,
+    field: Option<&mut Vec<f64>>,
+) -> Measured {
+    match surface.knots_u.degree() {
+        2 => measure_p::<2>(surface, samples, field),
+        3 => measure_p::<3>(surface, samples, field),
+        4 => measure_p::<4>(surface, samples, field),
+        _ => measure_p::<5>(surface, samples, field),
+    }
+}
+
+/// [`measure`] for degree `P` in `u` (unrolled: it runs at every check sample).
+fn measure_p<const P: usize>(
+    surface: &BSplineSurface,
+    samples: &Samples,
     mut field: Option<&mut Vec<f64>>,
 ) -> Measured {
-    let p = surface.knots_u.degree();
+    debug_assert_eq!(surface.knots_u.degree(), P);
     let tu = BasisTable::new(&surface.knots_u, &samples.u);
     let mut span_u = vec![0.0f64; surface.knots_u.spans()];
     let mut span_v = vec![0.0f64; surface.knots_v.spans()];
@@ -45,22 +59,28 @@ pub(crate) fn measure(
     for (j, &v) in samples.v.iter().enumerate() {
         surface.curve_at_into(v, &mut curve);
         let row = samples.points.row(j);
-        let mut row_max = 0.0f64;
-        for (i, (b, q)) in tu.rows.iter().zip(row).enumerate() {
-            let d = (curve_point(&curve, b, p) - *q).length();
+        let (mut row_max, mut row_at) = (0.0f64, 0);
+        for (i, ((first, b), q)) in tu.rows.iter().zip(row).enumerate() {
+            let c = &curve[*first..*first + P + 1];
+            let mut pt = c[0] * b[0];
+            for a in 1..=P {
+                pt += c[a] * b[a];
+            }
+            let d = (pt - *q).length();
             sum += d;
             if d > row_max {
                 row_max = d;
-                if d > max {
-                    max = d;
-                    at = (j, i);
-                }
+                row_at = i;
             }
-            let su = &mut span_u[b.0];
+            let su = &mut span_u[*first];
             *su = su.max(d);
             if let Some(f) = field.as_deref_mut() {
                 f.push(d);
             }
+        }
+        if row_max > max {
+            max = row_max;
+            at = (j, row_at);
         }
         let sv = &mut span_v[surface.knots_v.span(v)];
         *sv = sv.max(row_max);

@@ -123,10 +123,42 @@ pub fn fit_design(design: &Design, depth: u32, opts: &FitOptions) -> Result<Fit,
 /// The rows' and columns' fits for one pair of knot vectors.
 struct Pass {
     surface: BSplineSurface,
-    /// Largest row-pass residual per `u` span.
-    res_u: Vec<f64>,
-    /// Largest column-pass residual per `v` span (in the poles).
-    res_v: Vec<f64>,
+    rows: EndFixedFit,
+    cols: EndFixedFit,
+    /// The rows' poles, `data.v.len() × nu`.
+    row_poles: Vec<DVec3>,
+}
+
+impl Pass {
+    /// Largest row-pass residual per `u` span, and largest column-pass
+    /// residual (in the poles) per `v` span: what each direction explains
+    /// of the deviation (computed only for a round that goes on).
+    fn residuals(&self, data: &Samples) -> (Vec<f64>, Vec<f64>) {
+        let nu = self.rows.count();
+        let mut res_u = vec![0.0f64; self.surface.knots_u.spans()];
+        for (j, poles) in self.row_poles.chunks(nu).enumerate() {
+            for (k, pt) in data.points.row(j).iter().enumerate() {
+                let r = &mut res_u[self.rows.span_of(k)];
+                *r = r.max((self.rows.point(poles, k) - *pt).length_squared());
+            }
+        }
+        let mut res_v = vec![0.0f64; self.surface.knots_v.spans()];
+        let mut curve = Vec::with_capacity(nu);
+        for (l, &v) in data.v.iter().enumerate() {
+            self.surface.curve_at_into(v, &mut curve);
+            let worst = curve
+                .iter()
+                .zip(&self.row_poles[l * nu..(l + 1) * nu])
+                .map(|(a, b)| (*a - *b).length_squared())
+                .fold(0.0f64, f64::max);
+            let r = &mut res_v[self.cols.span_of(l)];
+            *r = r.max(worst);
+        }
+        for r in res_u.iter_mut().chain(&mut res_v) {
+            *r = r.sqrt();
+        }
+        (res_u, res_v)
+    }
 }
 
 fn too_few(direction: Direction, data: &Samples, tolerance: f64, reached: f64) -> FitError {
@@ -161,18 +193,11 @@ fn pass(
     let cols =
         EndFixedFit::new(kv, &data.v).map_err(|_| too_few(Direction::V, data, tol, reached))?;
     let nu = rows.count();
-    // row pass, with its residual per u span
+    // row pass, then column pass
     let mut row_poles = vec![DVec3::ZERO; mv * nu];
-    let mut res_u = vec![0.0f64; ku.spans()];
     for (j, out) in row_poles.chunks_mut(nu).enumerate() {
-        let q = data.points.row(j);
-        rows.fit_row(q, out);
-        for (k, pt) in q.iter().enumerate() {
-            let r = &mut res_u[rows.span_of(k)];
-            *r = r.max((rows.point(out, k) - *pt).length());
-        }
+        rows.fit_row(data.points.row(j), out);
     }
-    // column pass, with its residual per v span
     let mut poles = Vec::new();
     cols.fit_columns(&row_poles, nu, &mut poles);
     let poles = Grid::new(kv.count(), nu, poles).expect("count × nu");
@@ -181,22 +206,11 @@ fn pass(
         knots_v: kv.clone(),
         poles,
     };
-    let mut res_v = vec![0.0f64; kv.spans()];
-    let mut curve = Vec::with_capacity(nu);
-    for (l, &v) in data.v.iter().enumerate() {
-        surface.curve_at_into(v, &mut curve);
-        let worst = curve
-            .iter()
-            .zip(&row_poles[l * nu..(l + 1) * nu])
-            .map(|(a, b)| (*a - *b).length())
-            .fold(0.0f64, f64::max);
-        let r = &mut res_v[cols.span_of(l)];
-        *r = r.max(worst);
-    }
     Ok(Pass {
         surface,
-        res_u,
-        res_v,
+        rows,
+        cols,
+        row_poles,
     })
 }
 
@@ -273,10 +287,8 @@ pub fn fit(data: &Samples, check: &Samples, opts: &FitOptions) -> Result<Fit, Fi
             on_check = true;
             m = measure(&pass.surface, check, None);
         }
-        if on_check {
-            reached = reached.min(m.deviation.max);
-        }
-        if m.deviation.max <= tol {
+        reached = reached.min(m.deviation.max);
+        if on_check && m.deviation.max <= tol {
             let report = FitReport {
                 degree: (p, q),
                 poles: pass.surface.pole_counts(),
@@ -290,6 +302,10 @@ pub fn fit(data: &Samples, check: &Samples, opts: &FitOptions) -> Result<Fit, Fi
                 report,
             });
         }
+        // the spans to split: over the tolerance at the check samples, over
+        // the margin at the fitted points
+        let tol = if on_check { tol } else { DATA_MARGIN * tol };
+        let (res_u, res_v) = pass.residuals(data);
         let over = |e: &[f64]| -> Vec<usize> { (0..e.len()).filter(|&j| e[j] > tol).collect() };
         let (over_u, over_v) = (over(&m.span_u), over(&m.span_v));
         let mut pick_u = Vec::new();
@@ -298,12 +314,12 @@ pub fn fit(data: &Samples, check: &Samples, opts: &FitOptions) -> Result<Fit, Fi
             pick_u = over_u
                 .iter()
                 .copied()
-                .filter(|&j| pass.res_u[j] >= gamma * tol)
+                .filter(|&j| res_u[j] >= gamma * tol)
                 .collect();
             pick_v = over_v
                 .iter()
                 .copied()
-                .filter(|&j| pass.res_v[j] >= gamma * tol)
+                .filter(|&j| res_v[j] >= gamma * tol)
                 .collect();
             if !(pick_u.is_empty() && pick_v.is_empty()) {
                 break;
@@ -311,12 +327,12 @@ pub fn fit(data: &Samples, check: &Samples, opts: &FitOptions) -> Result<Fit, Fi
         }
         let mut new_u = Vec::new();
         for &j in &pick_u {
-            let pieces = pieces_for(pass.res_u[j].max(m.span_u[j] * 0.5), tol, p);
+            let pieces = pieces_for(res_u[j], tol, p);
             split_points(&ku, &data.u, j, pieces, &mut new_u);
         }
         let mut new_v = Vec::new();
         for &j in &pick_v {
-            let pieces = pieces_for(pass.res_v[j].max(m.span_v[j] * 0.5), tol, q);
+            let pieces = pieces_for(res_v[j], tol, q);
             split_points(&kv, &data.v, j, pieces, &mut new_v);
         }
         if new_u.is_empty() && new_v.is_empty() {

@@ -99,25 +99,32 @@ impl EndFixedFit {
 
     /// Fits one data row `q` (`params.len()` points) into `poles` (`count`).
     pub fn fit_row(&self, q: &[DVec3], poles: &mut [DVec3]) {
-        let (p, n) = (self.degree, self.count);
+        match self.degree {
+            2 => self.fit_row_p::<2>(q, poles),
+            3 => self.fit_row_p::<3>(q, poles),
+            4 => self.fit_row_p::<4>(q, poles),
+            _ => self.fit_row_p::<5>(q, poles),
+        }
+    }
+
+    /// [`Self::fit_row`] for degree `P` (unrolled). The right-hand side is
+    /// summed into all `count` slots (no branch for the end functions) and
+    /// the two end slots are then overwritten with the fixed end points.
+    fn fit_row_p<const P: usize>(&self, q: &[DVec3], poles: &mut [DVec3]) {
+        let n = self.count;
+        debug_assert_eq!(self.degree, P);
         let (q0, qm) = (q[0], q[q.len() - 1]);
         poles.fill(DVec3::ZERO);
-        {
-            let rhs = &mut poles[1..n - 1];
-            for (k, (f, b)) in self.basis.iter().enumerate().take(q.len() - 1).skip(1) {
-                let n0 = if *f == 0 { b[0] } else { 0.0 };
-                let nl = if f + p == n - 1 { b[p] } else { 0.0 };
-                let r = q[k] - q0 * n0 - qm * nl;
-                for (a, &w) in b[..=p].iter().enumerate() {
-                    let i = f + a;
-                    if i == 0 || i + 1 >= n {
-                        continue;
-                    }
-                    rhs[i - 1] += r * w;
-                }
+        for ((f, b), qk) in self.basis[1..q.len() - 1].iter().zip(&q[1..q.len() - 1]) {
+            let n0 = if *f == 0 { b[0] } else { 0.0 };
+            let nl = if f + P == n - 1 { b[P] } else { 0.0 };
+            let r = *qk - q0 * n0 - qm * nl;
+            let dst = &mut poles[*f..*f + P + 1];
+            for a in 0..=P {
+                dst[a] += r * b[a];
             }
-            self.normal.solve_rows(rhs, 1);
         }
+        self.normal.solve_vec(&mut poles[1..n - 1]);
         poles[0] = q0;
         poles[n - 1] = qm;
     }
