@@ -3,7 +3,8 @@
 //! kept `Builder` on one thread with and without the vector path, and on two). The workloads are the
 //! ones `streamline-studio bench` runs (`src/workloads.rs`); the `incremental`
 //! group times one edit through the ECS against a full rebuild (issue 3), and
-//! one fine-tuning value edit on the car at depth 3 (issue 6).
+//! one fine-tuning value edit on the car at depth 3 (issue 6); the `fit` group
+//! times the B-spline fit of CAD export (issue 21).
 //!
 //! Run: `cargo bench --bench table1`. Figures and ratios: docs/benchmarks.md.
 
@@ -51,5 +52,18 @@ fn incremental(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, table1, surface, incremental);
+/// The B-spline fit of CAD export (issue 21: the car at depth 5 within 1e-4
+/// of its diagonal in at most 10 ms on one thread; docs/cad.md).
+fn fit(c: &mut Criterion) {
+    let mut g = c.benchmark_group("fit");
+    g.warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3))
+        .sample_size(30);
+    for mut w in workloads::fit_rows() {
+        g.bench_function(&w.name, |b| b.iter(|| black_box((w.run)())));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, table1, surface, incremental, fit);
 criterion_main!(benches);

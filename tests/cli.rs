@@ -202,6 +202,7 @@ fn cli_bench_json_rows() {
         "curve/qi-k5/257",
         "surface/kobbelt/9x6/d3/full",
         "surface/kobbelt/9x6/d5/full",
+        "fit/car/d5",
     ] {
         assert!(
             names.iter().any(|n| n == want),
