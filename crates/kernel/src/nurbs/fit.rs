@@ -8,17 +8,20 @@
 //!    banded normal matrix, factored once), then every column of the rows'
 //!    poles with the `v` basis; both passes interpolate their end points, so
 //!    the four corners (and the boundary rows' poles) are exact.
-//! 3. Measure the distance at every check sample (the grid one depth finer)
-//!    and stop when the largest is within the tolerance.
-//! 4. Otherwise insert knots in the spans whose deviation is over the
-//!    tolerance, each at the average of the data parameters in that span (a
-//!    local form of the averaged knots of Eq. 9.69, so every span keeps
-//!    data on both sides of its new knot). A span is split in the direction
-//!    that carries the error: the row pass' residual says how much of it
-//!    `u` explains, the column pass' residual (in the poles, an upper bound
-//!    by convexity) how much `v` does; spans are split where their own
-//!    residual is at least half the tolerance, and if none is, a quarter,
-//!    then any over-tolerance span in both directions.
+//! 3. Judge the round. The row pass' residual `r_u` (the distance from each
+//!    point to its row's curve) and the column pass' residual `r_v` (in the
+//!    poles: by convexity of the basis, an upper bound of what `v` adds)
+//!    bound the deviation at the fitted points by `max r_u + max r_v`. While
+//!    that bound is over 0.8 of the tolerance, every span whose own
+//!    direction's residual is over 0.4 of it is split. After that, each
+//!    round is measured at every check sample (the grid one depth finer) and
+//!    the fit stops when the largest distance there is within the tolerance.
+//! 4. Splitting: knots are inserted at the data parameters' quantiles in the
+//!    span (a local form of the averaged knots of Eq. 9.69, so every new
+//!    span keeps data), into as many pieces as a degree-`p` spline's
+//!    `h^{p+1}` error rate says bring the residual under the target (2 to 8). In a check round, a span over the tolerance is split in the
+//!    direction whose residual is at least half the tolerance there, else a
+//!    quarter, else in both.
 
 use super::deviation::{Deviation, measure};
 use super::error::{Direction, FitError};
@@ -258,14 +261,14 @@ fn split_points(knots: &KnotVector, params: &[f64], j: usize, pieces: usize, out
     }
 }
 
-/// How many pieces bring a span's error `e` of a degree-`p` fit under half
-/// the tolerance, the error of a spline shrinking as `h^{p+1}`.
+/// How many pieces bring a span's error `e` of a degree-`p` fit under the
+/// target `tol`, the error of a spline shrinking as `h^{p+1}`.
 fn pieces_for(e: f64, tol: f64, p: usize) -> usize {
-    let ratio = (2.0 * e / tol).max(1.0);
+    let ratio = (e / tol).max(1.0);
     (ratio.powf(1.0 / (p + 1) as f64).ceil() as usize).clamp(2, 8)
 }
 
-/// The rounds measured at the fitted points go on until those are within
+/// The rounds judged at the fitted points go on until those are within
 /// this fraction of the tolerance: the check grid between them is usually
 /// a little farther, and a round measured there costs four times as much.
 const DATA_MARGIN: f64 = 0.8;
@@ -277,62 +280,75 @@ pub fn fit(data: &Samples, check: &Samples, opts: &FitOptions) -> Result<Fit, Fi
     let mut ku = KnotVector::bezier(p);
     let mut kv = KnotVector::bezier(q);
     let mut reached = f64::INFINITY;
-    // rounds are measured at the fitted points (a quarter of the check
-    // samples) until those are within the tolerance, then at the check grid
+    // until the fitted points are within the margin (by the passes'
+    // residuals, which bound their deviation), each direction is refined by
+    // its own residual; then rounds are measured at the check grid
     let mut on_check = false;
     for round in 1.. {
         let pass = pass(&ku, &kv, data, tol, reached)?;
-        let mut m = measure(&pass.surface, if on_check { check } else { data }, None);
-        if !on_check && m.deviation.max <= DATA_MARGIN * tol {
-            on_check = true;
-            m = measure(&pass.surface, check, None);
-        }
-        reached = reached.min(m.deviation.max);
-        if on_check && m.deviation.max <= tol {
-            let report = FitReport {
-                degree: (p, q),
-                poles: pass.surface.pole_counts(),
-                tolerance: tol,
-                deviation: m.deviation,
-                checked: (check.v.len(), check.u.len()),
-                rounds: round,
-            };
-            return Ok(Fit {
-                surface: pass.surface,
-                report,
-            });
-        }
-        // the spans to split: over the tolerance at the check samples, over
-        // the margin at the fitted points
-        let tol = if on_check { tol } else { DATA_MARGIN * tol };
         let (res_u, res_v) = pass.residuals(data);
-        let over = |e: &[f64]| -> Vec<usize> { (0..e.len()).filter(|&j| e[j] > tol).collect() };
-        let (over_u, over_v) = (over(&m.span_u), over(&m.span_v));
-        let mut pick_u = Vec::new();
-        let mut pick_v = Vec::new();
-        for gamma in [0.5, 0.25, 0.0] {
-            pick_u = over_u
-                .iter()
-                .copied()
-                .filter(|&j| res_u[j] >= gamma * tol)
-                .collect();
-            pick_v = over_v
-                .iter()
-                .copied()
-                .filter(|&j| res_v[j] >= gamma * tol)
-                .collect();
-            if !(pick_u.is_empty() && pick_v.is_empty()) {
-                break;
-            }
+        let worst = |r: &[f64]| r.iter().copied().fold(0.0f64, f64::max);
+        if !on_check {
+            // |Q − F| ≤ |Q − C_j| + |C_j − F|: the row residual plus the
+            // column residual of the poles (the basis is a convex combination)
+            let bound = worst(&res_u) + worst(&res_v);
+            reached = reached.min(bound);
+            on_check = bound <= DATA_MARGIN * tol;
         }
+        let (eff, mut pick_u, mut pick_v) = if on_check {
+            let m = measure(&pass.surface, check, None);
+            reached = reached.min(m.deviation.max);
+            if m.deviation.max <= tol {
+                let report = FitReport {
+                    degree: (p, q),
+                    poles: pass.surface.pole_counts(),
+                    tolerance: tol,
+                    deviation: m.deviation,
+                    checked: (check.v.len(), check.u.len()),
+                    rounds: round,
+                };
+                return Ok(Fit {
+                    surface: pass.surface,
+                    report,
+                });
+            }
+            // spans over the tolerance at the check samples, split in the
+            // direction whose residual carries the error
+            let over = |e: &[f64]| -> Vec<usize> { (0..e.len()).filter(|&j| e[j] > tol).collect() };
+            let (over_u, over_v) = (over(&m.span_u), over(&m.span_v));
+            let (mut pick_u, mut pick_v) = (Vec::new(), Vec::new());
+            for gamma in [0.5, 0.25, 0.0] {
+                pick_u = over_u
+                    .iter()
+                    .copied()
+                    .filter(|&j| res_u[j] >= gamma * tol)
+                    .collect();
+                pick_v = over_v
+                    .iter()
+                    .copied()
+                    .filter(|&j| res_v[j] >= gamma * tol)
+                    .collect();
+                if !(pick_u.is_empty() && pick_v.is_empty()) {
+                    break;
+                }
+            }
+            (tol, pick_u, pick_v)
+        } else {
+            let eff = DATA_MARGIN * tol;
+            let over =
+                |r: &[f64]| -> Vec<usize> { (0..r.len()).filter(|&j| r[j] > 0.5 * eff).collect() };
+            (eff, over(&res_u), over(&res_v))
+        };
+        pick_u.sort_unstable();
+        pick_v.sort_unstable();
         let mut new_u = Vec::new();
         for &j in &pick_u {
-            let pieces = pieces_for(res_u[j], tol, p);
+            let pieces = pieces_for(res_u[j], eff, p);
             split_points(&ku, &data.u, j, pieces, &mut new_u);
         }
         let mut new_v = Vec::new();
         for &j in &pick_v {
-            let pieces = pieces_for(res_v[j], tol, q);
+            let pieces = pieces_for(res_v[j], eff, q);
             split_points(&kv, &data.v, j, pieces, &mut new_v);
         }
         if new_u.is_empty() && new_v.is_empty() {
