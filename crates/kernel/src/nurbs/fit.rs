@@ -286,12 +286,14 @@ pub fn fit(data: &Samples, check: &Samples, opts: &FitOptions) -> Result<Fit, Fi
     let mut on_check = false;
     for round in 1.. {
         let pass = pass(&ku, &kv, data, tol, reached)?;
-        let (res_u, res_v) = pass.residuals(data);
         let worst = |r: &[f64]| r.iter().copied().fold(0.0f64, f64::max);
+        // the residuals, computed once a round needs them
+        let mut res = None;
         if !on_check {
+            let (res_u, res_v) = res.insert(pass.residuals(data));
             // |Q − F| ≤ |Q − C_j| + |C_j − F|: the row residual plus the
             // column residual of the poles (the basis is a convex combination)
-            let bound = worst(&res_u) + worst(&res_v);
+            let bound = worst(res_u) + worst(res_v);
             reached = reached.min(bound);
             on_check = bound <= DATA_MARGIN * tol;
         }
@@ -314,6 +316,7 @@ pub fn fit(data: &Samples, check: &Samples, opts: &FitOptions) -> Result<Fit, Fi
             }
             // spans over the tolerance at the check samples, split in the
             // direction whose residual carries the error
+            let (res_u, res_v) = res.get_or_insert_with(|| pass.residuals(data));
             let over = |e: &[f64]| -> Vec<usize> { (0..e.len()).filter(|&j| e[j] > tol).collect() };
             let (over_u, over_v) = (over(&m.span_u), over(&m.span_v));
             let (mut pick_u, mut pick_v) = (Vec::new(), Vec::new());
@@ -335,12 +338,14 @@ pub fn fit(data: &Samples, check: &Samples, opts: &FitOptions) -> Result<Fit, Fi
             (tol, pick_u, pick_v)
         } else {
             let eff = DATA_MARGIN * tol;
+            let (res_u, res_v) = res.as_ref().expect("computed above");
             let over =
                 |r: &[f64]| -> Vec<usize> { (0..r.len()).filter(|&j| r[j] > 0.5 * eff).collect() };
-            (eff, over(&res_u), over(&res_v))
+            (eff, over(res_u), over(res_v))
         };
         pick_u.sort_unstable();
         pick_v.sort_unstable();
+        let (res_u, res_v) = res.as_ref().expect("computed for the picks");
         let mut new_u = Vec::new();
         for &j in &pick_u {
             let pieces = pieces_for(res_u[j], eff, p);
