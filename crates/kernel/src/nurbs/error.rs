@@ -60,7 +60,7 @@ impl fmt::Display for FitError {
                 reached,
             } => write!(
                 f,
-                "fitting within {tolerance:e} needs more control points in {direction} than the grid's {points} points (the closest reached was {reached:e}); loosen the tolerance or export deeper"
+                "fitting within {tolerance:e} needs more control points in {direction} than the grid's {points} points (the closest it came was {reached:e}); loosen the tolerance or export deeper"
             ),
             FitError::BadSamples { problem } => write!(f, "fit input: {problem}"),
             FitError::Build(e) => write!(f, "{e}"),

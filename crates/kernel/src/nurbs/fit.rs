@@ -280,6 +280,7 @@ pub fn fit(data: &Samples, check: &Samples, opts: &FitOptions) -> Result<Fit, Fi
     let mut ku = KnotVector::bezier(p);
     let mut kv = KnotVector::bezier(q);
     let mut reached = f64::INFINITY;
+    let mut checked = false;
     // until the fitted points are within the margin (by the passes'
     // residuals, which bound their deviation), each direction is refined by
     // its own residual; then rounds are measured at the check grid
@@ -299,7 +300,13 @@ pub fn fit(data: &Samples, check: &Samples, opts: &FitOptions) -> Result<Fit, Fi
         }
         let (eff, mut pick_u, mut pick_v) = if on_check {
             let m = measure(&pass.surface, check, None);
-            reached = reached.min(m.deviation.max);
+            // the closest reached is what the check grid measured, once it has
+            reached = if checked {
+                reached.min(m.deviation.max)
+            } else {
+                m.deviation.max
+            };
+            checked = true;
             if m.deviation.max <= tol {
                 let report = FitReport {
                     degree: (p, q),
