@@ -102,6 +102,17 @@ impl Samples {
         let (t0, span) = (t[0], t[rows - 1] - t[0]);
         let mut v: Vec<f64> = t.iter().map(|x| (x - t0) / span).collect();
         v[rows - 1] = 1.0;
+        if let Some(r) = v
+            .windows(2)
+            .position(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+        {
+            return Err(FitError::BadSamples {
+                problem: format!(
+                    "the row parameter t stops rising at row {} of {rows} at this depth (subdivision bends it back where rows are spaced very unevenly); space the rows more evenly",
+                    r + 1
+                ),
+            });
+        }
         Samples::new(points, u, v)
     }
 
