@@ -39,13 +39,12 @@ pub(crate) fn write_files(
                             Some(f) => {
                                 let r = &f.fit.report;
                                 format!(
-                                    "B-spline surface, degree {}x{}, {}x{} poles, largest deviation {:.3e} (mean {:.3e}) within {:.3e}, fitted in {:.1} ms",
-                                    r.degree.0,
-                                    r.degree.1,
+                                    "{}x{} poles, degree {}x{}, largest deviation {:.2e} <= {:.2e}, {:.1} ms",
                                     r.poles.0,
                                     r.poles.1,
+                                    r.degree.0,
+                                    r.degree.1,
                                     r.deviation.max,
-                                    r.deviation.mean,
                                     r.tolerance,
                                     f.seconds * 1e3
                                 )

@@ -107,6 +107,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
             }
         }
     }
+    super::cad_export::show(ui, p);
     ui.separator();
     script(ui, p);
 }

@@ -5,6 +5,7 @@
 //! display settings); they never compute geometry.
 
 mod analysis;
+mod cad_export;
 mod display;
 mod file;
 mod mesh;
@@ -162,6 +163,8 @@ pub struct PanelCtx<'w> {
     pub mesh: ResMut<'w, super::mesh_mode::MeshView>,
     pub script: ResMut<'w, crate::ecs::runner::ScriptRun>,
     pub antialias: ResMut<'w, super::antialias::AntiAliasing>,
+    pub export: ResMut<'w, crate::ecs::exchange::ExportSettings>,
+    pub last_export: Res<'w, crate::ecs::exchange::LastExport>,
 }
 
 /// The control net as the scene was opened (the Selection panel's reset).
