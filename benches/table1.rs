@@ -5,7 +5,8 @@
 //! group times one edit through the ECS against a full rebuild (issue 3), and
 //! one fine-tuning value edit on the car at depth 3 (issue 6); the `loop` group
 //! Loop subdivision of a ~20k-vertex open mesh under each boundary rule (issue 22);
-//! the `authoring` group an insert, an initial-curve edit and the mirrored car (issue 20).
+//! the `authoring` group an insert, an initial-curve edit and the mirrored car (issue 20);
+//! the `fit` group the B-spline fit of CAD export (issue 21).
 //!
 //! Run: `cargo bench --bench table1`. Figures and ratios: docs/benchmarks.md.
 
@@ -65,6 +66,19 @@ fn loop_subdivision(c: &mut Criterion) {
     g.finish();
 }
 
+/// The B-spline fit of CAD export (issue 21: the car at depth 5 within 1e-4
+/// of its diagonal in at most 10 ms on one thread; docs/cad.md).
+fn fit(c: &mut Criterion) {
+    let mut g = c.benchmark_group("fit");
+    g.warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3))
+        .sample_size(30);
+    for mut w in workloads::fit_rows() {
+        g.bench_function(&w.name, |b| b.iter(|| black_box((w.run)())));
+    }
+    g.finish();
+}
+
 /// Issue 20: an insert, an initial-curve edit and the mirrored car, at depth 5.
 fn authoring(c: &mut Criterion) {
     let mut g = c.benchmark_group("authoring");
@@ -77,5 +91,13 @@ fn authoring(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, table1, surface, incremental, loop_subdivision, authoring);
+criterion_group!(
+    benches,
+    table1,
+    surface,
+    incremental,
+    loop_subdivision,
+    authoring,
+    fit
+);
 criterion_main!(benches);

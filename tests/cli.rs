@@ -202,6 +202,7 @@ fn cli_bench_json_rows() {
         "curve/qi-k5/257",
         "surface/kobbelt/9x6/d3/full",
         "surface/kobbelt/9x6/d5/full",
+        "fit/car/d5",
     ] {
         assert!(
             names.iter().any(|n| n == want),
@@ -275,6 +276,119 @@ fn cli_build_prints_stats_and_exports() {
     // Depth past the cap: exit 2.
     let (code, _, err) = run(&["build", "car1", "--depth", "13"], "");
     assert_eq!(code, 2, "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `build --export` of the fitted B-spline surface (docs/math.md §10): the format by
+/// the extension, the fit in the JSON report; refusals exit 2, write nothing
+/// and keep the old file.
+#[test]
+fn cli_build_exports_step_and_iges_with_the_fit() {
+    let dir = std::env::temp_dir().join(format!("ss-cad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, head) in [
+        ("car.step", "ISO-10303-21;"),
+        ("car.stp", "ISO-10303-21;"),
+        ("car.igs", "Streamline Studio"),
+        ("car.IGES", "Streamline Studio"),
+    ] {
+        let path = dir.join(name);
+        let (code, out, err) = run(
+            &[
+                "build",
+                "car1",
+                "--depth",
+                "4",
+                "--export",
+                path.to_str().unwrap(),
+            ],
+            "",
+        );
+        assert_eq!(code, 0, "{name}: {err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let fit = &v["fit"];
+        assert_eq!(fit["degree"], serde_json::json!([3, 3]), "{out}");
+        let tol = fit["tolerance"].as_f64().unwrap();
+        let max = fit["max_deviation"].as_f64().unwrap();
+        let mean = fit["mean_deviation"].as_f64().unwrap();
+        assert!(0.0 < mean && mean <= max && max <= tol, "{out}");
+        assert!(fit["poles"][0].as_u64().unwrap() >= 4 && fit["seconds"].as_f64().unwrap() > 0.0);
+        assert!(
+            std::fs::read_to_string(&path).unwrap().starts_with(head),
+            "{name}"
+        );
+    }
+    // an absolute tolerance and a degree per direction
+    let path = dir.join("loose.step");
+    let (code, out, err) = run(
+        &[
+            "build",
+            "car1",
+            "--depth",
+            "4",
+            "--export",
+            path.to_str().unwrap(),
+            "--tolerance",
+            "0.01",
+            "--degree",
+            "4,2",
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["fit"]["tolerance"], 0.01);
+    assert_eq!(v["fit"]["degree"], serde_json::json!([4, 2]));
+    // the mesh formats report no fit
+    let glb = dir.join("car.glb");
+    let (code, out, _) = run(
+        &[
+            "build",
+            "car1",
+            "--depth",
+            "3",
+            "--export",
+            glb.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 0);
+    assert!(
+        serde_json::from_str::<serde_json::Value>(&out)
+            .unwrap()
+            .get("fit")
+            .is_none()
+    );
+    // refusals keep the old file
+    let old = dir.join("old.step");
+    std::fs::write(&old, "old").unwrap();
+    for (args, want) in [
+        (vec!["--tolerance", "0"], "positive finite"),
+        (vec!["--tolerance", "nan"], "positive finite"),
+        (vec!["--relative-tolerance", "-1e-4"], "positive finite"),
+        (vec!["--degree", "6"], "outside 2 to 5"),
+        (vec!["--degree", "1,3"], "outside 2 to 5"),
+        (vec!["--degree", "three"], "whole number"),
+        (
+            vec!["--tolerance", "1e-9"],
+            "loosen the tolerance or export deeper",
+        ),
+    ] {
+        let mut a = vec![
+            "build",
+            "car1",
+            "--depth",
+            "2",
+            "--export",
+            old.to_str().unwrap(),
+        ];
+        a.extend(&args);
+        let (code, _, err) = run(&a, "");
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(want), "{args:?}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "one line: {err}");
+        assert_eq!(std::fs::read_to_string(&old).unwrap(), "old", "{args:?}");
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -74,6 +74,18 @@ fn every_script_passes() {
     let tris = u32::from_le_bytes(stl[80..84].try_into().unwrap()) as usize;
     assert_eq!(tris, faces);
     assert_eq!(stl.len(), 84 + 50 * tris);
+    // the same mesh as binary glTF, read back by the gltf crate
+    let glb = gltf::Gltf::open(dir.join("out/08-car.glb")).unwrap();
+    let prim = glb.meshes().next().unwrap().primitives().next().unwrap();
+    assert_eq!(prim.get(&gltf::Semantic::Positions).unwrap().count(), v);
+    assert_eq!(prim.get(&gltf::Semantic::Normals).unwrap().count(), v);
+    // and the fitted B-spline surface at depth 4 (OpenCascade reads such
+    // files back in tests/cad_export.rs)
+    let step = std::fs::read_to_string(dir.join("out/08-car.step")).unwrap();
+    assert_eq!(step.matches("B_SPLINE_SURFACE_WITH_KNOTS(").count(), 1);
+    assert_eq!(step.matches("ADVANCED_FACE(").count(), 1);
+    let iges = std::fs::read_to_string(dir.join("out/08-car.igs")).unwrap();
+    assert!(iges.lines().all(|l| l.len() == 80));
     walkthrough_export_has_both_halves(&dir);
 }
 

@@ -1,12 +1,17 @@
-//! `build SCENE.ron [--depth N] [--export OUT]`: a headless build through the
-//! ECS pipeline, with JSON stats on stdout.
+//! `build SCENE.ron [--depth N] [--export OUT [--tolerance T | --relative-tolerance R] [--degree P]]`:
+//! a headless build through the ECS pipeline, with JSON stats on stdout. The
+//! export's format follows the extension: the mesh as `.obj`, `.stl`, `.glb`,
+//! the fitted B-spline surface as `.step`/`.stp` or `.igs`/`.iges` (docs/math.md §10),
+//! whose fit the report gains as `"fit"`.
 
 use super::input::{CliError, scene_arg, write_stdout};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
+use crate::ecs::exchange::{ExportSettings, LastExport};
 use crate::ecs::{self, Edit, EditLog, Stats, SurfaceData};
 use clap::Args;
 use serde::Serialize;
 use std::path::PathBuf;
+use streamline_kernel::nurbs::{FitOptions, Tolerance};
 use streamline_kernel::streamline::polyline_length;
 
 /// Arguments of `build`.
@@ -17,9 +22,62 @@ pub struct BuildArgs {
     /// Display depth (default: the scene's).
     #[arg(long)]
     depth: Option<u32>,
-    /// Export the surface to this .obj or .stl file.
+    /// Export the surface to this file: .obj, .stl or .glb (the mesh),
+    /// .step/.stp or .igs/.iges (the fitted B-spline surface).
     #[arg(long)]
     export: Option<PathBuf>,
+    /// STEP/IGES: the largest allowed deviation of the fit, in scene units
+    /// (default: 1e-4 of the bounding box's diagonal).
+    #[arg(
+        long,
+        conflicts_with = "relative_tolerance",
+        allow_hyphen_values = true
+    )]
+    tolerance: Option<f64>,
+    /// STEP/IGES: the largest allowed deviation as a fraction of the bounding
+    /// box's diagonal (default 1e-4).
+    #[arg(long, allow_hyphen_values = true)]
+    relative_tolerance: Option<f64>,
+    /// STEP/IGES: the B-spline degree in both directions, 2 to 5 (default 3),
+    /// or `P,Q` for along and across the streamlines.
+    #[arg(long)]
+    degree: Option<String>,
+}
+
+/// The fit of a STEP or IGES export, as the report gives it.
+#[derive(Serialize)]
+struct FitFigures {
+    degree: [usize; 2],
+    poles: [usize; 2],
+    tolerance: f64,
+    max_deviation: f64,
+    mean_deviation: f64,
+    seconds: f64,
+}
+
+/// The fit options of the arguments.
+fn fit_options(a: &BuildArgs) -> Result<FitOptions, CliError> {
+    let mut opts = FitOptions::DEFAULT;
+    if let Some(d) = &a.degree {
+        let parse = |s: &str| {
+            s.trim().parse::<usize>().map_err(|_| {
+                CliError::Usage(format!(
+                    "--degree {d}: give a whole number from 2 to 5, or two as P,Q"
+                ))
+            })
+        };
+        opts.degree = match d.split_once(',') {
+            Some((p, q)) => (parse(p)?, parse(q)?),
+            None => (parse(d)?, parse(d)?),
+        };
+    }
+    if let Some(t) = a.tolerance {
+        opts.tolerance = Tolerance::Absolute(t);
+    }
+    if let Some(r) = a.relative_tolerance {
+        opts.tolerance = Tolerance::Relative(r);
+    }
+    Ok(opts)
 }
 
 #[derive(Serialize)]
@@ -44,6 +102,8 @@ struct BuildReport {
     length_error: LengthError,
     timings_us: ecs::EditStats,
     export: Option<PathBuf>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    fit: Option<FitFigures>,
 }
 
 /// Builds and prints the stats.
@@ -66,8 +126,10 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
             .map_err(|e| CliError::Usage(format!("--depth {d}: {e}")))?;
         scene.display_depth = d;
     }
+    let fit = fit_options(&a)?;
     let mut app = ecs::headless_app(scene);
     let build_stats = app.world().resource::<Stats>().last.clone();
+    app.world_mut().resource_mut::<ExportSettings>().fit = fit;
     if let Some(out) = &a.export {
         ecs::send(&mut app, Edit::Export(out.clone()));
         app.update();
@@ -127,6 +189,22 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         },
         timings_us: build_stats,
         export: a.export.clone(),
+        fit: w
+            .resource::<LastExport>()
+            .written
+            .as_ref()
+            .and_then(|(_, _, f)| f.as_ref())
+            .map(|f| {
+                let r = &f.fit.report;
+                FitFigures {
+                    degree: [r.degree.0, r.degree.1],
+                    poles: [r.poles.0, r.poles.1],
+                    tolerance: r.tolerance,
+                    max_deviation: r.deviation.max,
+                    mean_deviation: r.deviation.mean,
+                    seconds: f.seconds,
+                }
+            }),
     };
     write_stdout(&report)
 }

@@ -65,7 +65,8 @@ pub enum Edit {
     },
     /// Save to a file (atomic, verified).
     Save(PathBuf),
-    /// Export the surface mesh (`.obj` or `.stl`).
+    /// Export the surface: the mesh (`.obj`, `.stl`, `.glb`) or its fitted
+    /// B-spline surface (`.step`/`.stp`, `.igs`/`.iges`), by the extension.
     Export(PathBuf),
     /// Turns handles `(row, col)` of the edit depth by one rotation about
     /// `axis` (one undo step; refused whole if one handle is out of range).

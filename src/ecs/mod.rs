@@ -14,6 +14,7 @@ pub mod authoring;
 mod blend;
 pub mod components;
 mod edit;
+pub mod exchange;
 mod integrate;
 mod mesh;
 pub mod messages;
@@ -73,6 +74,8 @@ impl Plugin for ModelPlugin {
             .init_resource::<EditLog>()
             .init_resource::<SurfaceData>()
             .init_resource::<Dirty>()
+            .init_resource::<exchange::ExportSettings>()
+            .init_resource::<exchange::LastExport>()
             .configure_sets(
                 Update,
                 (

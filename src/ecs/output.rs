@@ -1,8 +1,10 @@
 //! The output stage: saving and exporting, after the mesh is up to date.
 
+use super::exchange::{ExportSettings, LastExport};
 use super::messages::{Edit, EditMessage};
 use super::resources::*;
-use crate::scene::{export, io};
+use crate::scene::export::{ExportOptions, export_scene};
+use crate::scene::io;
 use bevy::prelude::*;
 
 pub(crate) fn write_files(
@@ -11,6 +13,8 @@ pub(crate) fn write_files(
     mut model: ResMut<Model>,
     surface: Res<SurfaceData>,
     mut log: ResMut<EditLog>,
+    settings: Res<ExportSettings>,
+    mut last: ResMut<LastExport>,
 ) {
     let _meter = meter.start();
     for msg in reader.read() {
@@ -24,13 +28,36 @@ pub(crate) fn write_files(
                 Err(e) => log.entries.push(Err(e.to_string())),
             },
             Edit::Export(path) => {
-                let name = model.scene.name.clone();
-                match export::export(&surface.mesh(), &name, path) {
-                    Ok(f) => log.entries.push(Ok(format!(
-                        "exported {} ({f:?}, {} triangles)",
-                        path.display(),
-                        surface.triangle_count()
-                    ))),
+                let opts = ExportOptions {
+                    fit: settings.fit,
+                    colors: settings.colors.clone(),
+                };
+                let depth = model.scene.display_depth;
+                match export_scene(&model.scene, &surface.mesh(), depth, path, &opts) {
+                    Ok(out) => {
+                        let what = match &out.fit {
+                            Some(f) => {
+                                let r = &f.fit.report;
+                                format!(
+                                    "{}x{} poles, degree {}x{}, largest deviation {:.2e} <= {:.2e}, {:.1} ms",
+                                    r.poles.0,
+                                    r.poles.1,
+                                    r.degree.0,
+                                    r.degree.1,
+                                    r.deviation.max,
+                                    r.tolerance,
+                                    f.seconds * 1e3
+                                )
+                            }
+                            None => format!("{} triangles", surface.triangle_count()),
+                        };
+                        log.entries.push(Ok(format!(
+                            "exported {} ({}, {what})",
+                            path.display(),
+                            out.format.name()
+                        )));
+                        last.written = Some((path.clone(), out.format, out.fit));
+                    }
                     Err(e) => log.entries.push(Err(e.to_string())),
                 }
             }

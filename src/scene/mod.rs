@@ -3,14 +3,19 @@
 //! kernel and serde/ron only (no Bevy).
 
 pub mod builtin;
+pub mod cad;
 pub mod error;
 pub mod export;
 pub mod format;
+pub mod glb;
+pub mod iges;
 pub mod io;
 pub mod job;
 pub mod model;
+pub mod numbers;
 pub mod obj;
 pub mod script;
+pub mod step;
 pub mod usd;
 
 pub use error::SceneError;

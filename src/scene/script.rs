@@ -37,7 +37,9 @@ pub enum Step {
     Load(String),
     /// Saves the scene (relative to the script).
     Save(String),
-    /// Exports the surface mesh as `.obj` or `.stl` (relative to the script).
+    /// Exports the surface (relative to the script) by the extension: the
+    /// mesh as `.obj`, `.stl` or `.glb`, the fitted B-spline surface as
+    /// `.step`/`.stp` or `.igs`/`.iges` (default degree and tolerance).
     Export(String),
     /// Points the handle `(row, col)` of the edit depth in `dir` (unit length kept).
     SetDirection { row: usize, col: usize, dir: Dir },

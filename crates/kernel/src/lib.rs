@@ -31,6 +31,7 @@ pub mod limits;
 pub mod loop_subdiv;
 pub mod mesh;
 pub mod multires;
+pub mod nurbs;
 pub mod parallel;
 pub mod params;
 pub mod presets;

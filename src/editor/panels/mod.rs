@@ -7,6 +7,7 @@
 //! parameter (`FileSection`, `DisplaySection`, …), defined beside it.
 
 mod analysis;
+mod cad_export;
 mod display;
 mod file;
 mod mesh;

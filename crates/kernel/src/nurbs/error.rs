@@ -1,0 +1,77 @@
+//! What can be wrong with a fit, each with what to do.
+
+use crate::error::KernelError;
+use std::fmt;
+
+/// A parameter direction of the surface.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Direction {
+    /// Along the streamlines (`s`, the grid's columns).
+    U,
+    /// Across the streamlines (`t`, the grid's rows).
+    V,
+}
+
+impl fmt::Display for Direction {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Direction::U => "u (along the streamlines)",
+            Direction::V => "v (across the streamlines)",
+        })
+    }
+}
+
+/// Everything that can stop a fit.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FitError {
+    /// A tolerance that is not a positive finite number.
+    BadTolerance { value: f64 },
+    /// A degree outside `2 ..= 5`.
+    BadDegree { direction: Direction, degree: usize },
+    /// The tolerance would need more poles than the grid has points (or a
+    /// span with too few points to split).
+    TooFewPoints {
+        direction: Direction,
+        points: usize,
+        tolerance: f64,
+        reached: f64,
+    },
+    /// Parameters that do not rise strictly from 0 to 1 (or sizes that do not match).
+    BadSamples { problem: String },
+    /// Building the design at the export depth (or one finer) failed.
+    Build(KernelError),
+}
+
+impl fmt::Display for FitError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FitError::BadTolerance { value } => write!(
+                f,
+                "fit tolerance {value} is not a positive finite number; give one such as 1e-4 of the bounding box's diagonal (the default) or an absolute distance in scene units"
+            ),
+            FitError::BadDegree { direction, degree } => write!(
+                f,
+                "B-spline degree {degree} in {direction} is outside 2 to 5; use 3 (the default, C2 like the streamlines)"
+            ),
+            FitError::TooFewPoints {
+                direction,
+                points,
+                tolerance,
+                reached,
+            } => write!(
+                f,
+                "fitting within {tolerance:e} needs more control points in {direction} than the grid's {points} points (the closest it came was {reached:e}); loosen the tolerance or export deeper"
+            ),
+            FitError::BadSamples { problem } => write!(f, "fit input: {problem}"),
+            FitError::Build(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for FitError {}
+
+impl From<KernelError> for FitError {
+    fn from(e: KernelError) -> Self {
+        FitError::Build(e)
+    }
+}

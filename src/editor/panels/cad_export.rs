@@ -1,0 +1,115 @@
+//! File → CAD export (docs/math.md §10, docs/cad.md): the surface as one B-spline
+//! face in STEP or IGES, or the mesh as binary glTF, with the fit's
+//! tolerance and degree, and what the last fit reached. The export itself is
+//! an `Edit::Export` like any other (atomic, verified; a refusal keeps the
+//! old file and shows its message in the status line).
+
+use super::PanelCtx;
+use super::file::FileSection;
+use crate::ecs::Edit;
+use crate::editor::files;
+use crate::scene::export::Format;
+use bevy_egui::egui;
+use streamline_kernel::nurbs::{FitOptions, Tolerance};
+
+/// The section's own fields, kept in egui's memory.
+#[derive(Clone, Debug)]
+struct Fields {
+    format: Format,
+    /// The tolerance as a fraction of the bounding box's diagonal.
+    relative: f64,
+    degree: usize,
+    path: String,
+}
+
+pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
+    let id = ui.id().with("cad-export");
+    let mut f = ui
+        .data(|d| d.get_temp::<Fields>(id))
+        .unwrap_or_else(|| Fields {
+            format: Format::Step,
+            relative: 1e-4,
+            degree: 3,
+            path: files::suggested(&p.model, "step"),
+        });
+    egui::CollapsingHeader::new("CAD export")
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.horizontal(|ui| {
+                for (format, ext, tip) in [
+                    (Format::Step, "step", "One B-spline face (AP214), fitted to the surface"),
+                    (Format::Iges, "igs", "One B-spline surface (IGES 5.3 entity 128)"),
+                    (Format::Glb, "glb", "The triangle mesh with normals (binary glTF)"),
+                ] {
+                    if ui
+                        .selectable_label(f.format == format, format.name())
+                        .on_hover_text(tip)
+                        .clicked()
+                    {
+                        f.format = format;
+                        f.path = files::suggested(&p.model, ext);
+                    }
+                }
+            });
+            let cad = f.format.is_cad();
+            ui.add_enabled_ui(cad, |ui| {
+                ui.horizontal(|ui| {
+                    ui.add(
+                        egui::DragValue::new(&mut f.relative)
+                            .range(1e-7..=1e-2)
+                            .speed(1e-6)
+                            .custom_formatter(|v, _| format!("{v:.1e}")),
+                    )
+                    .on_hover_text("The largest allowed deviation, as a fraction of the bounding box's diagonal (default 1e-4)");
+                    ui.label("tolerance");
+                    ui.add(egui::DragValue::new(&mut f.degree).range(2..=5))
+                        .on_hover_text("B-spline degree in both directions (3: C2 like the streamlines)");
+                    ui.label("degree");
+                });
+            });
+            ui.horizontal(|ui| {
+                ui.add(egui::TextEdit::singleline(&mut f.path).desired_width(190.0))
+                    .on_hover_text("The file to write (the extension picks the format)");
+                if ui
+                    .button("Export")
+                    .on_hover_text("Fit (STEP, IGES) and write; atomic and verified, a refusal keeps the old file")
+                    .clicked()
+                {
+                    s.export.fit = FitOptions {
+                        degree: (f.degree, f.degree),
+                        tolerance: Tolerance::Relative(f.relative),
+                    };
+                    p.send(Edit::Export(std::path::PathBuf::from(f.path.trim())));
+                }
+            });
+            match &s.last_export.written {
+                Some((path, format, Some(fit))) => {
+                    let r = &fit.fit.report;
+                    ui.label(
+                        egui::RichText::new(format!(
+                            "{}: {} — {}×{} poles, degree {}×{}\nlargest {:.2e}, mean {:.2e}, within {:.2e}; {:.1} ms",
+                            format.name(),
+                            path.file_name().map(|n| n.to_string_lossy()).unwrap_or_default(),
+                            r.poles.0,
+                            r.poles.1,
+                            r.degree.0,
+                            r.degree.1,
+                            r.deviation.max,
+                            r.deviation.mean,
+                            r.tolerance,
+                            fit.seconds * 1e3
+                        ))
+                        .small(),
+                    )
+                    .on_hover_text("The last fit: net size, deviation one depth finer than the display depth, time");
+                }
+                Some((path, format, None)) => {
+                    ui.label(
+                        egui::RichText::new(format!("{}: {}", format.name(), path.display())).small(),
+                    );
+                }
+                None => {}
+            }
+        });
+    ui.data_mut(|d| d.insert_temp(id, f));
+}

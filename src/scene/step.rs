@@ -1,0 +1,235 @@
+//! STEP (ISO 10303-21) with AP214's schema (`AUTOMOTIVE_DESIGN`): one
+//! `ADVANCED_FACE` on a `B_SPLINE_SURFACE_WITH_KNOTS`, bounded by its four
+//! boundary curves, in an `OPEN_SHELL` of a `SHELL_BASED_SURFACE_MODEL`
+//! (docs/math.md §10). Around it the entities a CAD system needs to import a face as
+//! a part: a product with its definition and shape, the length unit
+//! (metres), plane and solid angle units, and the distance uncertainty.
+//!
+//! The entity graph is the one OpenCascade writes for one B-spline face
+//! (product → product definition → shape → manifold surface shape
+//! representation → shell based surface model → open shell → face), less
+//! what a reader does not need. The boundary is `v = 0`, `u = 1`, `v = 1`,
+//! `u = 0` (counter-clockwise in the parameter plane, so the face's normal
+//! is the surface's `∂F/∂u × ∂F/∂v`), each a B-spline curve whose poles are
+//! the surface's boundary poles: the edges lie on the surface exactly.
+
+use super::numbers::real;
+use std::fmt::Write as _;
+use streamline_kernel::DVec3;
+use streamline_kernel::nurbs::{BSplineSurface, KnotVector};
+
+/// What goes into the file besides the surface.
+#[derive(Debug, Clone)]
+pub struct StepInfo<'a> {
+    /// The product's name (the scene's).
+    pub name: &'a str,
+    /// The file name written in the header.
+    pub file_name: &'a str,
+    /// The distance uncertainty (metres).
+    pub uncertainty: f64,
+    /// ISO 8601 time stamp for the header.
+    pub timestamp: &'a str,
+}
+
+struct Writer {
+    text: String,
+    next: usize,
+}
+
+impl Writer {
+    fn add(&mut self, entity: impl AsRef<str>) -> usize {
+        let id = self.next;
+        self.next += 1;
+        let _ = writeln!(self.text, "#{id}={};", entity.as_ref());
+        id
+    }
+}
+
+/// A STEP string literal: `'` doubled, only printable ASCII kept.
+fn string(s: &str) -> String {
+    let clean: String = s
+        .chars()
+        .map(|c| {
+            if (' '..='~').contains(&c) && c != '\\' && c != '#' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    format!("'{}'", clean.replace('\'', "''"))
+}
+
+fn list<T>(items: impl IntoIterator<Item = T>, f: impl Fn(T) -> String) -> String {
+    let v: Vec<String> = items.into_iter().map(f).collect();
+    format!("({})", v.join(","))
+}
+
+fn refs(ids: &[usize]) -> String {
+    list(ids.iter(), |i| format!("#{i}"))
+}
+
+/// Distinct knots and their multiplicities.
+fn knots_and_multiplicities(k: &KnotVector) -> (Vec<usize>, Vec<f64>) {
+    let (mut mult, mut vals) = (Vec::new(), Vec::<f64>::new());
+    for &x in k.knots() {
+        if vals.last() == Some(&x) {
+            *mult.last_mut().expect("one per value") += 1;
+        } else {
+            vals.push(x);
+            mult.push(1);
+        }
+    }
+    (mult, vals)
+}
+
+fn point(w: &mut Writer, p: DVec3) -> usize {
+    w.add(format!(
+        "CARTESIAN_POINT('',({},{},{}))",
+        real(p.x),
+        real(p.y),
+        real(p.z)
+    ))
+}
+
+fn curve(w: &mut Writer, k: &KnotVector, poles: &[DVec3]) -> usize {
+    let ids: Vec<usize> = poles.iter().map(|&p| point(w, p)).collect();
+    let (mult, vals) = knots_and_multiplicities(k);
+    w.add(format!(
+        "B_SPLINE_CURVE_WITH_KNOTS('',{},{},.UNSPECIFIED.,.F.,.F.,{},{},.UNSPECIFIED.)",
+        k.degree(),
+        refs(&ids),
+        list(mult, |m| m.to_string()),
+        list(vals, real),
+    ))
+}
+
+/// The whole file.
+pub fn step_text(surface: &BSplineSurface, info: &StepInfo) -> String {
+    let mut w = Writer {
+        text: String::new(),
+        next: 1,
+    };
+    let name = string(info.name);
+    // product, its definition and shape
+    let app = w.add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')");
+    w.add(format!(
+        "APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#{app})"
+    ));
+    let pctx = w.add(format!("PRODUCT_CONTEXT('',#{app},'mechanical')"));
+    let product = w.add(format!("PRODUCT({name},{name},'',(#{pctx}))"));
+    w.add(format!(
+        "PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#{product}))"
+    ));
+    let formation = w.add(format!("PRODUCT_DEFINITION_FORMATION('','',#{product})"));
+    let dctx = w.add(format!(
+        "PRODUCT_DEFINITION_CONTEXT('part definition',#{app},'design')"
+    ));
+    let def = w.add(format!(
+        "PRODUCT_DEFINITION('design','',#{formation},#{dctx})"
+    ));
+    let shape = w.add(format!("PRODUCT_DEFINITION_SHAPE('','',#{def})"));
+    // units and uncertainty
+    let metre = w.add("(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT($,.METRE.))");
+    let radian = w.add("(NAMED_UNIT(*)PLANE_ANGLE_UNIT()SI_UNIT($,.RADIAN.))");
+    let steradian = w.add("(NAMED_UNIT(*)SI_UNIT($,.STERADIAN.)SOLID_ANGLE_UNIT())");
+    let unc = w.add(format!(
+        "UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE({}),#{metre},'distance_accuracy_value','confusion accuracy')",
+        real(info.uncertainty)
+    ));
+    let ctx = w.add(format!(
+        "(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#{unc}))GLOBAL_UNIT_ASSIGNED_CONTEXT((#{metre},#{radian},#{steradian}))REPRESENTATION_CONTEXT('Context #1','3D Context with UNIT and UNCERTAINTY'))"
+    ));
+    // the surface
+    let (nu, nv) = surface.pole_counts();
+    let (p, q) = surface.degree();
+    let mut columns = Vec::with_capacity(nu);
+    for i in 0..nu {
+        let col: Vec<usize> = (0..nv)
+            .map(|j| point(&mut w, surface.poles.get(j, i)))
+            .collect();
+        columns.push(refs(&col));
+    }
+    let (mu, ku) = knots_and_multiplicities(&surface.knots_u);
+    let (mv, kv) = knots_and_multiplicities(&surface.knots_v);
+    let srf = w.add(format!(
+        "B_SPLINE_SURFACE_WITH_KNOTS('',{p},{q},({}),.UNSPECIFIED.,.F.,.F.,.F.,{},{},{},{},.UNSPECIFIED.)",
+        columns.join(","),
+        list(mu, |m| m.to_string()),
+        list(mv, |m| m.to_string()),
+        list(ku, real),
+        list(kv, real),
+    ));
+    // corners, boundary curves, edges
+    let poles = &surface.poles;
+    let corner = |j: usize, i: usize| poles.get(j, i);
+    let c00 = point(&mut w, corner(0, 0));
+    let c10 = point(&mut w, corner(0, nu - 1));
+    let c11 = point(&mut w, corner(nv - 1, nu - 1));
+    let c01 = point(&mut w, corner(nv - 1, 0));
+    let [v00, v10, v11, v01] =
+        [c00, c10, c11, c01].map(|c| w.add(format!("VERTEX_POINT('',#{c})")));
+    let bottom = curve(&mut w, &surface.knots_u, poles.row(0));
+    let right = curve(&mut w, &surface.knots_v, &poles.column(nu - 1));
+    let top = curve(&mut w, &surface.knots_u, poles.row(nv - 1));
+    let left = curve(&mut w, &surface.knots_v, &poles.column(0));
+    let edges = [
+        (v00, v10, bottom, ".T."),
+        (v10, v11, right, ".T."),
+        (v01, v11, top, ".F."),
+        (v00, v01, left, ".F."),
+    ];
+    let mut oriented = Vec::new();
+    for (a, b, c, sense) in edges {
+        let e = w.add(format!("EDGE_CURVE('',#{a},#{b},#{c},.T.)"));
+        oriented.push(w.add(format!("ORIENTED_EDGE('',*,*,#{e},{sense})")));
+    }
+    let lp = w.add(format!("EDGE_LOOP('',{})", refs(&oriented)));
+    let bound = w.add(format!("FACE_OUTER_BOUND('',#{lp},.T.)"));
+    let face = w.add(format!("ADVANCED_FACE('',(#{bound}),#{srf},.T.)"));
+    let shell = w.add(format!("OPEN_SHELL('',(#{face}))"));
+    let model = w.add(format!("SHELL_BASED_SURFACE_MODEL('',(#{shell}))"));
+    let origin = point(&mut w, DVec3::ZERO);
+    let z = w.add("DIRECTION('',(0.,0.,1.))");
+    let x = w.add("DIRECTION('',(1.,0.,0.))");
+    let axes = w.add(format!("AXIS2_PLACEMENT_3D('',#{origin},#{z},#{x})"));
+    let rep = w.add(format!(
+        "MANIFOLD_SURFACE_SHAPE_REPRESENTATION({name},(#{axes},#{model}),#{ctx})"
+    ));
+    w.add(format!("SHAPE_DEFINITION_REPRESENTATION(#{shape},#{rep})"));
+    format!(
+        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('Streamline Studio surface: one B-spline face'),'2;1');\nFILE_NAME({},{},(''),(''),'Streamline Studio {}','Streamline Studio','');\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN {{ 1 0 10303 214 1 1 1 1 }}'));\nENDSEC;\nDATA;\n{}ENDSEC;\nEND-ISO-10303-21;\n",
+        string(info.file_name),
+        string(info.timestamp),
+        env!("CARGO_PKG_VERSION"),
+        w.text
+    )
+}
+
+/// A check of what was written: the envelope, one face, one surface, and
+/// every `#n` referenced is defined.
+pub fn verify(bytes: &[u8]) -> Result<(), String> {
+    let text = std::str::from_utf8(bytes).map_err(|_| "not ASCII".to_string())?;
+    if !(text.starts_with("ISO-10303-21;") && text.trim_end().ends_with("END-ISO-10303-21;")) {
+        return Err("no ISO-10303-21 envelope".into());
+    }
+    let count = |what: &str| text.matches(what).count();
+    if count("ADVANCED_FACE(") != 1 || count("B_SPLINE_SURFACE_WITH_KNOTS(") != 1 {
+        return Err("not exactly one face on one B-spline surface".into());
+    }
+    let defined = text.lines().filter(|l| l.starts_with('#')).count();
+    for l in text.lines().filter(|l| l.starts_with('#')) {
+        for r in l.split('#').skip(2) {
+            let n: usize = r
+                .chars()
+                .take_while(char::is_ascii_digit)
+                .collect::<String>()
+                .parse()
+                .map_err(|_| format!("a bad reference in {l}"))?;
+            if n == 0 || n > defined {
+                return Err(format!("#{n} is referenced but not defined"));
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,271 @@
+//! CAD exchange (docs/math.md §10, docs/cad.md): STEP and IGES files of the shipped
+//! scenes read back by OpenCascade (tests/python/check_cad.py, in the test
+//! virtual environment that `scripts/setup.sh --tests` makes), and `.glb`
+//! files read back by the `gltf` crate against the OBJ of the same build.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use streamline_kernel::mesh::SurfaceMesh;
+use streamline_studio::scene::export::{ExportOptions, Format, export, export_scene};
+use streamline_studio::scene::{Scene, builtin, cad};
+
+/// A fresh scratch folder for one test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("streamline-cad-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The test venv's python, or a failure that says how to make it.
+fn venv_python() -> PathBuf {
+    let venv = std::env::var_os("STREAMLINE_VENV")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| {
+            PathBuf::from(std::env::var_os("HOME").expect("HOME is set"))
+                .join(".cache/streamline-venv")
+        });
+    let py = venv.join("bin/python");
+    assert!(
+        py.exists(),
+        "the test virtual environment with OpenCascade is missing ({}); run `bash scripts/setup.sh --tests` (it installs cadquery-ocp-novtk into it)",
+        py.display()
+    );
+    py
+}
+
+fn mesh_of(scene: &Scene, depth: u32) -> SurfaceMesh {
+    let s = cad::samples(scene, depth).unwrap();
+    SurfaceMesh::from_points(&s.points)
+}
+
+fn write_points(path: &Path, scene: &Scene, depth: u32) {
+    let s = cad::samples(scene, depth).unwrap();
+    let text: String = s
+        .points
+        .data()
+        .iter()
+        .map(|p| format!("{:?} {:?} {:?}\n", p.x, p.y, p.z))
+        .collect();
+    std::fs::write(path, text).unwrap();
+}
+
+/// The scenes the reader checks: both cars and a cylinder-like one (qi-side,
+/// until the Cylinder template exists).
+const SCENES: [&str; 3] = ["car1", "car2", "qi-side"];
+
+/// The export depth of each: the scene's display depth (4), and 5 for
+/// qi-side, whose 34 points a streamline at depth 4 differ from depth 5's
+/// surface by more than the default tolerance (the fit refuses it and says so).
+fn export_depth(name: &str) -> u32 {
+    if name == "qi-side" { 5 } else { 4 }
+}
+
+#[test]
+fn opencascade_reads_every_step_and_iges_file_we_write() {
+    let py = venv_python();
+    let dir = scratch("occ");
+    let mut manifest = Vec::new();
+    for name in SCENES {
+        let scene = builtin::scene(name).unwrap();
+        let depth = export_depth(name);
+        let mesh = mesh_of(&scene, depth);
+        let mut pts = serde_json::Map::new();
+        for (label, d) in [("export depth", depth), ("one finer", depth + 1)] {
+            let p = dir.join(format!("{name}-d{d}.xyz"));
+            write_points(&p, &scene, d);
+            pts.insert(label.into(), p.to_string_lossy().into());
+        }
+        for ext in ["step", "igs"] {
+            let path = dir.join(format!("{name}.{ext}"));
+            let out = export_scene(&scene, &mesh, depth, &path, &ExportOptions::default()).unwrap();
+            let fit = out.fit.expect("a CAD format reports its fit");
+            let r = fit.fit.report;
+            assert!(r.deviation.max <= r.tolerance, "{name}: {r:?}");
+            manifest.push(serde_json::json!({
+                "file": path,
+                "degree": [r.degree.0, r.degree.1],
+                "poles": [r.poles.0, r.poles.1],
+                "tolerance": r.tolerance,
+                "points": pts,
+            }));
+        }
+    }
+    let m = dir.join("manifest.json");
+    std::fs::write(&m, serde_json::to_string(&manifest).unwrap()).unwrap();
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_cad.py");
+    let out = Command::new(&py).arg(&script).arg(&m).output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "OpenCascade refused a file:\n{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // OpenCascade's own messages go to stdout too: the results are the JSON lines
+    let results: Vec<serde_json::Value> = stdout
+        .lines()
+        .filter(|l| l.starts_with('{'))
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(
+        results.len(),
+        manifest.len(),
+        "one result per file:\n{stdout}"
+    );
+    for (r, m) in results.iter().zip(&manifest) {
+        assert_eq!(r["file"], m["file"]);
+        assert!(r.get("error").is_none() && r["valid"] == true, "{r}");
+        assert_eq!(
+            (&r["degree"], &r["poles"]),
+            (&m["degree"], &m["poles"]),
+            "{r}"
+        );
+        eprintln!("{r}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The `v x y z` lines of an OBJ.
+fn obj_positions(text: &str) -> Vec<[f64; 3]> {
+    text.lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let v: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            [v[0], v[1], v[2]]
+        })
+        .collect()
+}
+
+#[test]
+fn a_glb_holds_the_same_vertices_as_the_obj_of_the_same_build() {
+    let dir = scratch("glb");
+    for name in SCENES {
+        let scene = builtin::scene(name).unwrap();
+        let mesh = mesh_of(&scene, scene.display_depth);
+        let (glb, obj) = (
+            dir.join(format!("{name}.glb")),
+            dir.join(format!("{name}.obj")),
+        );
+        assert_eq!(export(&mesh, name, &glb).unwrap(), Format::Glb);
+        export(&mesh, name, &obj).unwrap();
+        let want = obj_positions(&std::fs::read_to_string(&obj).unwrap());
+        let bytes = std::fs::read(&glb).unwrap();
+        let g = gltf::Gltf::from_slice(&bytes).unwrap();
+        let blob = g.blob.as_deref();
+        let prim = g.meshes().next().unwrap().primitives().next().unwrap();
+        let reader = prim.reader(|b| match b.source() {
+            gltf::buffer::Source::Bin => blob,
+            gltf::buffer::Source::Uri(_) => None,
+        });
+        let got: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+        let normals: Vec<[f32; 3]> = reader.read_normals().unwrap().collect();
+        let tris = reader.read_indices().unwrap().into_u32().count() / 3;
+        assert_eq!(got.len(), want.len(), "{name}: vertex count");
+        assert_eq!(normals.len(), want.len(), "{name}: one normal per vertex");
+        assert_eq!(tris, mesh.triangle_count(), "{name}: triangles");
+        for (i, (g, w)) in got.iter().zip(&want).enumerate() {
+            for k in 0..3 {
+                // f32 in the .glb: within half an f32 ulp of the f64 position
+                let tol = (w[k].abs() * f64::from(f32::EPSILON)).max(1e-30);
+                assert!(
+                    (f64::from(g[k]) - w[k]).abs() <= tol,
+                    "{name}: vertex {i}: {g:?} vs {w:?}"
+                );
+            }
+        }
+        assert!(
+            reader.read_colors(0).is_none(),
+            "{name}: no map, no COLOR_0"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn refused_exports_write_nothing_and_keep_the_old_file() {
+    let dir = scratch("refuse");
+    let scene = builtin::scene("car1").unwrap();
+    let mesh = mesh_of(&scene, 2);
+    for ext in ["step", "igs"] {
+        let path = dir.join(format!("old.{ext}"));
+        std::fs::write(&path, "the old file").unwrap();
+        for (opts, want) in [
+            (
+                streamline_kernel::nurbs::FitOptions {
+                    degree: (3, 3),
+                    tolerance: streamline_kernel::nurbs::Tolerance::Absolute(0.0),
+                },
+                "positive finite",
+            ),
+            (
+                streamline_kernel::nurbs::FitOptions {
+                    degree: (6, 3),
+                    tolerance: streamline_kernel::nurbs::Tolerance::Relative(1e-4),
+                },
+                "outside 2 to 5",
+            ),
+            (
+                streamline_kernel::nurbs::FitOptions {
+                    degree: (3, 3),
+                    tolerance: streamline_kernel::nurbs::Tolerance::Relative(1e-9),
+                },
+                "loosen the tolerance or export deeper",
+            ),
+        ] {
+            let e = export_scene(
+                &scene,
+                &mesh,
+                2,
+                &path,
+                &ExportOptions {
+                    fit: opts,
+                    colors: None,
+                },
+            )
+            .unwrap_err();
+            assert!(
+                e.message.contains(want) && e.message.contains("nothing was written"),
+                "{ext}: {e}"
+            );
+            assert_eq!(std::fs::read_to_string(&path).unwrap(), "the old file");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The points the fit sees are the surface the editor shows: multiresolution
+/// details and fine tuning included (the ECS pipeline's points, to rounding).
+#[test]
+fn the_fitted_points_are_the_edited_surface() {
+    use streamline_studio::ecs::{self, Edit, SurfaceData};
+    for name in ["car1", "car1-tuned"] {
+        let mut app = ecs::headless_app(builtin::scene(name).unwrap());
+        for edit in [
+            Edit::SetEditDepth(1),
+            Edit::Rotate {
+                row: 5,
+                col: 8,
+                axis: streamline_kernel::DVec3::Z,
+                radians: 0.4,
+            },
+            Edit::SetDisplayDepth(3),
+        ] {
+            ecs::apply(&mut app, edit).unwrap();
+        }
+        let scene = app.world().resource::<ecs::Model>().scene.clone();
+        assert_eq!(scene.details.len(), 1, "{name}: one detail");
+        let ecs_points = app.world().resource::<SurfaceData>().points.clone();
+        let ours = cad::samples(&scene, 3).unwrap().points;
+        assert_eq!(
+            (ours.rows(), ours.cols()),
+            (ecs_points.rows(), ecs_points.cols())
+        );
+        let worst = ours
+            .data()
+            .iter()
+            .zip(ecs_points.data())
+            .map(|(a, b)| (*a - *b).length())
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-12, "{name}: {worst:e}");
+    }
+}

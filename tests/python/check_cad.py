@@ -1,0 +1,97 @@
+"""Reads every STEP and IGES file of a manifest back with OpenCascade (OCP)
+and checks what Streamline Studio reported for it (tests/cad_export.rs,
+docs/cad.md): one face; a non-rational B-spline surface of the reported
+degree and pole counts; BRepCheck_Analyzer valid; and the largest distance
+from the given mesh points to the face, by OpenCascade's projection
+(GeomAPI_ProjectPointOnSurf), within the reported tolerance.
+
+Usage: check_cad.py MANIFEST.json  (prints one JSON line per file; exit 1 on
+any failure, with the reason).
+"""
+import json
+import sys
+
+from OCP.BRep import BRep_Tool
+from OCP.BRepCheck import BRepCheck_Analyzer
+from OCP.GeomAPI import GeomAPI_ProjectPointOnSurf
+from OCP.Geom import Geom_BSplineSurface
+from OCP.IFSelect import IFSelect_RetDone
+from OCP.IGESControl import IGESControl_Reader
+from OCP.Interface import Interface_Static
+from OCP.STEPControl import STEPControl_Reader
+from OCP.TopAbs import TopAbs_FACE
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS
+from OCP.gp import gp_Pnt
+
+
+def read(path):
+    reader = STEPControl_Reader() if path.lower().endswith((".step", ".stp")) else IGESControl_Reader()
+    # our files are in metres; OpenCascade converts to millimetres unless
+    # told (the setting exists once a reader has registered it)
+    assert Interface_Static.SetCVal_s("xstep.cascade.unit", "M"), "cannot set xstep.cascade.unit"
+    if reader.ReadFile(path) != IFSelect_RetDone:
+        raise AssertionError(f"{path}: OpenCascade could not read the file")
+    reader.TransferRoots()
+    return reader.OneShape()
+
+
+def faces(shape):
+    out = []
+    ex = TopExp_Explorer(shape, TopAbs_FACE)
+    while ex.More():
+        out.append(TopoDS.Face(ex.Current()))
+        ex.Next()
+    return out
+
+
+def points(path):
+    with open(path) as f:
+        return [tuple(float(x) for x in line.split()) for line in f if line.strip()]
+
+
+def check(entry):
+    path = entry["file"]
+    shape = read(path)
+    fs = faces(shape)
+    assert len(fs) == 1, f"{path}: {len(fs)} faces, want 1"
+    face = fs[0]
+    surf = BRep_Tool.Surface_s(face)
+    bs = surf
+    assert isinstance(bs, Geom_BSplineSurface), f"{path}: the face's surface is {type(surf).__name__}, not a B-spline surface"
+    assert not bs.IsURational() and not bs.IsVRational(), f"{path}: the surface is rational"
+    got = {"degree": [bs.UDegree(), bs.VDegree()], "poles": [bs.NbUPoles(), bs.NbVPoles()]}
+    assert got["degree"] == entry["degree"], f"{path}: degree {got['degree']}, reported {entry['degree']}"
+    assert got["poles"] == entry["poles"], f"{path}: poles {got['poles']}, reported {entry['poles']}"
+    valid = BRepCheck_Analyzer(shape).IsValid()
+    assert valid, f"{path}: BRepCheck_Analyzer says the shape is not valid"
+    worst = {}
+    for name, pts_file in entry["points"].items():
+        d_max = 0.0
+        proj = GeomAPI_ProjectPointOnSurf()
+        u0, u1, v0, v1 = bs.Bounds()
+        proj.Init(surf, u0, u1, v0, v1)
+        for (x, y, z) in points(pts_file):
+            proj.Perform(gp_Pnt(x, y, z))
+            assert proj.NbPoints() > 0, f"{path}: OpenCascade found no projection of ({x}, {y}, {z})"
+            d_max = max(d_max, proj.LowerDistance())
+        worst[name] = d_max
+        assert d_max <= entry["tolerance"], f"{path}: a {name} point is {d_max:.3e} from the face, over the tolerance {entry['tolerance']:.3e}"
+    return {"file": path, **got, "valid": valid, "max_distance": worst, "tolerance": entry["tolerance"]}
+
+
+def main():
+    with open(sys.argv[1]) as f:
+        manifest = json.load(f)
+    failed = False
+    for entry in manifest:
+        try:
+            print(json.dumps(check(entry)), flush=True)
+        except AssertionError as e:
+            print(json.dumps({"file": entry["file"], "error": str(e)}), flush=True)
+            failed = True
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()
