@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use streamline_kernel::mesh::SurfaceMesh;
+use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 use streamline_studio::scene::export::{ExportOptions, Format, export, export_scene};
 use streamline_studio::scene::{Scene, builtin, cad};
 

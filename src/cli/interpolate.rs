@@ -8,8 +8,8 @@ use clap::{Args, ValueEnum};
 use serde::Serialize;
 use std::path::PathBuf;
 use std::time::Instant;
-use streamline_kernel::interpolate::{Method, Options, interpolate};
-use streamline_kernel::loop_subdiv::{BoundaryRule, subdivide_levels};
+use streamline_kernel::loop_subdiv::mesh_interpolation::{Method, Options, interpolate};
+use streamline_kernel::loop_subdiv::subdivide::{BoundaryRule, subdivide_levels};
 
 /// Which iteration.
 #[derive(Debug, Clone, Copy, ValueEnum)]
@@ -145,7 +145,7 @@ pub fn run(a: InterpolateArgs) -> Result<(), CliError> {
         .map_err(CliError::Scene)?;
     }
     if let Some(surf) = &a.surface {
-        let c = streamline_kernel::trimesh::TriMesh {
+        let c = streamline_kernel::loop_subdiv::trimesh::TriMesh {
             positions: ctrl.clone(),
             faces: mesh.faces.clone(),
         };

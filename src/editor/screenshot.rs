@@ -40,7 +40,7 @@ pub struct ScreenshotRequest {
     /// Open this OBJ in mesh mode.
     pub mesh: Option<PathBuf>,
     /// With these Loop boundary rules (else the panel's default, edge-and-corner).
-    pub mesh_boundary: Option<streamline_kernel::loop_subdiv::BoundaryRule>,
+    pub mesh_boundary: Option<streamline_kernel::loop_subdiv::subdivide::BoundaryRule>,
     /// Start running this script (the picture does not wait for it).
     pub script: Option<PathBuf>,
 }

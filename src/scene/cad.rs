@@ -5,7 +5,7 @@
 
 use std::time::Instant;
 use streamline_kernel::grid::Grid;
-use streamline_kernel::incremental::{place_row_tuned, reference_levels};
+use streamline_kernel::levels::incremental::{place_row_tuned, reference_levels};
 use streamline_kernel::nurbs::{Fit, FitError, FitOptions, Samples, fit};
 
 use super::model::Scene;

@@ -12,8 +12,8 @@ use super::model::Scene;
 use super::{glb, iges, step};
 use std::fmt::Write as _;
 use std::path::Path;
-use streamline_kernel::mesh::SurfaceMesh;
 use streamline_kernel::nurbs::FitOptions;
+use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 
 /// The formats [`export`] writes, chosen by the file extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

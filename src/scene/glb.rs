@@ -9,7 +9,7 @@ use json::validation::Checked::Valid;
 use json::validation::USize64;
 use std::borrow::Cow;
 use std::collections::BTreeMap;
-use streamline_kernel::mesh::SurfaceMesh;
+use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 
 fn f32s(out: &mut Vec<u8>, values: impl IntoIterator<Item = f32>) {
     for v in values {

@@ -9,7 +9,7 @@ use super::io::write_atomic;
 use glam::DVec3;
 use std::fmt::Write;
 use std::path::Path;
-use streamline_kernel::loop_subdiv::BoundaryRule;
+use streamline_kernel::loop_subdiv::subdivide::BoundaryRule;
 
 /// Why a rule cannot be written to USD, or `None` when it can.
 pub fn refusal(rule: BoundaryRule) -> Option<String> {

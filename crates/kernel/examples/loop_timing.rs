@@ -14,8 +14,8 @@ use glam::DVec3;
 use std::fmt::Write as _;
 use std::process::Command;
 use std::time::Instant;
-use streamline_kernel::loop_subdiv::{BoundaryRule, subdivide_levels};
-use streamline_kernel::trimesh::TriMesh;
+use streamline_kernel::loop_subdiv::subdivide::{BoundaryRule, subdivide_levels};
+use streamline_kernel::loop_subdiv::trimesh::TriMesh;
 
 fn read_obj(path: &str) -> TriMesh {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));

@@ -37,7 +37,7 @@
 //!   every other boundary vertex's triple is edge-only's (a corner neighbour's
 //!   edge point is still the midpoint), so its mask is `(1/6, 2/3, 1/6)`.
 
-use crate::trimesh::{MeshError, Topology, TriMesh};
+use crate::loop_subdiv::trimesh::{MeshError, Topology, TriMesh};
 use glam::DVec3;
 
 /// Which rules act on the boundary of an open mesh (module docs; `docs/math.md §7`).
@@ -268,11 +268,11 @@ fn subdivided_positions(
 ) -> Result<Vec<DVec3>, MeshError> {
     let nv = p.len();
     let total = nv + topo.edges.len();
-    if total > crate::trimesh::MAX_VERTICES {
+    if total > crate::loop_subdiv::trimesh::MAX_VERTICES {
         return Err(MeshError::TooLarge {
             what: "vertices after subdivision",
             count: total,
-            cap: crate::trimesh::MAX_VERTICES,
+            cap: crate::loop_subdiv::trimesh::MAX_VERTICES,
         });
     }
     let mut out = Vec::with_capacity(total);

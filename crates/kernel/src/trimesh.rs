@@ -200,7 +200,7 @@ impl Topology {
     /// of a mesh with this topology and `faces`, derived from this one without
     /// a search or a check (the split of a valid mesh is valid): old vertices
     /// keep their indices, edge `e` becomes vertex `n + e` (as in
-    /// [`crate::loop_subdiv::subdivide`]); each edge `e` becomes edges `2e`
+    /// [`crate::loop_subdiv::subdivide::subdivide`]); each edge `e` becomes edges `2e`
     /// (at its lower end) and `2e + 1`, face `f`'s inner edges are
     /// `2E + 3f + j`, `j` joining the new vertices of its edges `j` and `j + 1`.
     pub fn refine(&self, faces: &[[u32; 3]]) -> (Vec<[u32; 3]>, Topology) {
@@ -390,7 +390,7 @@ impl TriMesh {
 
     /// The bounding box `(min, max)`.
     pub fn bounds(&self) -> (DVec3, DVec3) {
-        let [lo, hi] = crate::mesh::bounds(self.positions.iter().copied());
+        let [lo, hi] = crate::streamline::surface_mesh::bounds(self.positions.iter().copied());
         (lo, hi)
     }
 

@@ -7,11 +7,11 @@
 
 use glam::DVec3;
 use proptest::prelude::*;
-use streamline_kernel::interpolate::{Method, Options, interpolate};
-use streamline_kernel::loop_subdiv::{
+use streamline_kernel::loop_subdiv::mesh_interpolation::{Method, Options, interpolate};
+use streamline_kernel::loop_subdiv::subdivide::{
     BoundaryRule, limit_points, subdivide, subdivide_levels, subdivide_refined,
 };
-use streamline_kernel::trimesh::{Topology, TriMesh};
+use streamline_kernel::loop_subdiv::trimesh::{Topology, TriMesh};
 
 /// A plain `v`/`f` OBJ reader for the test data (independent of the app's tobj path).
 fn read_obj(name: &str) -> (TriMesh, Topology) {

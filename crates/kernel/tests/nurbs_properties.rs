@@ -7,15 +7,15 @@ mod common;
 use common::*;
 use glam::{DQuat, DVec3};
 use proptest::prelude::*;
-use streamline_kernel::design::Design;
 use streamline_kernel::grid::Grid;
-use streamline_kernel::initial_curve::InitialCurve;
+use streamline_kernel::levels::design::Design;
+use streamline_kernel::levels::presets;
+use streamline_kernel::levels::surface::{BlendOrder, SurfaceScheme};
 use streamline_kernel::nurbs::{
     BSplineSurface, FitError, FitOptions, KnotVector, Samples, Tolerance, deviation, fit,
     fit_design, fit_knots,
 };
-use streamline_kernel::presets;
-use streamline_kernel::surface::{BlendOrder, SurfaceScheme};
+use streamline_kernel::streamline::initial_curve::InitialCurve;
 
 /// Cox–de Boor from the definition (half-open spans, the last closed at 1).
 fn cox(k: &[f64], i: usize, p: usize, u: f64) -> f64 {

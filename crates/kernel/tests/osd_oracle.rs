@@ -19,9 +19,9 @@ use glam::DVec3;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use streamline_kernel::interpolate::{Method, Options, interpolate};
-use streamline_kernel::loop_subdiv::{BoundaryRule, subdivide};
-use streamline_kernel::trimesh::{Topology, TriMesh};
+use streamline_kernel::loop_subdiv::mesh_interpolation::{Method, Options, interpolate};
+use streamline_kernel::loop_subdiv::subdivide::{BoundaryRule, subdivide};
+use streamline_kernel::loop_subdiv::trimesh::{Topology, TriMesh};
 
 const SETUP: &str =
     "run `bash scripts/setup.sh --tests` (installs g++ and Debian's libosd-dev, OpenSubdiv 3.5)";

@@ -7,8 +7,8 @@ use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::egui;
 use std::path::PathBuf;
-use streamline_kernel::interpolate::Method;
-use streamline_kernel::loop_subdiv::BoundaryRule;
+use streamline_kernel::loop_subdiv::mesh_interpolation::Method;
+use streamline_kernel::loop_subdiv::subdivide::BoundaryRule;
 
 /// What only the Loop mesh section touches.
 #[derive(SystemParam)]

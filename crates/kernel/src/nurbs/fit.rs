@@ -28,8 +28,8 @@ use super::knots::{KnotVector, MAX_DEGREE, MIN_DEGREE};
 use super::lsq::EndFixedFit;
 use super::samples::Samples;
 use super::surface::BSplineSurface;
-use crate::design::Design;
 use crate::grid::Grid;
+use crate::levels::design::Design;
 use glam::DVec3;
 
 /// The default relative tolerance: this fraction of the bounding box's diagonal.

@@ -4,10 +4,10 @@
 //! each point, `v` per row the normalised `(t − t_first)/(t_last − t_first)`.
 
 use super::error::FitError;
-use crate::builder::Builder;
-use crate::design::{Design, Level};
 use crate::grid::Grid;
-use crate::streamline::point_arclength;
+use crate::levels::builder::Builder;
+use crate::levels::design::{Design, Level};
+use crate::streamline::integrate::point_arclength;
 use glam::DVec3;
 
 /// Points on a `v × u` grid of parameters: row `j`, column `i` sits at `(u[i], v[j])`.
@@ -128,7 +128,7 @@ impl Samples {
 
     /// The diagonal of the points' axis-aligned bounding box.
     pub fn diagonal(&self) -> f64 {
-        let [lo, hi] = crate::mesh::bounds(self.points.data().iter().copied());
+        let [lo, hi] = crate::streamline::surface_mesh::bounds(self.points.data().iter().copied());
         (hi - lo).length()
     }
 }
