@@ -1,14 +1,14 @@
 //! The blend stage: collects the cells that edits changed (`Changed<…>` on the
 //! handles) and re-blends only the dirty window of each level
-//! ([`streamline_kernel::incremental::propagate`]); rows of the display depth
+//! ([`streamline_kernel::levels::incremental::propagate`]); rows of the display depth
 //! whose tangents changed get new [`StreamlineTangents`].
 
 use super::components::*;
 use super::resources::*;
 use bevy::prelude::*;
 use std::time::Instant;
-use streamline_kernel::incremental::{LevelState, build_levels, propagate};
-use streamline_kernel::window::{Span, Window};
+use streamline_kernel::levels::dirty_window::{Span, Window};
+use streamline_kernel::levels::incremental::{LevelState, build_levels, propagate};
 
 /// Control handles whose direction or parameter changed.
 type ChangedControls<'w, 's> =

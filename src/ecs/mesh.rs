@@ -5,8 +5,8 @@ use super::components::*;
 use super::resources::{Stats, SurfaceData};
 use bevy::prelude::*;
 use std::time::Instant;
-use streamline_kernel::mesh::{normals_and_indices, normals_window};
-use streamline_kernel::window::{Span, Window};
+use streamline_kernel::levels::dirty_window::{Span, Window};
+use streamline_kernel::streamline::surface_mesh::{normals_and_indices, normals_window};
 
 pub(crate) fn patch_mesh(
     meter: Res<super::meter::CpuMeter>,

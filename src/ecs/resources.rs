@@ -4,9 +4,9 @@ use crate::scene::Scene;
 use bevy::prelude::*;
 use std::collections::VecDeque;
 use std::path::PathBuf;
-use streamline_kernel::mesh::SurfaceMesh;
-use streamline_kernel::multires::Details;
-use streamline_kernel::window::Window;
+use streamline_kernel::levels::dirty_window::Window;
+use streamline_kernel::levels::multires::Details;
+use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 use streamline_kernel::{DVec3, Grid};
 
 /// The scene being edited (kept equal to the handle components by the edit

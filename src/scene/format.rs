@@ -25,7 +25,7 @@
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize};
 use streamline_kernel::DVec3;
-use streamline_kernel::curve::OMEGA_MAX;
+use streamline_kernel::curve::scheme::OMEGA_MAX;
 
 /// The only version this build reads and writes.
 pub const VERSION: u32 = 1;

@@ -5,10 +5,12 @@
 mod common;
 
 use proptest::prelude::*;
-use streamline_kernel::incremental::{LevelState, build_levels, propagate, reference_levels};
-use streamline_kernel::multires::{self, Details};
-use streamline_kernel::window::Window;
-use streamline_kernel::{BlendOrder, DVec3, Design, Grid, SurfaceScheme, presets};
+use streamline_kernel::levels::dirty_window::Window;
+use streamline_kernel::levels::incremental::{
+    LevelState, build_levels, propagate, reference_levels,
+};
+use streamline_kernel::levels::multires::{self, Details};
+use streamline_kernel::{BlendOrder, DVec3, Design, Grid, SurfaceScheme, levels::presets};
 
 #[derive(Debug, Clone)]
 enum Edit {
@@ -108,12 +110,12 @@ proptest! {
                         *x += shift_next;
                     }
                     d.params.sigma[r] = d.params.s.get(r, d.anchor);
-                    seeds[0] = Some(Window { rows: streamline_kernel::window::Span::single(r),
-                        cols: streamline_kernel::window::Span::new(c, d.params.s.cols() - 1) });
+                    seeds[0] = Some(Window { rows: streamline_kernel::levels::dirty_window::Span::single(r),
+                        cols: streamline_kernel::levels::dirty_window::Span::new(c, d.params.s.cols() - 1) });
                 }
             }
             let mut refs: Vec<&mut LevelState> = levels.iter_mut().collect();
-            if streamline_kernel::incremental::check_params(&d, depth).is_err() {
+            if streamline_kernel::levels::incremental::check_params(&d, depth).is_err() {
                 return Ok(()); // refused edit: nothing to compare
             }
             propagate(&d, &details, &mut refs, &seeds).unwrap();

@@ -5,7 +5,7 @@
 use super::PanelCtx;
 use bevy_egui::egui;
 use std::path::PathBuf;
-use streamline_kernel::interpolate::Method;
+use streamline_kernel::loop_subdiv::mesh_interpolation::Method;
 
 pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
     let v = &mut *p.mesh;

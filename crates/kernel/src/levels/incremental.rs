@@ -2,23 +2,23 @@
 //! (docs/architecture.md, "Incremental rebuild, exactly"; docs/math.md §5 for the details).
 //!
 //! A [`LevelState`] holds one level: the intermediate grid of its first blend
-//! direction (none for s-first Kobbelt, [`crate::window::in_place`]), the
+//! direction (none for s-first Kobbelt, [`crate::levels::dirty_window::in_place`]), the
 //! *base* (subdivided, before details; kept only where the level has details),
 //! the tangents (with the details of that level applied) and the parameters. [`LevelState::update`]
 //! recomputes only the entries that read a dirty entry of the previous level,
 //! with the same per-entry rules as the full step, so the result is identical
 //! to a rebuild from scratch ([`reference_levels`]).
 
-use crate::design::{Design, Level};
+use crate::curve::scalar;
 use crate::error::KernelError;
 use crate::finetune::{SurfaceTuning, fine_tune_into};
 use crate::grid::Grid;
-use crate::initial_curve::InitialCurve;
-use crate::multires::{self, Details};
-use crate::params::ParamGrid;
-use crate::scalar;
-use crate::streamline::place_into;
-use crate::window::{Window, half_shape, refine_grid_window};
+use crate::levels::design::{Design, Level};
+use crate::levels::dirty_window::{Window, half_shape, refine_grid_window};
+use crate::levels::multires::{self, Details};
+use crate::levels::params::ParamGrid;
+use crate::streamline::initial_curve::InitialCurve;
+use crate::streamline::integrate::place_into;
 use glam::DVec3;
 
 /// One subdivision level and what is needed to update it in place.
@@ -27,7 +27,7 @@ pub struct LevelState {
     /// Depth of this level (0 = the control net).
     pub level: u32,
     /// Intermediate grid of the first blend direction (empty at level 0 and
-    /// where the step writes the next level in place, [`crate::window::in_place`]).
+    /// where the step writes the next level in place, [`crate::levels::dirty_window::in_place`]).
     pub half: Grid<DVec3>,
     /// The same for the `s` parameters.
     pub half_s: Grid<f64>,

@@ -12,7 +12,7 @@
 //! unchanged, so undoing a coarse edit gives back the same numbers exactly.
 
 use crate::grid::Grid;
-use crate::window::Window;
+use crate::levels::dirty_window::Window;
 use glam::DVec3;
 use std::collections::BTreeMap;
 
