@@ -123,3 +123,25 @@ t b_trimesh
 :b_interpolate
 s/^(\s*(pub(\([a-z]+\))? )?use (streamline_kernel|crate)::\{[^}]*[{ ])interpolate([,}])/\1loop_subdiv::mesh_interpolation as interpolate\5/
 t b_interpolate
+# --- file paths in docs and comments (crates/kernel/src/X.rs)
+s#\bcrates/kernel/src/tangent\.rs\b#crates/kernel/src/sphere/tangent.rs#g
+s#\bcrates/kernel/src/sphere\.rs\b#crates/kernel/src/sphere/blend.rs#g
+s#\bcrates/kernel/src/curve\.rs\b#crates/kernel/src/curve/scheme.rs#g
+s#\bcrates/kernel/src/scalar\.rs\b#crates/kernel/src/curve/scalar.rs#g
+s#\bcrates/kernel/src/qi\.rs\b#crates/kernel/src/curve/qi.rs#g
+s#\bcrates/kernel/src/streamline\.rs\b#crates/kernel/src/streamline/integrate.rs#g
+s#\bcrates/kernel/src/initial_curve\.rs\b#crates/kernel/src/streamline/initial_curve.rs#g
+s#\bcrates/kernel/src/mesh\.rs\b#crates/kernel/src/streamline/surface_mesh.rs#g
+s#\bcrates/kernel/src/bspline\.rs\b#crates/kernel/src/finetune/bspline.rs#g
+s#\bcrates/kernel/src/surface\.rs\b#crates/kernel/src/levels/surface.rs#g
+s#\bcrates/kernel/src/params\.rs\b#crates/kernel/src/levels/params.rs#g
+s#\bcrates/kernel/src/incremental\.rs\b#crates/kernel/src/levels/incremental.rs#g
+s#\bcrates/kernel/src/multires\.rs\b#crates/kernel/src/levels/multires.rs#g
+s#\bcrates/kernel/src/builder\.rs\b#crates/kernel/src/levels/builder.rs#g
+s#\bcrates/kernel/src/design\.rs\b#crates/kernel/src/levels/design.rs#g
+s#\bcrates/kernel/src/presets\.rs\b#crates/kernel/src/levels/presets.rs#g
+s#\bcrates/kernel/src/window\.rs\b#crates/kernel/src/levels/dirty_window.rs#g
+s#\bcrates/kernel/src/sphere_pi\.rs\b#crates/kernel/src/levels/tangent_interpolation.rs#g
+s#\bcrates/kernel/src/trimesh\.rs\b#crates/kernel/src/loop_subdiv/trimesh.rs#g
+s#\bcrates/kernel/src/loop_subdiv\.rs\b#crates/kernel/src/loop_subdiv/subdivide.rs#g
+s#\bcrates/kernel/src/interpolate\.rs\b#crates/kernel/src/loop_subdiv/mesh_interpolation.rs#g
