@@ -145,3 +145,8 @@ s#\bcrates/kernel/src/sphere_pi\.rs\b#crates/kernel/src/levels/tangent_interpola
 s#\bcrates/kernel/src/trimesh\.rs\b#crates/kernel/src/loop_subdiv/trimesh.rs#g
 s#\bcrates/kernel/src/loop_subdiv\.rs\b#crates/kernel/src/loop_subdiv/subdivide.rs#g
 s#\bcrates/kernel/src/interpolate\.rs\b#crates/kernel/src/loop_subdiv/mesh_interpolation.rs#g
+# --- renamed items
+# window::Window -> dirty_window::DirtyWindow, on import lines only (Bevy has a `Window`):
+# afterwards rename the remaining `Window`s of each file that imports it, e.g.
+#   for f in $(git grep -l 'dirty_window::.*DirtyWindow'); do sed -i -E 's/\bWindow\b/DirtyWindow/g' "$f"; done
+s/(dirty_window::(\{[^}]*)?)\bWindow\b/\1DirtyWindow/g

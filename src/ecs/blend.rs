@@ -7,7 +7,7 @@ use super::components::*;
 use super::resources::*;
 use bevy::prelude::*;
 use std::time::Instant;
-use streamline_kernel::levels::dirty_window::{Span, Window};
+use streamline_kernel::levels::dirty_window::{DirtyWindow, Span};
 use streamline_kernel::levels::incremental::{LevelState, build_levels, propagate};
 
 /// Control handles whose direction or parameter changed.
@@ -25,18 +25,18 @@ pub(crate) fn collect_seeds(
     if model.full {
         return;
     }
-    let mut add = |level: u32, w: Window| {
+    let mut add = |level: u32, w: DirtyWindow| {
         let l = level as usize;
         if seeds.0.len() <= l {
             seeds.0.resize(l + 1, None);
         }
-        seeds.0[l] = Some(Window::merge(seeds.0[l], w));
+        seeds.0[l] = Some(DirtyWindow::merge(seeds.0[l], w));
     };
     for h in &controls {
-        add(0, Window::cell(h.row, h.col));
+        add(0, DirtyWindow::cell(h.row, h.col));
     }
     for h in &details {
-        add(h.level, Window::cell(h.row, h.col));
+        add(h.level, DirtyWindow::cell(h.row, h.col));
     }
 }
 

@@ -12,7 +12,7 @@ use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use std::time::Instant;
 use streamline_kernel::finetune::SurfaceTuning;
-use streamline_kernel::levels::dirty_window::Window;
+use streamline_kernel::levels::dirty_window::DirtyWindow;
 use streamline_kernel::levels::incremental::check_params;
 use streamline_kernel::levels::multires;
 use streamline_kernel::{DQuat, DVec3, Design, Tangent};
@@ -133,7 +133,7 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             {
                 ctx.commands.entity(e).despawn();
             }
-            seed(&mut ctx.seeds, level, Window::cell(*row, *col));
+            seed(&mut ctx.seeds, level, DirtyWindow::cell(*row, *col));
             Ok(format!("cleared detail ({row}, {col}) at level {level}"))
         }
         Edit::SetScheme(s) => {
@@ -264,12 +264,12 @@ fn full(ctx: &mut EditCtx) {
     ctx.model.respawn = true;
 }
 
-fn seed(seeds: &mut Seeds, level: u32, w: Window) {
+fn seed(seeds: &mut Seeds, level: u32, w: DirtyWindow) {
     let l = level as usize;
     if seeds.0.len() <= l {
         seeds.0.resize(l + 1, None);
     }
-    seeds.0[l] = Some(Window::merge(seeds.0[l], w));
+    seeds.0[l] = Some(DirtyWindow::merge(seeds.0[l], w));
 }
 
 /// Drops details that no longer fit their level (after a scheme change).
@@ -456,7 +456,7 @@ fn restore(ctx: &mut EditCtx, target: Scene) {
             }
             None => {
                 ctx.commands.entity(e).despawn();
-                seed(&mut ctx.seeds, h.level, Window::cell(h.row, h.col));
+                seed(&mut ctx.seeds, h.level, DirtyWindow::cell(h.row, h.col));
             }
         }
     }

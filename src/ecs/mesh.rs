@@ -5,7 +5,7 @@ use super::components::*;
 use super::resources::{Stats, SurfaceData};
 use bevy::prelude::*;
 use std::time::Instant;
-use streamline_kernel::levels::dirty_window::{Span, Window};
+use streamline_kernel::levels::dirty_window::{DirtyWindow, Span};
 use streamline_kernel::streamline::surface_mesh::{normals_and_indices, normals_window};
 
 pub(crate) fn patch_mesh(
@@ -40,7 +40,7 @@ pub(crate) fn patch_mesh(
         // that moved are rewritten (a drag on the car at depth 5 moves nearly
         // every row; rewriting 82k triangles would be wasted); a normal reads
         // its neighbours across and along
-        let around = Window {
+        let around = DirtyWindow {
             rows: span.widen(1, rows),
             cols: Span {
                 lo: from.saturating_sub(1).min(cols - 1),

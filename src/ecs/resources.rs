@@ -4,7 +4,7 @@ use crate::scene::Scene;
 use bevy::prelude::*;
 use std::collections::VecDeque;
 use std::path::PathBuf;
-use streamline_kernel::levels::dirty_window::Window;
+use streamline_kernel::levels::dirty_window::DirtyWindow;
 use streamline_kernel::levels::multires::Details;
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 use streamline_kernel::{DVec3, Grid};
@@ -205,7 +205,7 @@ pub struct SurfaceData {
     pub generation: u64,
     /// The points (rows × columns) whose position or normal the last change
     /// rewrote (`None`: all).
-    pub changed: Option<Window>,
+    pub changed: Option<DirtyWindow>,
     /// Set by the integrate stage when it gave the points a new shape (the
     /// mesh stage then makes the normals and triangles afresh).
     pub(crate) reshaped: bool,
@@ -251,4 +251,4 @@ impl SurfaceData {
 
 /// Dirty windows seeded by edits, per level, for the blend stage.
 #[derive(Resource, Debug, Default)]
-pub(crate) struct Seeds(pub Vec<Option<Window>>);
+pub(crate) struct Seeds(pub Vec<Option<DirtyWindow>>);

@@ -14,7 +14,7 @@ use crate::error::KernelError;
 use crate::finetune::{SurfaceTuning, fine_tune_into};
 use crate::grid::Grid;
 use crate::levels::design::{Design, Level};
-use crate::levels::dirty_window::{Window, half_shape, refine_grid_window};
+use crate::levels::dirty_window::{DirtyWindow, half_shape, refine_grid_window};
 use crate::levels::multires::{self, Details};
 use crate::levels::params::ParamGrid;
 use crate::streamline::initial_curve::InitialCurve;
@@ -84,7 +84,7 @@ impl LevelState {
                 sigma: vec![0.0; nr],
             },
         };
-        me.update(design, details, prev, Window::all(rows, cols))?;
+        me.update(design, details, prev, DirtyWindow::all(rows, cols))?;
         Ok(me)
     }
 
@@ -126,8 +126,8 @@ impl LevelState {
         design: &Design,
         details: &Details,
         prev: &LevelState,
-        win: Window,
-    ) -> Result<(Window, UpdateCount), KernelError> {
+        win: DirtyWindow,
+    ) -> Result<(DirtyWindow, UpdateCount), KernelError> {
         self.update_with(design, details, prev, win, true)
     }
 
@@ -139,9 +139,9 @@ impl LevelState {
         design: &Design,
         details: &Details,
         prev: &LevelState,
-        win: Window,
+        win: DirtyWindow,
         params: bool,
-    ) -> Result<(Window, UpdateCount), KernelError> {
+    ) -> Result<(DirtyWindow, UpdateCount), KernelError> {
         let (scheme, order) = (design.scheme, design.order);
         self.keep_base(details);
         let into = if self.keeps_base() {
@@ -194,7 +194,7 @@ impl LevelState {
     }
 
     /// Re-applies the details of this level inside `win` (after a detail edit).
-    pub fn reapply_details(&mut self, details: &Details, win: Window) -> Window {
+    pub fn reapply_details(&mut self, details: &Details, win: DirtyWindow) -> DirtyWindow {
         let (rows, cols) = self.shape();
         let win = win.widen(0, rows, cols);
         self.keep_base(details);
@@ -213,7 +213,7 @@ impl LevelState {
     }
 }
 
-fn check_window(p: &ParamGrid, level: u32, w: Window) -> Result<(), KernelError> {
+fn check_window(p: &ParamGrid, level: u32, w: DirtyWindow) -> Result<(), KernelError> {
     let cols = p.s.cols();
     let (lo, hi) = (w.cols.lo.saturating_sub(1), (w.cols.hi + 1).min(cols - 1));
     for r in w.rows.iter() {
@@ -338,7 +338,7 @@ pub fn place_row_tuned(
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Propagation {
     /// The dirty window of each level (`None`: untouched).
-    pub dirty: Vec<Option<Window>>,
+    pub dirty: Vec<Option<DirtyWindow>>,
     /// Tangents re-blended over all levels.
     pub reblended: usize,
     /// Details re-applied over all levels.
@@ -360,7 +360,7 @@ pub fn propagate(
     design: &Design,
     details: &Details,
     levels: &mut [&mut LevelState],
-    seeds: &[Option<Window>],
+    seeds: &[Option<DirtyWindow>],
 ) -> Result<Propagation, KernelError> {
     let mut prop = Propagation {
         dirty: vec![None; levels.len()],
@@ -401,7 +401,7 @@ pub fn propagate(
         }
         if let Some(Some(seed)) = seeds.get(l) {
             let w = me.reapply_details(details, *seed);
-            dirty = Some(Window::merge(dirty, w));
+            dirty = Some(DirtyWindow::merge(dirty, w));
         }
         prop.dirty[l] = dirty;
     }

@@ -410,7 +410,7 @@ pub fn refine_grid_into<T: Refine + Send + Sync>(
         g,
         half,
         next,
-        crate::levels::dirty_window::Window::all(g.rows(), g.cols()),
+        crate::levels::dirty_window::DirtyWindow::all(g.rows(), g.cols()),
     );
 }
 
