@@ -9,7 +9,12 @@ use std::path::Path;
 
 /// Top-level module of a file under `src/`: its folder, or its stem.
 fn module_of(rel: &Path) -> String {
-    let first = rel.components().next().unwrap().as_os_str().to_string_lossy();
+    let first = rel
+        .components()
+        .next()
+        .unwrap()
+        .as_os_str()
+        .to_string_lossy();
     first.trim_end_matches(".rs").to_string()
 }
 
@@ -132,8 +137,14 @@ fn find_cycle(edges: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>>
 #[test]
 fn the_parser_sees_paths_and_groups() {
     assert_eq!(crate_paths("use crate::levels::surface::X;"), ["levels"]);
-    assert_eq!(crate_paths("use crate::{grid::Grid, error};"), ["grid", "error"]);
-    assert_eq!(crate_paths("let x = crate::simd::f(a) + $crate::no;"), ["simd"]);
+    assert_eq!(
+        crate_paths("use crate::{grid::Grid, error};"),
+        ["grid", "error"]
+    );
+    assert_eq!(
+        crate_paths("let x = crate::simd::f(a) + $crate::no;"),
+        ["simd"]
+    );
     assert!(crate_paths("let y = my_crate::x;").is_empty());
 }
 
