@@ -23,8 +23,8 @@ use streamline_kernel::loop_subdiv::subdivide::{
 };
 use streamline_kernel::loop_subdiv::trimesh::TriMesh;
 use streamline_kernel::{
-    BlendOrder, CurveScheme, DVec3, Design, Grid, SurfaceScheme, Tangent, curve, sphere, sphere_pi,
-    surface,
+    BlendOrder, CurveScheme, DVec3, Design, Grid, SurfaceScheme, Tangent, curve::scheme as curve,
+    levels::surface, levels::tangent_interpolation as sphere_pi, sphere::blend as sphere,
 };
 
 /// The most tangents a fuzzed scene is built with (its depth is lowered to fit).

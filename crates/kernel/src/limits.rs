@@ -47,3 +47,12 @@ pub const MAX_COORDINATE: f64 = 1e9;
 pub fn in_range(x: f64) -> bool {
     x.is_finite() && x.abs() <= MAX_COORDINATE
 }
+
+/// The upper bound (exclusive) of ω for the 4-point rule: `2(√5 − 1)`, where the
+/// planar scheme stops being C¹ (Dyn–Levin–Gregory, `w = ω/16 < (√5−1)/8`;
+/// docs/math.md §2). Also `curve::scheme::OMEGA_MAX`.
+pub const OMEGA_MAX: f64 = 2.472_135_954_999_579;
+
+/// QI curves of order up to this are supported (the basis buffer's size;
+/// docs/math.md §2). Also `curve::qi::MAX_ORDER`.
+pub const MAX_QI_ORDER: usize = 8;

@@ -14,6 +14,7 @@
 //!   values, so a [`Constraint`] is met exactly by the least-squares change
 //!   to the designer's values.
 
+pub mod bspline;
 pub mod chaikin;
 pub mod constraint;
 pub mod streamline;

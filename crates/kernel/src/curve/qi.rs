@@ -204,8 +204,8 @@ impl QiCurve {
     }
 }
 
-/// QI curves of order up to this are supported (the basis buffer's size).
-pub const MAX_ORDER: usize = 8;
+/// QI curves of order up to this are supported (defined in [`crate::limits`]).
+pub use crate::limits::MAX_QI_ORDER as MAX_ORDER;
 
 #[cfg(test)]
 mod tests {

@@ -1,6 +1,6 @@
 //! Dirty windows for the incremental rebuild (docs/architecture.md, "Incremental rebuild, exactly").
 //!
-//! An edit marks the control cells it touched as a [`Window`]. One subdivision
+//! An edit marks the control cells it touched as a [`DirtyWindow`]. One subdivision
 //! step maps a dirty input range `[a, b]` to the outputs that read any of it:
 //! the stencil radius of the scheme on each side, indices doubled
 //! ([`Span::refine`]). Every entry in the new window is recomputed with the
@@ -95,17 +95,17 @@ impl Span {
 
 /// A rectangle of grid cells: rows (streamlines) × columns (along `s`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Window {
+pub struct DirtyWindow {
     /// Rows.
     pub rows: Span,
     /// Columns.
     pub cols: Span,
 }
 
-impl Window {
+impl DirtyWindow {
     /// One cell.
     pub fn cell(row: usize, col: usize) -> Self {
-        Window {
+        DirtyWindow {
             rows: Span::single(row),
             cols: Span::single(col),
         }
@@ -113,7 +113,7 @@ impl Window {
 
     /// The whole `rows × cols` grid.
     pub fn all(rows: usize, cols: usize) -> Self {
-        Window {
+        DirtyWindow {
             rows: Span::all(rows),
             cols: Span::all(cols),
         }
@@ -125,30 +125,30 @@ impl Window {
     }
 
     /// The smallest window holding both.
-    pub fn union(self, o: Window) -> Window {
-        Window {
+    pub fn union(self, o: DirtyWindow) -> DirtyWindow {
+        DirtyWindow {
             rows: self.rows.union(o.rows),
             cols: self.cols.union(o.cols),
         }
     }
 
     /// Union with an optional window.
-    pub fn merge(a: Option<Window>, b: Window) -> Window {
+    pub fn merge(a: Option<DirtyWindow>, b: DirtyWindow) -> DirtyWindow {
         a.map_or(b, |a| a.union(b))
     }
 
     /// Widened by `by` cells each way inside a `rows × cols` grid.
-    pub fn widen(self, by: usize, rows: usize, cols: usize) -> Window {
-        Window {
+    pub fn widen(self, by: usize, rows: usize, cols: usize) -> DirtyWindow {
+        DirtyWindow {
             rows: self.rows.widen(by, rows),
             cols: self.cols.widen(by, cols),
         }
     }
 
     /// The window of the next level after one tensor step on a `rows × cols` grid.
-    pub fn refine(self, scheme: SurfaceScheme, rows: usize, cols: usize) -> Window {
+    pub fn refine(self, scheme: SurfaceScheme, rows: usize, cols: usize) -> DirtyWindow {
         let c = scheme.curve();
-        Window {
+        DirtyWindow {
             rows: self.rows.refine(c, rows),
             cols: self.cols.refine(c, cols),
         }
@@ -230,8 +230,8 @@ pub fn refine_grid_window<T: Refine + Send + Sync>(
     prev: &Grid<T>,
     half: &mut Grid<T>,
     next: &mut Grid<T>,
-    win: Window,
-) -> Window {
+    win: DirtyWindow,
+) -> DirtyWindow {
     if in_place(scheme, order, prev.rows()) {
         return refine_in_place_s_first(scheme, prev, next, win);
     }
@@ -271,8 +271,8 @@ fn refine_in_place_s_first<T: Refine + Send + Sync>(
     scheme: SurfaceScheme,
     prev: &Grid<T>,
     next: &mut Grid<T>,
-    win: Window,
-) -> Window {
+    win: DirtyWindow,
+) -> DirtyWindow {
     let c = scheme.curve();
     let rule = T::prepare(c);
     let n = prev.rows();
@@ -407,9 +407,9 @@ mod tests {
                         &g,
                         &mut half,
                         &mut next,
-                        Window::all(rows, cols),
+                        DirtyWindow::all(rows, cols),
                     );
-                    assert_eq!(w, Window::all(full.rows(), full.cols()));
+                    assert_eq!(w, DirtyWindow::all(full.rows(), full.cols()));
                     assert!(w.area() < PARALLEL_MIN_ENTRIES || rows > 5);
                     assert_eq!(next, full, "{scheme:?} {order:?} {rows}×{cols}");
                 }
@@ -444,18 +444,18 @@ mod tests {
                 crate::levels::surface::refine_grid_into(scheme, order, &g, &mut half, &mut next);
                 assert_eq!((half.rows(), half.cols()), (hr, hc));
                 let windows = [
-                    Window::cell(35, 40),
-                    Window {
+                    DirtyWindow::cell(35, 40),
+                    DirtyWindow {
                         rows: Span::new(5, 60),
                         cols: Span::new(3, 85),
                     },
-                    Window::cell(0, 0),
-                    Window::cell(69, 89),
-                    Window {
+                    DirtyWindow::cell(0, 0),
+                    DirtyWindow::cell(69, 89),
+                    DirtyWindow {
                         rows: Span::new(1, 2),
                         cols: Span::all(cols),
                     },
-                    Window {
+                    DirtyWindow {
                         rows: Span::new(30, 69),
                         cols: Span::new(0, 50),
                     },

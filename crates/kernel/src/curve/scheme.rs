@@ -17,9 +17,9 @@ use crate::sphere::blend::{FixedBlend, mid, quarter, quarters, three_quarters};
 use crate::sphere::tangent::normalize_all;
 use glam::DVec3;
 
-/// The upper bound (exclusive) of ω for the 4-point rule: `2(√5 − 1)`, where the
-/// planar scheme stops being C¹ (Dyn–Levin–Gregory, `w = ω/16 < (√5−1)/8`).
-pub const OMEGA_MAX: f64 = 2.472_135_954_999_579;
+/// The upper bound (exclusive) of ω for the 4-point rule (defined in
+/// [`crate::limits`], which the error messages read too).
+pub use crate::limits::OMEGA_MAX;
 
 /// The default ω (the classic 4-point weight `w = 1/16`).
 pub const OMEGA_DEFAULT: f64 = 1.0;

@@ -1,0 +1,23 @@
+//! The surface on the Gaussian sphere and its subdivision levels (paper 000, §4–5;
+//! docs/math.md §3–5, §9).
+//!
+//! - [`surface`]: tensor-product subdivision of a control net of tangents
+//!   (docs/math.md §3); [`params`]: the parameter grids `s`, `t`, `σ` (§4).
+//! - [`design`]: a whole surface (net, parameters, scheme, initial curve) and
+//!   its full build; [`builder`]: the same build keeping its buffers;
+//!   [`presets`]: the paper's examples (Figs. 2, 8–11).
+//! - [`dirty_window`], [`incremental`], [`multires`]: the levels kept between
+//!   edits and updated inside the cells an edit touched; details at depth
+//!   (docs/math.md §5; docs/architecture.md, "Incremental rebuild, exactly").
+//! - [`tangent_interpolation`]: progressive interpolation of the control
+//!   tangents by the approximating schemes (docs/math.md §7, on the sphere).
+
+pub mod builder;
+pub mod design;
+pub mod dirty_window;
+pub mod incremental;
+pub mod multires;
+pub mod params;
+pub mod presets;
+pub mod surface;
+pub mod tangent_interpolation;
