@@ -78,13 +78,53 @@ struct ShotProgress {
     busy_frames: u32,
     /// [`Report::shown_gap`], once measured.
     shown_gap: Option<f64>,
+    /// Frames in a row in which the render world had no pipeline left to
+    /// compile.
+    settled: u32,
+}
+
+/// How many render pipelines are still queued or being compiled, counted in
+/// the render world each frame. On a software renderer (llvmpipe compiles
+/// every shader on the CPU) a loaded machine can take longer than the
+/// request's frame count to compile them, and a frame drawn before then
+/// shows an empty 3D view: the capture waits for them.
+#[derive(Resource, Clone, Default)]
+struct PendingPipelines(std::sync::Arc<std::sync::atomic::AtomicUsize>);
+
+/// Frames without a pending pipeline before the capture (a new mesh or
+/// material is specialised a frame or two after it appears).
+const SETTLED_FRAMES: u32 = 5;
+
+fn count_pending_pipelines(
+    cache: Res<bevy::render::render_resource::PipelineCache>,
+    pending: Res<PendingPipelines>,
+) {
+    use bevy::render::render_resource::CachedPipelineState;
+    let n = cache
+        .pipelines()
+        .filter(|p| {
+            matches!(
+                p.state,
+                CachedPipelineState::Queued | CachedPipelineState::Creating(_)
+            )
+        })
+        .count();
+    pending.0.store(n, std::sync::atomic::Ordering::Relaxed);
 }
 
 pub struct ScreenshotPlugin;
 
 impl Plugin for ScreenshotPlugin {
     fn build(&self, app: &mut App) {
-        app.init_resource::<ShotProgress>()
+        let pending = PendingPipelines::default();
+        if let Some(render) = app.get_sub_app_mut(bevy::render::RenderApp) {
+            render.insert_resource(pending.clone()).add_systems(
+                bevy::render::Render,
+                count_pending_pipelines.in_set(bevy::render::RenderSystems::Cleanup),
+            );
+        }
+        app.insert_resource(pending)
+            .init_resource::<ShotProgress>()
             .add_systems(
                 Startup,
                 set_up_view.run_if(resource_exists::<ScreenshotRequest>),
@@ -231,6 +271,7 @@ fn drive(
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
     sphere: Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
     mesh: Res<super::mesh_mode::MeshView>,
+    pending: Res<PendingPipelines>,
 ) {
     p.frame += 1;
     if mesh.busy() {
@@ -254,7 +295,17 @@ fn drive(
     if !p.position_written && p.frame >= 10 {
         p.position_written = write_handle_position(&req, &selection, &arrows, &camera, &sphere);
     }
-    if !p.requested && !waiting && p.frame >= req.frames {
+    // and until the render world has compiled its pipelines
+    if pending.0.load(std::sync::atomic::Ordering::Relaxed) == 0 {
+        p.settled += 1;
+    } else {
+        p.settled = 0;
+    }
+    let compiling = p.settled < SETTLED_FRAMES && p.frame < 20_000;
+    if compiling && !p.requested && p.frame >= req.frames {
+        p.held += 1;
+    }
+    if !p.requested && !waiting && !compiling && p.frame >= req.frames {
         p.requested = true;
         commands
             .spawn(Screenshot::primary_window())
