@@ -345,7 +345,7 @@ pub enum SurfaceChange {
     /// Nothing changed.
     Unchanged,
     /// Only these points (the union of the windows of the changes).
-    DirtyWindow(DirtyWindow),
+    Window(DirtyWindow),
     /// Everything (a new surface, or changes the reader did not see).
     All,
 }
@@ -379,8 +379,8 @@ impl SurfaceChanges<'_, '_> {
         for m in self.cursor.read(&self.messages) {
             out = match (out, m.window) {
                 (SurfaceChange::All, _) | (_, None) => SurfaceChange::All,
-                (SurfaceChange::Unchanged, Some(w)) => SurfaceChange::DirtyWindow(w),
-                (SurfaceChange::DirtyWindow(a), Some(w)) => SurfaceChange::DirtyWindow(a.union(w)),
+                (SurfaceChange::Unchanged, Some(w)) => SurfaceChange::Window(w),
+                (SurfaceChange::Window(a), Some(w)) => SurfaceChange::Window(a.union(w)),
             };
         }
         out
