@@ -30,6 +30,7 @@ pub mod limits;
 pub mod loop_subdiv;
 pub mod nurbs;
 pub mod parallel;
+pub mod plane;
 pub mod simd;
 pub mod sphere;
 pub mod streamline;

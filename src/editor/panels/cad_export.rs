@@ -5,12 +5,21 @@
 //! old file and shows its message in the status line).
 
 use super::PanelCtx;
-use super::file::FileSection;
 use crate::ecs::Edit;
 use crate::editor::files;
 use crate::scene::export::Format;
+use bevy::ecs::system::SystemParam;
+use bevy::prelude::*;
 use bevy_egui::egui;
 use streamline_kernel::nurbs::{FitOptions, Tolerance};
+
+/// The section's own resources: the export settings it writes, the last
+/// export's outcome it shows.
+#[derive(SystemParam)]
+pub struct CadExportSection<'w> {
+    pub export: ResMut<'w, crate::ecs::exchange::ExportSettings>,
+    pub last_export: Res<'w, crate::ecs::exchange::LastExport>,
+}
 
 /// The section's own fields, kept in egui's memory.
 #[derive(Clone, Debug)]
@@ -22,7 +31,7 @@ struct Fields {
     path: String,
 }
 
-pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
+pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut CadExportSection) {
     let id = ui.id().with("cad-export");
     let mut f = ui
         .data(|d| d.get_temp::<Fields>(id))

@@ -14,8 +14,6 @@ pub struct FileSection<'w> {
     pub files: ResMut<'w, FileUi>,
     pub exit: MessageWriter<'w, AppExit>,
     pub script: ResMut<'w, ScriptRun>,
-    pub export: ResMut<'w, crate::ecs::exchange::ExportSettings>,
-    pub last_export: Res<'w, crate::ecs::exchange::LastExport>,
 }
 
 pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
@@ -120,7 +118,6 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
             }
         }
     }
-    super::cad_export::show(ui, p, s);
     ui.separator();
     script(ui, &mut s.script);
 }

@@ -160,6 +160,7 @@ pub struct ToolbarSection<'w> {
 pub struct Sections<'w> {
     bar: ToolbarSection<'w>,
     file: file::FileSection<'w>,
+    cad: cad_export::CadExportSection<'w>,
     display: display::DisplaySection<'w>,
     analysis: analysis::AnalysisSection<'w>,
     mesh: mesh::MeshSection<'w>,
@@ -384,7 +385,10 @@ fn panel(
                         header = header.open(Some(open));
                     }
                     let shown = header.show(ui, |ui| match name {
-                        PanelName::File => file::show(ui, &mut p, &mut sections.file),
+                        PanelName::File => {
+                            file::show(ui, &mut p, &mut sections.file);
+                            cad_export::show(ui, &mut p, &mut sections.cad);
+                        }
                         PanelName::Subdivision => subdivision::show(ui, &mut p),
                         PanelName::Selection => selection::show(ui, &mut p),
                         PanelName::Display => display::show(ui, &mut sections.display),

@@ -12,9 +12,9 @@
 //! curve and against a much finer rule ([`InitialCurve::quadrature_error_estimate`]).
 //! Outside `[0, L]` the curve continues along its end tangents.
 
-use crate::authoring::MirrorPlane;
 use crate::curve::qi::QiCurve;
 use crate::error::{KernelError, Place};
+use crate::plane::MirrorPlane;
 use glam::DVec3;
 
 /// 5-point Gauss–Legendre nodes on [−1, 1].
