@@ -4,11 +4,11 @@
 //! in a texture through the vertex's `u` coordinate, so stripes and colour bands
 //! stay crisp inside large triangles.
 
-use super::camera::{MainCamera, OrbitCamera, SceneBounds};
 use super::coords::to_view;
+use super::interaction::{EditorSet, MainCamera, OrbitCamera, SceneBounds};
 use super::surface::{ShadedMaterial, SurfaceEntity};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
-use crate::ecs::{Model, ModelSet, SurfaceChanges, SurfaceData};
+use crate::ecs::{Model, SurfaceChanges, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
 use bevy::prelude::*;
@@ -118,12 +118,7 @@ impl Plugin for AnalysisPlugin {
         app.init_resource::<AnalysisSettings>()
             .init_resource::<CurvatureField>()
             .add_systems(Startup, setup)
-            .add_systems(
-                Update,
-                (apply_mode, draw_combs)
-                    .after(ModelSet::Output)
-                    .after(super::surface::sync_mesh),
-            );
+            .add_systems(Update, (apply_mode, draw_combs).in_set(EditorSet::Present));
     }
 }
 

@@ -5,7 +5,7 @@
 
 use super::files::{Dialog, EditorDirs, FileUi};
 use super::screenshot::ScreenshotRequest;
-use crate::ecs::{Edit, EditMessage, Model};
+use crate::ecs::Model;
 use crate::scene::io;
 use bevy::prelude::*;
 use std::path::PathBuf;
@@ -110,26 +110,6 @@ pub fn pending_recovery(dirs: &EditorDirs, scene: Option<&std::path::Path>) -> O
         when: format!("{} min ago", age.as_secs() / 60),
         origin,
     })
-}
-
-/// Opens the recovery file as the current (unsaved) scene.
-pub fn recover(
-    dirs: &EditorDirs,
-    origin: Option<PathBuf>,
-    edits: &mut MessageWriter<EditMessage>,
-    ui: &mut FileUi,
-) {
-    match io::load(&dirs.recovery_file()) {
-        Ok(scene) => {
-            edits.write(EditMessage::from(Edit::Recover {
-                scene: Box::new(scene),
-                origin,
-            }));
-        }
-        Err(e) => ui
-            .errors
-            .push(format!("the autosave cannot be recovered: {e}")),
-    }
 }
 
 fn tick(

@@ -1,10 +1,13 @@
-//! The main 3D camera: an orbit camera over the area the panels leave free.
+//! The main 3D camera: an orbit camera ([`OrbitCamera`], kept in the
+//! interaction core) over the area the panels leave free.
 //! Right drag orbits, middle drag pans, the wheel zooms; `A` (or Home) frames
 //! everything, `F` frames the selected handle. Viewport input is ignored while
 //! the pointer is over an egui panel.
 
-use super::coords::to_view;
-use crate::ecs::{Model, ModelSet, SurfaceChanges, SurfaceData};
+use super::interaction::{
+    EditorSet, FrameRequest, Handles, MainCamera, OrbitCamera, SceneBounds, Selection, ViewArea,
+};
+use crate::ecs::{Model, SurfaceChanges, SurfaceData};
 use crate::scene::format::ViewSpec;
 use bevy::camera::Viewport;
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
@@ -13,113 +16,22 @@ use bevy::window::PrimaryWindow;
 use bevy_egui::input::{egui_wants_any_keyboard_input, egui_wants_any_pointer_input};
 use streamline_kernel::DVec3;
 
-/// Marks the main 3D camera.
-#[derive(Component)]
-pub struct MainCamera;
-
-/// The orbit camera's state, in kernel coordinates (z up): the target, the
-/// distance, the angle about the vertical axis and the angle above the horizon.
-#[derive(Component, Debug, Clone, Copy)]
-pub struct OrbitCamera {
-    /// The point looked at.
-    pub target: DVec3,
-    /// Distance from the target.
-    pub distance: f64,
-    /// Radians about the vertical axis.
-    pub yaw: f64,
-    /// Radians above the horizon.
-    pub pitch: f64,
-}
-
-impl OrbitCamera {
-    /// The eye's direction from the target (unit, kernel coordinates).
-    pub fn eye_dir(&self) -> DVec3 {
-        let (sy, cy) = self.yaw.sin_cos();
-        let (sp, cp) = self.pitch.sin_cos();
-        DVec3::new(cp * cy, cp * sy, sp)
-    }
-
-    /// The camera transform (view coordinates).
-    pub fn transform(&self) -> Transform {
-        let eye = to_view(self.target + self.eye_dir() * self.distance);
-        Transform::from_translation(eye).looking_at(to_view(self.target), Vec3::Y)
-    }
-
-    /// From a scene's view.
-    pub fn from_view(v: &ViewSpec) -> Self {
-        OrbitCamera {
-            target: v.target.vec(),
-            distance: v.distance.0.abs().max(1e-3),
-            yaw: v.yaw.0.to_radians(),
-            pitch: v.pitch.0.to_radians().clamp(-1.55, 1.55),
-        }
-    }
-
-    /// Looks at a ball of radius `radius` about `center`, keeping the angles.
-    pub fn frame(&mut self, center: DVec3, radius: f64) {
-        self.target = center;
-        // vertical field of view π/4; a margin for the viewport's narrow side
-        self.distance = (radius.max(1e-3) / (std::f64::consts::FRAC_PI_8).sin()) * 1.15;
-    }
-}
-
-/// The surface's bounding box (kernel coordinates).
-#[derive(Resource, Debug, Clone, Copy)]
-pub struct SceneBounds {
-    /// Smallest corner.
-    pub min: DVec3,
-    /// Largest corner.
-    pub max: DVec3,
-}
-
-impl Default for SceneBounds {
-    fn default() -> Self {
-        SceneBounds {
-            min: DVec3::splat(-1.0),
-            max: DVec3::splat(1.0),
-        }
-    }
-}
-
-impl SceneBounds {
-    /// The box's centre.
-    pub fn center(&self) -> DVec3 {
-        0.5 * (self.min + self.max)
-    }
-
-    /// The box's diagonal.
-    pub fn size(&self) -> f64 {
-        (self.max - self.min).length()
-    }
-}
-
-/// The area of the window left to the 3D view by the panels (logical pixels),
-/// set by the panel system each frame.
-#[derive(Resource, Debug, Clone, Copy, Default)]
-pub struct ViewArea(pub Option<Rect>);
-
-/// A request to frame something, from the panels or keys.
-#[derive(Resource, Debug, Default)]
-pub struct FrameRequest(pub Option<(DVec3, f64)>);
-
 pub struct OrbitCameraPlugin;
 
 impl Plugin for OrbitCameraPlugin {
     fn build(&self, app: &mut App) {
-        app.init_resource::<SceneBounds>()
-            .init_resource::<ViewArea>()
-            .init_resource::<FrameRequest>()
-            .add_systems(Startup, spawn)
+        app.add_systems(Startup, spawn)
             .add_systems(
                 Update,
                 (
-                    bounds.after(ModelSet::Output),
+                    bounds,
                     follow_scene_view,
                     orbit.run_if(not(egui_wants_any_pointer_input)),
                     keys.run_if(not(egui_wants_any_keyboard_input)),
                     apply_frame_and_view,
                 )
-                    .chain(),
+                    .chain()
+                    .in_set(EditorSet::Sync),
             )
             .add_systems(PostUpdate, set_viewport);
     }
@@ -219,18 +131,18 @@ fn keys(
     meter: Res<crate::ecs::meter::CpuMeter>,
     keys: Res<ButtonInput<KeyCode>>,
     bounds: Res<SceneBounds>,
-    handles: Res<super::handles::HandleArrows>,
-    selection: Res<super::picking::Selection>,
+    handles: Res<Handles>,
+    selection: Res<Selection>,
     mut req: ResMut<FrameRequest>,
 ) {
     let _meter = meter.start();
     if keys.just_pressed(KeyCode::KeyA) || keys.just_pressed(KeyCode::Home) {
-        req.0 = Some((bounds.center(), 0.5 * bounds.size()));
+        req.0 = Some(bounds.all());
     }
     if keys.just_pressed(KeyCode::KeyF) {
-        req.0 = Some(match selection.handle.and_then(|h| handles.find(h)) {
-            Some(a) => (a.base, (a.length * 4.0).max(0.05 * bounds.size())),
-            None => (bounds.center(), 0.5 * bounds.size()),
+        req.0 = Some(match selection.primary().and_then(|h| handles.find(h)) {
+            Some(a) => a.framing(bounds.size()),
+            None => bounds.all(),
         });
     }
 }

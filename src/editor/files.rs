@@ -537,7 +537,7 @@ fn dialogs(
                         .on_hover_text("Open the autosaved scene")
                         .clicked()
                     {
-                        super::autosave::recover(&dirs, origin.clone(), &mut edits, &mut ui);
+                        recover(&dirs, origin.clone(), &mut edits, &mut ui);
                         close = true;
                     }
                     if h.button("Discard")
@@ -566,4 +566,24 @@ fn dialogs(
         ctx.data_mut(|d| d.remove::<bool>(egui::Id::new("path_dialog_focused")));
     }
     Ok(())
+}
+
+/// Opens the recovery file as the current (unsaved) scene.
+pub fn recover(
+    dirs: &EditorDirs,
+    origin: Option<PathBuf>,
+    edits: &mut MessageWriter<EditMessage>,
+    ui: &mut FileUi,
+) {
+    match crate::scene::io::load(&dirs.recovery_file()) {
+        Ok(scene) => {
+            edits.write(EditMessage::from(Edit::Recover {
+                scene: Box::new(scene),
+                origin,
+            }));
+        }
+        Err(e) => ui
+            .errors
+            .push(format!("the autosave cannot be recovered: {e}")),
+    }
 }

@@ -2,18 +2,20 @@
 //! with its vertices, and the Loop surface that interpolates every vertex
 //! (progressive interpolation, plain or fast) at a chosen subdivision depth,
 //! with the iteration count and errors; export the surface or its control
-//! mesh. While a mesh is open the streamline surface and its handles step
-//! aside. The geometry comes from the kernel (`trimesh`, `loop_subdiv`,
+//! mesh. While a mesh is open the editor is in [`EditorMode::Mesh`]: the
+//! streamline surface is hidden on entering it and shown again on leaving,
+//! and its handles step aside. The geometry comes from the kernel (`trimesh`, `loop_subdiv`,
 //! `interpolate`); this plugin only shows it.
 
-use super::camera::FrameRequest;
 use super::coords::kernel_to_view;
+use super::interaction::{EditorMode, FrameRequest};
 use super::surface::SurfaceEntity;
 use crate::job::{Job, Poll, Progress};
 use crate::scene::obj;
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology};
 use bevy::prelude::*;
+use bevy_state::prelude::{NextState, OnEnter, OnExit, State};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
@@ -229,13 +231,38 @@ impl Plugin for MeshModePlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<MeshView>()
             .add_systems(Startup, setup)
-            .add_systems(Update, (recompute, show).chain());
+            .add_systems(Update, (recompute, follow_mode, show).chain())
+            .add_systems(OnEnter(EditorMode::Mesh), hide_streamline_surface)
+            .add_systems(OnExit(EditorMode::Mesh), show_streamline_surface);
     }
 }
 
-/// Run condition: no mesh is open (the streamline editing systems run).
-pub fn streamline_mode(view: Res<MeshView>) -> bool {
-    !view.active()
+/// The editor is in mesh mode exactly while a mesh is open.
+fn follow_mode(
+    view: Res<MeshView>,
+    mode: Res<State<EditorMode>>,
+    mut next: ResMut<NextState<EditorMode>>,
+) {
+    let want = if view.active() {
+        EditorMode::Mesh
+    } else {
+        EditorMode::Streamline
+    };
+    if *mode.get() != want {
+        next.set(want);
+    }
+}
+
+fn hide_streamline_surface(mut q: StreamlineSurface) {
+    for mut v in &mut q {
+        set_visible(&mut v, false);
+    }
+}
+
+fn show_streamline_surface(mut q: StreamlineSurface) {
+    for mut v in &mut q {
+        set_visible(&mut v, true);
+    }
 }
 
 /// The surface's material (the entities themselves are spawned with the first
@@ -325,7 +352,7 @@ fn set_visible(v: &mut Visibility, on: bool) {
 }
 
 /// Mirrors the view state into entities (spawned anew when the surface
-/// changes); hides the streamline surface while a mesh is open.
+/// changes).
 #[allow(clippy::too_many_arguments)]
 fn show(
     meter: Res<crate::ecs::meter::CpuMeter>,
@@ -336,14 +363,10 @@ fn show(
     mut gizmo_assets: ResMut<Assets<GizmoAsset>>,
     mut frame: ResMut<FrameRequest>,
     mut shown_entities: Shown,
-    mut streamline: StreamlineSurface,
     mut shown: Local<Option<(usize, u32, u64)>>,
 ) {
     let _meter = meter.start();
     let active = view.active();
-    for mut v in &mut streamline {
-        set_visible(&mut v, !active);
-    }
     let key = view.surface.as_ref().map(|s| {
         (
             s.positions.len(),

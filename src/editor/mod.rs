@@ -1,16 +1,19 @@
 //! The interactive editor: a Bevy window with egui panels over the 3D view,
 //! built on the ECS layer ([`crate::ecs::ModelPlugin`]): every change it makes
 //! is an [`crate::ecs::EditMessage`], the same that scripts send. The
-//! top-level [`EditorPlugin`] only composes one plugin per feature.
+//! top-level [`EditorPlugin`] only composes one plugin per feature, around
+//! the [`interaction`] core that owns handles, selection, the drag and the
+//! editor's mode, and whose [`interaction::EditorSet`]s order the rest.
 
 mod analysis;
 pub mod antialias;
+mod arrows;
 pub mod autosave;
 mod camera;
 mod coords;
 pub mod files;
 mod frame_timing;
-mod handles;
+pub mod interaction;
 pub mod mesh_mode;
 mod overlay;
 pub mod pacing;
@@ -26,8 +29,8 @@ pub use analysis::{AnalysisSettings, SurfaceMode};
 use bevy::prelude::*;
 use bevy::window::WindowResolution;
 pub use files::EditorDirs;
+pub use interaction::Selection;
 pub use panels::{PanelName, UiState};
-pub use picking::Selection;
 pub use screenshot::ScreenshotRequest;
 use std::path::PathBuf;
 
@@ -53,9 +56,10 @@ pub struct EditorPlugin;
 impl Plugin for EditorPlugin {
     fn build(&self, app: &mut App) {
         app.add_plugins((
+            interaction::InteractionPlugin,
             surface::SurfacePlugin,
             overlay::OverlayPlugin,
-            handles::HandlesPlugin,
+            arrows::ArrowsPlugin,
             picking::PickingPlugin,
             sphere_view::SphereViewPlugin,
             camera::OrbitCameraPlugin,

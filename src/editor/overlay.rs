@@ -1,13 +1,14 @@
 //! Lines over the 3D view: streamlines, red x and green y axes, a ground grid.
 
-use super::camera::SceneBounds;
 use super::coords::to_view;
-use crate::ecs::{ModelSet, SurfaceData};
+use super::interaction::{EditorMode, EditorSet, SceneBounds};
+use crate::ecs::SurfaceData;
 use bevy::prelude::*;
+use bevy_state::prelude::in_state;
 use streamline_kernel::DVec3;
 
 /// What the overlay draws.
-#[derive(Resource, Debug, Clone)]
+#[derive(Resource, Debug, Clone, PartialEq)]
 pub struct OverlaySettings {
     /// Draw the streamlines.
     pub streamlines: bool,
@@ -33,8 +34,8 @@ impl Plugin for OverlayPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<OverlaySettings>().add_systems(
             Update,
-            draw.after(ModelSet::Output)
-                .run_if(super::mesh_mode::streamline_mode),
+            draw.in_set(EditorSet::Present)
+                .run_if(in_state(EditorMode::Streamline)),
         );
     }
 }

@@ -1,166 +1,47 @@
-//! Picking and dragging tangent arrows. The pointer picks the nearest arrow
-//! shaft on screen (within 8 px); a left drag turns that tangent on a virtual
-//! trackball about the arrow's base (Bell's trackball: a sphere near the centre,
-//! a hyperbolic sheet outside, so the rotation never jumps). Every step is a
-//! `SetDirection` edit of one group, so the drag is one undo step and the
-//! surface follows in the same frame; Esc sends `CancelGroup`, which restores
-//! the direction and forgets the step.
+//! Picking handles in the 3D view and turning them on a trackball. The
+//! pointer picks the nearest arrow shaft on screen (within 8 px); a left
+//! press reports it to the interaction core's drag state machine, and while
+//! the drag lasts the pointer asks for a direction on a virtual trackball
+//! about the arrow's base (Bell's trackball: a sphere near the centre, a
+//! hyperbolic sheet outside, so the rotation never jumps). The core turns
+//! each step into an edit of the drag's undo group (one undo step, the
+//! surface following in the same frame) and Esc into `CancelGroup`.
 
-use super::camera::MainCamera;
 use super::coords::{from_view, to_view};
-use super::handles::{HandleArrows, HandleSettings};
-use super::sphere_view::SphereArea;
-use crate::ecs::{Edit, EditMessage, ModelSet};
+use super::interaction::{
+    Drag, DragKind, DragTo, EditorMode, EditorSet, HandlePressed, HandleSettings, Handles,
+    MainCamera, Selection, SphereArea,
+};
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use bevy_egui::input::egui_wants_any_pointer_input;
+use bevy_state::prelude::in_state;
 use streamline_kernel::DVec3;
-
-/// The selected and the hovered handle, `(row, col)` at the edit depth.
-#[derive(Resource, Debug, Default, Clone, Copy, PartialEq)]
-pub struct Selection {
-    /// Selected (the Selection panel edits it).
-    pub handle: Option<(usize, usize)>,
-    /// Under the pointer.
-    pub hover: Option<(usize, usize)>,
-}
-
-/// How a drag turns its tangent.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum DragKind {
-    /// A trackball about the arrow's base in the 3D view.
-    Trackball {
-        /// The base on screen (logical px).
-        center: Vec2,
-        /// The trackball's radius on screen (px).
-        radius: f32,
-        /// Where the drag started.
-        start: Vec2,
-        /// The camera's rotation when it started.
-        camera: Quat,
-    },
-    /// The point follows the pointer on the Gaussian sphere view.
-    Sphere,
-}
-
-/// A drag in progress.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ActiveDrag {
-    /// Handle row at the edit depth.
-    pub row: usize,
-    /// Handle column.
-    pub col: usize,
-    /// Undo group of its edits.
-    pub group: u64,
-    /// The direction when it started (Esc restores it).
-    pub start_dir: DVec3,
-    /// The last direction sent.
-    pub last: DVec3,
-    /// Whether any edit was sent.
-    pub sent: bool,
-    /// Trackball or sphere.
-    pub kind: DragKind,
-}
-
-impl ActiveDrag {
-    /// Points the dragged tangent at `dir`: one `SetDirection` of the drag's
-    /// undo group, unless it barely moved.
-    pub fn steer(&mut self, dir: DVec3, edits: &mut MessageWriter<EditMessage>) {
-        if (dir - self.last).length() < 1e-7 {
-            return;
-        }
-        self.last = dir;
-        self.sent = true;
-        edits.write(EditMessage {
-            edit: Edit::SetDirection {
-                row: self.row,
-                col: self.col,
-                dir,
-            },
-            group: Some(self.group),
-        });
-    }
-}
-
-/// The drag in progress, if any.
-#[derive(Resource, Debug, Default)]
-pub struct Drag(pub Option<ActiveDrag>);
-
-/// Hands out undo groups for drags.
-#[derive(Resource, Debug, Default)]
-pub struct DragGroups(u64);
-
-impl DragGroups {
-    /// A group no earlier drag used.
-    pub fn next(&mut self) -> u64 {
-        self.0 += 1;
-        // keep clear of groups other tools might pick (small numbers)
-        (1 << 40) + self.0
-    }
-}
 
 pub struct PickingPlugin;
 
 impl Plugin for PickingPlugin {
     fn build(&self, app: &mut App) {
-        app.init_resource::<Selection>()
-            .init_resource::<Drag>()
-            .init_resource::<DragGroups>()
-            .add_systems(
-                Update,
-                (
-                    hover.run_if(
-                        not(egui_wants_any_pointer_input)
-                            .and_then(super::mesh_mode::streamline_mode),
-                    ),
-                    press.run_if(
-                        not(egui_wants_any_pointer_input)
-                            .and_then(super::mesh_mode::streamline_mode),
-                    ),
-                    drag_move,
-                    release_or_cancel,
-                    keep_selection_valid,
-                )
-                    .chain()
-                    .before(ModelSet::Edit),
-            );
+        app.add_systems(
+            Update,
+            (
+                (hover, press).chain().run_if(
+                    not(egui_wants_any_pointer_input).and_then(in_state(EditorMode::Streamline)),
+                ),
+                drag_move,
+            )
+                .chain()
+                .in_set(EditorSet::Input),
+        );
     }
 }
 
-/// Distance from `p` to the segment `a`–`b` (screen px).
-fn segment_distance(p: Vec2, a: Vec2, b: Vec2) -> f32 {
-    let ab = b - a;
-    let t = ((p - a).dot(ab) / ab.length_squared().max(1e-9)).clamp(0.0, 1.0);
-    (a + ab * t).distance(p)
-}
-
-/// The pickable handle nearest the cursor, within `max_px`.
-fn pick(
-    cursor: Vec2,
-    camera: &Camera,
-    gt: &GlobalTransform,
-    arrows: &HandleArrows,
-    settings: &HandleSettings,
-    max_px: f32,
-) -> Option<(usize, usize)> {
-    let mut best: Option<((usize, usize), f32)> = None;
-    let refined_hidden = arrows.edit_depth > 0 && !settings.refined;
-    for a in &arrows.handles {
-        if refined_hidden || !settings.shows(a.level, a.row, a.col) {
-            continue;
-        }
-        let (Ok(p0), Ok(p1)) = (
-            camera.world_to_viewport(gt, to_view(a.base)),
-            camera.world_to_viewport(gt, to_view(a.tip())),
-        ) else {
-            continue;
-        };
-        let d = segment_distance(cursor, p0, p1);
-        if d <= max_px && best.is_none_or(|(_, bd)| d < bd) {
-            best = Some(((a.row, a.col), d));
-        }
-    }
-    best.map(|(h, _)| h)
+/// Projects kernel points of the 3D view to the window (logical px).
+fn projector<'a>(
+    camera: &'a Camera,
+    gt: &'a GlobalTransform,
+) -> impl Fn(DVec3) -> Option<Vec2> + 'a {
+    move |p| camera.world_to_viewport(gt, to_view(p)).ok()
 }
 
 /// The cursor if it is over the main 3D view (not the sphere inset).
@@ -175,7 +56,7 @@ fn hover(
     meter: Res<crate::ecs::meter::CpuMeter>,
     window: Single<&Window, With<PrimaryWindow>>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
-    arrows: Res<HandleArrows>,
+    handles: Res<Handles>,
     settings: Res<HandleSettings>,
     sphere: Res<SphereArea>,
     drag: Res<Drag>,
@@ -189,24 +70,26 @@ fn hover(
         None
     } else {
         view_cursor(&window, camera, &sphere)
-            .and_then(|c| pick(c, camera, gt, &arrows, &settings, 8.0))
+            .and_then(|c| handles.pick_on_screen(&settings, c, projector(camera, gt), 8.0))
     };
     if selection.hover != hovered {
         selection.hover = hovered;
     }
 }
 
+/// A left press in the 3D view: on the hovered handle (a trackball drag) or
+/// on empty space.
 #[allow(clippy::too_many_arguments)]
 fn press(
     meter: Res<crate::ecs::meter::CpuMeter>,
     buttons: Res<ButtonInput<MouseButton>>,
     window: Single<&Window, With<PrimaryWindow>>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
-    arrows: Res<HandleArrows>,
+    handles: Res<Handles>,
     sphere: Res<SphereArea>,
-    mut selection: ResMut<Selection>,
-    mut drag: ResMut<Drag>,
-    mut groups: ResMut<DragGroups>,
+    selection: Res<Selection>,
+    drag: Res<Drag>,
+    mut presses: MessageWriter<HandlePressed>,
 ) {
     let _meter = meter.start();
     if !buttons.just_pressed(MouseButton::Left) || drag.0.is_some() {
@@ -219,32 +102,24 @@ fn press(
         return;
     };
     let Some(h) = selection.hover else {
-        selection.handle = None;
+        presses.write(HandlePressed {
+            handle: None,
+            drag: None,
+        });
         return;
     };
-    selection.handle = Some(h);
-    let Some(a) = arrows.find(h) else {
-        return;
-    };
-    let (Ok(center), Ok(tip)) = (
-        camera.world_to_viewport(gt, to_view(a.base)),
-        camera.world_to_viewport(gt, to_view(a.tip())),
-    ) else {
-        return;
-    };
-    drag.0 = Some(ActiveDrag {
-        row: h.0,
-        col: h.1,
-        group: groups.next(),
-        start_dir: a.dir,
-        last: a.dir,
-        sent: false,
-        kind: DragKind::Trackball {
+    let trackball = handles
+        .find(h)
+        .and_then(|a| a.on_screen(projector(camera, gt)))
+        .map(|(center, tip)| DragKind::Trackball {
             center,
             radius: center.distance(tip).max(90.0),
             start: cursor,
             camera: gt.compute_transform().rotation,
-        },
+        });
+    presses.write(HandlePressed {
+        handle: Some(h),
+        drag: trackball,
     });
 }
 
@@ -279,14 +154,15 @@ pub fn trackball_rotate(
     from_view(turned.as_vec3()).try_normalize().unwrap_or(dir)
 }
 
+/// The direction a trackball drag asks for at the pointer.
 fn drag_move(
     meter: Res<crate::ecs::meter::CpuMeter>,
     window: Single<&Window, With<PrimaryWindow>>,
-    mut drag: ResMut<Drag>,
-    mut edits: MessageWriter<EditMessage>,
+    drag: Res<Drag>,
+    mut to: MessageWriter<DragTo>,
 ) {
     let _meter = meter.start();
-    let Some(d) = drag.0.as_mut() else {
+    let Some(d) = drag.0.as_ref() else {
         return;
     };
     let DragKind::Trackball {
@@ -301,49 +177,14 @@ fn drag_move(
     let Some(p) = window.cursor_position() else {
         return;
     };
-    let dir = trackball_rotate(d.start_dir, start, p, center, radius, camera);
-    d.steer(dir, &mut edits);
-}
-
-fn release_or_cancel(
-    meter: Res<crate::ecs::meter::CpuMeter>,
-    buttons: Res<ButtonInput<MouseButton>>,
-    keys: Res<ButtonInput<KeyCode>>,
-    mut drag: ResMut<Drag>,
-    mut selection: ResMut<Selection>,
-    mut edits: MessageWriter<EditMessage>,
-) {
-    let _meter = meter.start();
-    if keys.just_pressed(KeyCode::Escape) {
-        match drag.0.take() {
-            Some(d) if d.sent => {
-                edits.write(EditMessage::from(Edit::CancelGroup(d.group)));
-            }
-            Some(_) => {}
-            None => selection.handle = None,
-        }
-        return;
-    }
-    if drag.0.is_some() && !buttons.pressed(MouseButton::Left) {
-        drag.0 = None;
-    }
-}
-
-/// Drops a selection that no longer exists (after a depth change or a load).
-fn keep_selection_valid(
-    meter: Res<crate::ecs::meter::CpuMeter>,
-    arrows: Res<HandleArrows>,
-    mut selection: ResMut<Selection>,
-) {
-    let _meter = meter.start();
-    if !arrows.is_changed() || arrows.handles.is_empty() {
-        return;
-    }
-    if let Some(h) = selection.handle
-        && arrows.find(h).is_none()
-    {
-        selection.handle = None;
-    }
+    to.write(DragTo(trackball_rotate(
+        d.start_dir,
+        start,
+        p,
+        center,
+        radius,
+        camera,
+    )));
 }
 
 #[cfg(test)]
@@ -380,12 +221,5 @@ mod tests {
             Quat::IDENTITY,
         );
         assert!(d.x > 0.3, "{d}");
-    }
-
-    #[test]
-    fn segment_distance_is_euclidean() {
-        let (a, b) = (Vec2::ZERO, Vec2::new(10.0, 0.0));
-        assert_eq!(segment_distance(Vec2::new(5.0, 3.0), a, b), 3.0);
-        assert_eq!(segment_distance(Vec2::new(-4.0, 3.0), a, b), 5.0);
     }
 }

@@ -3,11 +3,9 @@
 //! save the primary window to a PNG, exit.
 
 use super::analysis::{AnalysisSettings, SurfaceMode};
-use super::camera::MainCamera;
 use super::coords::to_view;
-use super::handles::HandleArrows;
+use super::interaction::{HandleId, Handles, MainCamera, Selection};
 use super::panels::{PanelName, UiState};
-use super::picking::Selection;
 use super::sphere_view::{SphereCamera, SubdividedPoints};
 use super::surface::{ShownSurface, SurfaceEntity};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
@@ -104,6 +102,7 @@ fn set_up_view(
     mut analysis: ResMut<AnalysisSettings>,
     mut selection: ResMut<Selection>,
     mut script: ResMut<crate::ecs::runner::ScriptRun>,
+    model: Res<Model>,
 ) {
     if let Some(path) = &req.script {
         script.input = path.display().to_string();
@@ -117,8 +116,8 @@ fn set_up_view(
         analysis.mode = m;
     }
     analysis.comb |= req.comb;
-    if req.select.is_some() {
-        selection.handle = req.select;
+    if let Some((row, col)) = req.select {
+        selection.select(HandleId::tangent(model.scene.edit_depth, row, col));
     }
     if let Some(path) = &req.mesh {
         mesh.input = path.display().to_string();
@@ -177,11 +176,11 @@ fn write_report(path: &std::path::Path, r: &Report) {
 fn write_handle_position(
     req: &ScreenshotRequest,
     selection: &Selection,
-    arrows: &HandleArrows,
+    arrows: &Handles,
     camera: &Query<(&Camera, &GlobalTransform), With<MainCamera>>,
     sphere: &Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
 ) -> bool {
-    let (Some(report), Some(h)) = (&req.report, selection.handle) else {
+    let (Some(report), Some(h)) = (&req.report, selection.primary()) else {
         return true;
     };
     let (Some(a), Ok((cam, gt))) = (arrows.find(h), camera.single()) else {
@@ -222,7 +221,7 @@ fn drive(
     stats: Res<Stats>,
     timing: Res<super::frame_timing::FrameTiming>,
     selection: Res<Selection>,
-    arrows: Res<HandleArrows>,
+    arrows: Res<Handles>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
     sphere: Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
     mesh: Res<super::mesh_mode::MeshView>,
@@ -269,7 +268,7 @@ fn drive(
                     undo: history.undo_len(),
                     redo: history.redo_len(),
                     unsaved: model.unsaved,
-                    selection: selection.handle,
+                    selection: selection.cell(),
                     last_edit: stats.last.edit.clone(),
                     net: net.data().iter().map(|v| v.to_array()).collect(),
                     cols: net.cols(),

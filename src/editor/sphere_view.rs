@@ -5,12 +5,13 @@
 //! depth in red, and the subdivided tangents of the display depth as small
 //! points. Dragging a point moves that tangent to the point under the pointer.
 
-use super::camera::{MainCamera, OrbitCamera, ViewArea};
 use super::coords::{from_view, to_view};
-use super::handles::{HandleArrows, HandleSettings};
-use super::picking::{ActiveDrag, Drag, DragGroups, DragKind, Selection};
+use super::interaction::{
+    Drag, DragKind, DragTo, EditorMode, EditorSet, HandlePressed, HandleSettings, Handles,
+    MainCamera, OrbitCamera, Selection, SphereArea, ViewArea,
+};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
-use crate::ecs::{EditMessage, Model, ModelSet, SurfaceChange, SurfaceChanges};
+use crate::ecs::{Model, SurfaceChange, SurfaceChanges};
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::Viewport;
 use bevy::camera::visibility::RenderLayers;
@@ -18,24 +19,14 @@ use bevy::mesh::{PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use bevy_egui::input::egui_wants_any_pointer_input;
+use bevy_state::prelude::{State, in_state};
 use streamline_kernel::DVec3;
 
 /// The render layer of the sphere view.
 const LAYER: usize = 1;
 
-/// The inset's rectangle on the window (logical px), `None` when hidden.
-#[derive(Resource, Debug, Default, Clone, Copy)]
-pub struct SphereArea(pub Option<Rect>);
-
-impl SphereArea {
-    /// Whether `p` is inside the inset.
-    pub fn contains(&self, p: Vec2) -> bool {
-        self.0.is_some_and(|r| r.contains(p))
-    }
-}
-
 /// Settings of the sphere view.
-#[derive(Resource, Debug, Clone)]
+#[derive(Resource, Debug, Clone, PartialEq)]
 pub struct SphereSettings {
     /// Show the inset.
     pub show: bool,
@@ -71,27 +62,25 @@ pub struct SphereViewPlugin;
 
 impl Plugin for SphereViewPlugin {
     fn build(&self, app: &mut App) {
-        app.init_resource::<SphereArea>()
-            .init_resource::<SphereSettings>()
+        app.init_resource::<SphereSettings>()
             .init_gizmo_group::<SphereGizmos>()
             .add_systems(Startup, setup)
             .add_systems(
                 Update,
-                press
-                    .run_if(
+                (
+                    press.run_if(
                         not(egui_wants_any_pointer_input)
-                            .and_then(super::mesh_mode::streamline_mode),
-                    )
-                    .before(ModelSet::Edit),
+                            .and_then(in_state(EditorMode::Streamline)),
+                    ),
+                    drag_move,
+                )
+                    .in_set(EditorSet::Input),
             )
-            .add_systems(Update, drag_move.before(ModelSet::Edit))
+            .add_systems(Update, update_points.in_set(EditorSet::Sync))
             .add_systems(
                 Update,
-                (
-                    update_points,
-                    draw.run_if(super::mesh_mode::streamline_mode),
-                )
-                    .after(ModelSet::Output),
+                draw.run_if(in_state(EditorMode::Streamline))
+                    .in_set(EditorSet::Present),
             )
             .add_systems(PostUpdate, place_camera);
     }
@@ -154,7 +143,7 @@ fn place_camera(
     main: Query<&OrbitCamera, With<MainCamera>>,
     mut cam: Query<(&mut Camera, &mut Transform), With<SphereCamera>>,
     mut sphere_area: ResMut<SphereArea>,
-    mesh: Res<super::mesh_mode::MeshView>,
+    mode: Res<State<EditorMode>>,
 ) {
     let _meter = meter.start();
     let Ok((mut camera, mut tf)) = cam.single_mut() else {
@@ -173,7 +162,7 @@ fn place_camera(
     );
     // the inset belongs to the streamline surface: hidden in mesh mode
     let show = settings.show
-        && !mesh.active()
+        && *mode.get() == EditorMode::Streamline
         && view.width() > side + 2.0 * margin
         && view.height() > side + 2.0 * margin;
     if camera.is_active != show {
@@ -275,7 +264,7 @@ fn update_points(
 fn draw(
     meter: Res<crate::ecs::meter::CpuMeter>,
     model: Res<Model>,
-    arrows: Res<HandleArrows>,
+    arrows: Res<Handles>,
     handle_settings: Res<HandleSettings>,
     selection: Res<Selection>,
     area: Res<SphereArea>,
@@ -331,8 +320,8 @@ fn draw(
     };
     let edit = arrows.edit_depth;
     if edit > 0 && handle_settings.refined {
-        for a in &arrows.handles {
-            if handle_settings.shows(a.level, a.row, a.col) {
+        for a in &arrows.editable {
+            if handle_settings.shows(a) {
                 dot(&mut gizmos, a.dir, 0.012, Color::srgb(0.95, 0.25, 0.2));
             }
         }
@@ -340,7 +329,7 @@ fn draw(
     for a in &arrows.controls {
         dot(&mut gizmos, a.dir, 0.025, Color::srgb(1.0, 0.85, 0.1));
     }
-    for h in [selection.hover, selection.handle].into_iter().flatten() {
+    for h in [selection.hover, selection.primary()].into_iter().flatten() {
         if let Some(a) = arrows.find(h) {
             dot(&mut gizmos, a.dir, 0.045, Color::WHITE);
         }
@@ -362,6 +351,7 @@ pub fn sphere_point(origin: DVec3, dir: DVec3) -> DVec3 {
     p.try_normalize().unwrap_or(DVec3::Z)
 }
 
+/// A left press on the inset: on the nearest handle's point (a sphere drag).
 #[allow(clippy::too_many_arguments)]
 fn press(
     meter: Res<crate::ecs::meter::CpuMeter>,
@@ -369,11 +359,10 @@ fn press(
     window: Single<&Window, With<PrimaryWindow>>,
     area: Res<SphereArea>,
     cam: Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
-    arrows: Res<HandleArrows>,
+    handles: Res<Handles>,
     settings: Res<HandleSettings>,
-    mut selection: ResMut<Selection>,
-    mut drag: ResMut<Drag>,
-    mut groups: ResMut<DragGroups>,
+    drag: Res<Drag>,
+    mut presses: MessageWriter<HandlePressed>,
 ) {
     let _meter = meter.start();
     if !buttons.just_pressed(MouseButton::Left) || drag.0.is_some() {
@@ -386,45 +375,26 @@ fn press(
         return;
     };
     let eye = from_view(gt.translation()).normalize_or(DVec3::Z);
-    let refined_hidden = arrows.edit_depth > 0 && !settings.refined;
-    let mut best: Option<(&super::handles::Arrow, f32)> = None;
-    for a in &arrows.handles {
-        if refined_hidden || !settings.shows(a.level, a.row, a.col) || a.dir.dot(eye) < 0.0 {
-            continue;
-        }
-        let Ok(p) = camera.world_to_viewport(gt, to_view(a.dir)) else {
-            continue;
-        };
-        let d = p.distance(cursor);
-        if d < 10.0 && best.is_none_or(|(_, bd)| d < bd) {
-            best = Some((a, d));
-        }
+    let project = |d: DVec3| camera.world_to_viewport(gt, to_view(d)).ok();
+    if let Some(a) = handles.pick_on_sphere(&settings, cursor, eye, project, 10.0) {
+        presses.write(HandlePressed {
+            handle: Some(a.id),
+            drag: Some(DragKind::Sphere),
+        });
     }
-    let Some((a, _)) = best else {
-        return;
-    };
-    selection.handle = Some((a.row, a.col));
-    drag.0 = Some(ActiveDrag {
-        row: a.row,
-        col: a.col,
-        group: groups.next(),
-        start_dir: a.dir,
-        last: a.dir,
-        sent: false,
-        kind: DragKind::Sphere,
-    });
 }
 
+/// The direction a sphere drag asks for: the point of the sphere under the pointer.
 fn drag_move(
     meter: Res<crate::ecs::meter::CpuMeter>,
     window: Single<&Window, With<PrimaryWindow>>,
     area: Res<SphereArea>,
     cam: Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
-    mut drag: ResMut<Drag>,
-    mut edits: MessageWriter<EditMessage>,
+    drag: Res<Drag>,
+    mut to: MessageWriter<DragTo>,
 ) {
     let _meter = meter.start();
-    let Some(d) = drag.0.as_mut() else {
+    let Some(d) = drag.0.as_ref() else {
         return;
     };
     if d.kind != DragKind::Sphere {
@@ -444,8 +414,10 @@ fn drag_move(
     let Ok(ray) = camera.viewport_to_world(gt, p) else {
         return;
     };
-    let dir = sphere_point(from_view(ray.origin), from_view(*ray.direction));
-    d.steer(dir, &mut edits);
+    to.write(DragTo(sphere_point(
+        from_view(ray.origin),
+        from_view(*ray.direction),
+    )));
 }
 
 #[cfg(test)]

@@ -2,7 +2,8 @@
 //! the surface's changes rewrote since the last copy ([`SurfaceChanges`])
 //! are patched in place, anything else rebuilds the Bevy mesh. Lights.
 
-use crate::ecs::{ModelSet, SurfaceChange, SurfaceChanges, SurfaceData};
+use super::interaction::EditorSet;
+use crate::ecs::{SurfaceChange, SurfaceChanges, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
@@ -33,7 +34,7 @@ impl Plugin for SurfacePlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<ShownSurface>()
             .add_systems(Startup, setup)
-            .add_systems(Update, sync_mesh.after(ModelSet::Output));
+            .add_systems(Update, sync_mesh.in_set(EditorSet::Sync));
     }
 }
 
@@ -76,7 +77,7 @@ fn setup(
     });
 }
 
-pub(super) fn sync_mesh(
+fn sync_mesh(
     meter: Res<crate::ecs::meter::CpuMeter>,
     data: Res<SurfaceData>,
     mut changes: SurfaceChanges,
@@ -148,7 +149,7 @@ pub fn to_bevy_mesh(positions: &[DVec3], normals: &[DVec3], indices: &[u32]) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ecs::{Edit, EditMessage, ModelPlugin};
+    use crate::ecs::{Edit, EditMessage, ModelPlugin, ModelSet};
     use crate::scene::Scene;
     use bevy::math::DVec3;
 

@@ -1,12 +1,26 @@
 //! Analysis: curvature comb, Gaussian and mean curvature maps (with legend and
 //! range), zebra stripes.
 
-use super::PanelCtx;
-use crate::editor::analysis::{SurfaceMode, diverging};
+use crate::editor::analysis::{AnalysisSettings, CurvatureField, SurfaceMode, diverging};
+use bevy::ecs::system::SystemParam;
+use bevy::prelude::*;
 use bevy_egui::egui;
 
-pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
-    let a = &mut *p.analysis;
+/// What only the Analysis section touches.
+#[derive(SystemParam)]
+pub struct AnalysisSection<'w> {
+    pub settings: ResMut<'w, AnalysisSettings>,
+    pub field: Res<'w, CurvatureField>,
+}
+
+pub fn show(ui: &mut egui::Ui, p: &mut AnalysisSection) {
+    // the widgets edit a copy; the settings are written only when it differs
+    let mut a = p.settings.clone();
+    widgets(ui, &mut a, &p.field);
+    p.settings.set_if_neq(a);
+}
+
+fn widgets(ui: &mut egui::Ui, a: &mut AnalysisSettings, field: &CurvatureField) {
     ui.horizontal_wrapped(|ui| {
         for (m, tip) in [
             (SurfaceMode::Shaded, "Lit surface"),
@@ -22,7 +36,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
             ui.checkbox(&mut a.auto_range, "automatic range")
                 .on_hover_text("Colour range from the data: the 98th percentile of |value|, so border spikes do not wash it out");
             if a.auto_range {
-                a.limit = p.field.limit;
+                a.limit = field.limit;
             } else {
                 ui.add(
                     egui::Slider::new(&mut a.limit, 1e-4..=1e3)
@@ -31,15 +45,15 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
                 )
                 .on_hover_text("Values beyond ±limit get the end colours");
             }
-            legend(ui, p.field.limit);
+            legend(ui, field.limit);
             let (lo, hi) = if a.mode == SurfaceMode::Gaussian {
-                p.field.gaussian_range
+                field.gaussian_range
             } else {
-                p.field.mean_range
+                field.mean_range
             };
             ui.label(format!("data range: {lo:.4e} … {hi:.4e}"))
                 .on_hover_text("The smallest and largest value over the surface");
-            ui.label(egui::RichText::new(format!("computed in {:.0} µs", p.field.us)).weak())
+            ui.label(egui::RichText::new(format!("computed in {:.0} µs", field.us)).weak())
                 .on_hover_text("Kernel time for K and H at every vertex");
         }
         SurfaceMode::Zebra => {

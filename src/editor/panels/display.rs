@@ -1,10 +1,41 @@
 //! Display: which arrows, labels, lines and views are drawn.
 
-use super::PanelCtx;
+use crate::editor::antialias::AntiAliasing;
+use crate::editor::interaction::HandleSettings;
+use crate::editor::overlay::OverlaySettings;
+use crate::editor::sphere_view::SphereSettings;
+use bevy::ecs::system::SystemParam;
+use bevy::prelude::*;
 use bevy_egui::egui;
 
-pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
-    let h = &mut *p.handle_settings;
+/// What only the Display section touches: settings, each changed (and so
+/// marked changed for the systems that follow it) only when a value is.
+#[derive(SystemParam)]
+pub struct DisplaySection<'w> {
+    pub handles: ResMut<'w, HandleSettings>,
+    pub overlay: ResMut<'w, OverlaySettings>,
+    pub sphere: ResMut<'w, SphereSettings>,
+    pub antialias: ResMut<'w, AntiAliasing>,
+}
+
+pub fn show(ui: &mut egui::Ui, p: &mut DisplaySection) {
+    // the widgets edit copies; a setting is written only when it differs
+    let mut h = p.handles.clone();
+    let mut o = p.overlay.clone();
+    let mut s = p.sphere.clone();
+    widgets(ui, &mut h, &mut o, &mut s);
+    p.handles.set_if_neq(h);
+    p.overlay.set_if_neq(o);
+    p.sphere.set_if_neq(s);
+    antialiasing(ui, p);
+}
+
+fn widgets(
+    ui: &mut egui::Ui,
+    h: &mut HandleSettings,
+    o: &mut OverlaySettings,
+    s: &mut SphereSettings,
+) {
     ui.checkbox(&mut h.controls, "control arrows (yellow)")
         .on_hover_text("The level-0 control tangents at their streamline points");
     ui.checkbox(&mut h.refined, "refined arrows (red)")
@@ -14,7 +45,6 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
     ui.checkbox(&mut h.labels, "index labels").on_hover_text(
         "Column numbers at the control arrows (head shapes cycle cone, ball, cross, ring)",
     );
-    let o = &mut *p.overlay;
     ui.checkbox(&mut o.streamlines, "streamlines")
         .on_hover_text("Draw the streamlines of the display depth as lines");
     ui.add_enabled(
@@ -26,7 +56,6 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
     .on_hover_text("Streamlines drawn, spread evenly");
     ui.checkbox(&mut o.axes_and_grid, "axes and ground grid")
         .on_hover_text("Red x and green y axes, and a grid under the surface");
-    let s = &mut *p.sphere;
     ui.checkbox(&mut s.show, "Gaussian sphere view")
         .on_hover_text(
             "The inset with the tangents as points on the unit sphere; drag a point to edit it",
@@ -35,11 +64,10 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
         .on_hover_text("The tangents of the display depth as small points");
     ui.add(egui::Slider::new(&mut s.fraction, 0.2..=0.7).text("sphere view size"))
         .on_hover_text("The inset's side as a share of the 3D view");
-    antialiasing(ui, p);
 }
 
 /// The 3D views' multisampling, with why it starts where it does.
-fn antialiasing(ui: &mut egui::Ui, p: &mut PanelCtx) {
+fn antialiasing(ui: &mut egui::Ui, p: &mut DisplaySection) {
     let current = p.antialias.samples;
     let name = |n: u32| {
         if n == 1 {

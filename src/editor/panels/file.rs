@@ -1,11 +1,22 @@
 //! File: new (from a built-in scene), open, save, save as, export, recent files.
 
 use super::PanelCtx;
-use crate::editor::files::{self, Dialog, PathAction, Pending};
+use crate::ecs::runner::ScriptRun;
+use crate::editor::files::{self, Dialog, FileUi, PathAction, Pending};
 use crate::scene::builtin;
+use bevy::ecs::system::SystemParam;
+use bevy::prelude::*;
 use bevy_egui::egui;
 
-pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
+/// What only the File section touches.
+#[derive(SystemParam)]
+pub struct FileSection<'w> {
+    pub files: ResMut<'w, FileUi>,
+    pub exit: MessageWriter<'w, AppExit>,
+    pub script: ResMut<'w, ScriptRun>,
+}
+
+pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
     let path = p
         .model
         .path
@@ -22,13 +33,13 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
                     .on_hover_text(format!("Start from the built-in scene {name}"))
                     .clicked()
                 {
-                    let (model, ui_state) = (&p.model, &mut *p.files);
+                    let (model, ui_state) = (&p.model, &mut *s.files);
                     files::request(
                         Pending::New(name.into()),
                         model,
                         ui_state,
                         &mut p.edits,
-                        &mut p.exit,
+                        &mut s.exit,
                     );
                     ui.close();
                 }
@@ -41,7 +52,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
             .on_hover_text("Open a scene file (.ron), Ctrl+O")
             .clicked()
         {
-            p.files.dialog = Some(Dialog::Path {
+            s.files.dialog = Some(Dialog::Path {
                 action: PathAction::Open,
                 text: String::new(),
                 then: None,
@@ -52,14 +63,14 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
             .on_hover_text("Save to the scene's file (Ctrl+S); atomic and verified")
             .clicked()
         {
-            files::save(&p.model, &mut p.files, &mut p.edits);
+            files::save(&p.model, &mut s.files, &mut p.edits);
         }
         if ui
             .button("Save as…")
             .on_hover_text("Save under a new name (Ctrl+Shift+S)")
             .clicked()
         {
-            p.files.dialog = Some(Dialog::Path {
+            s.files.dialog = Some(Dialog::Path {
                 action: PathAction::SaveAs,
                 text: files::suggested(&p.model, "ron"),
                 then: None,
@@ -82,7 +93,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
             ),
         ] {
             if ui.button(label).on_hover_text(tip).clicked() {
-                p.files.dialog = Some(Dialog::Path {
+                s.files.dialog = Some(Dialog::Path {
                     action,
                     text: files::suggested(&p.model, ext),
                     then: None,
@@ -90,9 +101,9 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
             }
         }
     });
-    if !p.files.recent.is_empty() {
+    if !s.files.recent.is_empty() {
         ui.label("Recent:");
-        for r in p.files.recent.clone() {
+        for r in s.files.recent.clone() {
             let name = r
                 .file_name()
                 .map(|n| n.to_string_lossy().to_string())
@@ -102,29 +113,33 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
                 .on_hover_text(format!("Open {}", r.display()))
                 .clicked()
             {
-                let (model, ui_state) = (&p.model, &mut *p.files);
-                files::request(Pending::Open(r), model, ui_state, &mut p.edits, &mut p.exit);
+                let (model, ui_state) = (&p.model, &mut *s.files);
+                files::request(Pending::Open(r), model, ui_state, &mut p.edits, &mut s.exit);
             }
         }
     }
     ui.separator();
-    script(ui, p);
+    script(ui, &mut s.script);
 }
 
 /// Run script: a script's edits played into the open scene, off the frame's
 /// budget (a batch of steps a frame), with progress and Cancel.
-fn script(ui: &mut egui::Ui, p: &mut PanelCtx) {
+fn script(ui: &mut egui::Ui, run: &mut ResMut<ScriptRun>) {
     use crate::ecs::runner::RunState;
-    let run = &mut *p.script;
     let busy = run.busy();
     ui.horizontal(|ui| {
+        // typed on a copy: the run is marked changed only when the text is
+        let mut input = run.input.clone();
         ui.add_enabled(
             !busy,
-            egui::TextEdit::singleline(&mut run.input)
+            egui::TextEdit::singleline(&mut input)
                 .hint_text("script.ron")
                 .desired_width(170.0),
         )
         .on_hover_text("A script file (RON steps, see tests/scripts); its paths are relative to it");
+        if input != run.input {
+            run.input = input;
+        }
         if ui
             .add_enabled(!busy, egui::Button::new("Run script"))
             .on_hover_text("Play the script's edits into this scene (one undo step each); expectations are skipped")

@@ -2,16 +2,29 @@
 //! surface (method, tolerance, depth shown), read the iteration count and the
 //! errors, export the surface or its control mesh, close.
 
-use super::PanelCtx;
+use crate::editor::mesh_mode::MeshView;
+use bevy::ecs::system::SystemParam;
+use bevy::prelude::*;
 use bevy_egui::egui;
 use std::path::PathBuf;
 use streamline_kernel::interpolate::Method;
 
-pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
-    let v = &mut *p.mesh;
+/// What only the Loop mesh section touches.
+#[derive(SystemParam)]
+pub struct MeshSection<'w> {
+    pub view: ResMut<'w, MeshView>,
+}
+
+pub fn show(ui: &mut egui::Ui, p: &mut MeshSection) {
+    let v = &mut p.view;
     ui.horizontal(|ui| {
-        ui.add(egui::TextEdit::singleline(&mut v.input).desired_width(170.0))
+        // typed on a copy: the view is marked changed only when the text is
+        let mut input = v.input.clone();
+        ui.add(egui::TextEdit::singleline(&mut input).desired_width(170.0))
             .on_hover_text("A triangle mesh (OBJ); polygons are split into fans of triangles");
+        if input != v.input {
+            v.input = input;
+        }
         if ui
             .button("Open OBJ")
             .on_hover_text("Open the mesh and make a Loop surface pass through every vertex")
@@ -94,9 +107,13 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
         v.depth = depth;
         v.dirty = true;
     }
-    ui.checkbox(&mut v.show_given, "given mesh").on_hover_text(
+    let mut show_given = v.show_given;
+    ui.checkbox(&mut show_given, "given mesh").on_hover_text(
         "Draw the given mesh's edges (blue) and vertices (red crosses) over the surface",
     );
+    if show_given != v.show_given {
+        v.show_given = show_given;
+    }
     if let Some(r) = v.report {
         egui::Grid::new("mesh_stats").num_columns(2).striped(true).show(ui, |ui| {
             ui.label("iterations");

@@ -1,8 +1,10 @@
 //! The egui panels: a toolbar (undo, redo, frame) and a side panel of
 //! sections (File, Subdivision, Selection, Display, Fine tuning, Analysis,
-//! Loop mesh, Stats). Panels
-//! are thin views: they read resources and send edit messages (or change
-//! display settings); they never compute geometry.
+//! Loop mesh, Stats). Panels are thin views: they read resources and send
+//! edit messages (or change display settings, only when a value really
+//! changes); they never compute geometry. What every section reads is
+//! [`PanelCtx`]; what only one section touches is that section's own
+//! parameter (`FileSection`, `DisplaySection`, …), defined beside it.
 
 mod analysis;
 mod display;
@@ -13,15 +15,10 @@ mod stats;
 mod subdivision;
 mod tuning;
 
-use super::analysis::{AnalysisSettings, CurvatureField};
-use super::camera::{FrameRequest, SceneBounds, ViewArea};
-use super::files::FileUi;
-use super::frame_timing::FrameTiming;
-use super::handles::{HandleArrows, HandleSettings};
-use super::overlay::OverlaySettings;
-use super::picking::{Drag, DragGroups, DragKind, Selection};
-use super::sphere_view::SphereSettings;
-use crate::ecs::{Edit, EditLog, EditMessage, History, Model, Stats};
+use super::interaction::{
+    Drag, DragGroups, DragKind, FrameRequest, Handles, SceneBounds, Selection, ViewArea,
+};
+use crate::ecs::{Edit, EditLog, EditMessage, History, Model};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
@@ -134,34 +131,38 @@ impl Default for UiState {
     }
 }
 
-/// What the panels read and write.
+/// What every section reads, and how sections send edits.
 #[derive(SystemParam)]
 pub struct PanelCtx<'w> {
     pub model: Res<'w, Model>,
-    pub history: Res<'w, History>,
-    pub stats: Res<'w, Stats>,
-    pub log: Res<'w, EditLog>,
+    pub handles: Res<'w, Handles>,
     pub selection: ResMut<'w, Selection>,
-    pub arrows: Res<'w, HandleArrows>,
-    pub handle_settings: ResMut<'w, HandleSettings>,
-    pub overlay: ResMut<'w, OverlaySettings>,
-    pub sphere: ResMut<'w, SphereSettings>,
-    pub analysis: ResMut<'w, AnalysisSettings>,
-    pub field: Res<'w, CurvatureField>,
-    pub files: ResMut<'w, FileUi>,
+    pub edits: MessageWriter<'w, EditMessage>,
+    pub groups: ResMut<'w, DragGroups>,
+    pub slider_groups: ResMut<'w, SliderGroups>,
+    pub ui_state: Res<'w, UiState>,
+    pub opened: Res<'w, OpenedScene>,
+}
+
+/// The toolbar's and the status line's own state.
+#[derive(SystemParam)]
+pub struct ToolbarSection<'w> {
+    pub history: Res<'w, History>,
+    pub log: Res<'w, EditLog>,
+    pub drag: Res<'w, Drag>,
     pub frame: ResMut<'w, FrameRequest>,
     pub bounds: Res<'w, SceneBounds>,
-    pub groups: ResMut<'w, DragGroups>,
-    pub drag: Res<'w, Drag>,
-    pub edits: MessageWriter<'w, EditMessage>,
-    pub exit: MessageWriter<'w, AppExit>,
-    pub ui_state: Res<'w, UiState>,
-    pub timing: Res<'w, FrameTiming>,
-    pub slider_groups: ResMut<'w, SliderGroups>,
-    pub opened: Res<'w, OpenedScene>,
-    pub mesh: ResMut<'w, super::mesh_mode::MeshView>,
-    pub script: ResMut<'w, crate::ecs::runner::ScriptRun>,
-    pub antialias: ResMut<'w, super::antialias::AntiAliasing>,
+}
+
+/// The sections' own parameters.
+#[derive(SystemParam)]
+pub struct Sections<'w> {
+    bar: ToolbarSection<'w>,
+    file: file::FileSection<'w>,
+    display: display::DisplaySection<'w>,
+    analysis: analysis::AnalysisSection<'w>,
+    mesh: mesh::MeshSection<'w>,
+    stats: stats::StatsSection<'w>,
 }
 
 /// The control net as the scene was opened (the Selection panel's reset).
@@ -187,6 +188,15 @@ impl PanelCtx<'_> {
         (row < net.rows() && col < net.cols()).then(|| net.get(row, col))
     }
 
+    /// Selects the edit depth's handle at `(row, col)` (nothing is marked
+    /// changed when it already is the selection).
+    pub fn select_cell(&mut self, cell: (usize, usize)) {
+        let id = self.handles.id_at(cell);
+        if self.selection.primary() != Some(id) {
+            self.selection.select(id);
+        }
+    }
+
     /// The undo group for a change of slider `key`: one per drag, a new one
     /// for each click or key press.
     pub fn slider_group(&mut self, key: &'static str, r: &egui::Response) -> u64 {
@@ -194,7 +204,7 @@ impl PanelCtx<'_> {
         match current {
             Some(g) if r.dragged() && !r.drag_started() => g,
             _ => {
-                let g = self.groups.next();
+                let g = self.groups.fresh();
                 self.slider_groups.0.insert(key, g);
                 g
             }
@@ -299,12 +309,12 @@ pub struct Throttled {
 impl Throttled {
     const EVERY: std::time::Duration = std::time::Duration::from_millis(200);
 
-    fn refresh(&mut self, p: &PanelCtx) {
+    fn refresh(&mut self, p: &PanelCtx, bar: &ToolbarSection, s: &stats::StatsSection) {
         let now = std::time::Instant::now();
         // at once when a drag starts or ends: "turning …" is laid out in the
         // frame of the press (which has no edit to make), and what the drag
         // did replaces it as soon as it is let go
-        let dragging = p.drag.0.is_some();
+        let dragging = bar.drag.0.is_some();
         let turned = dragging != self.dragging;
         self.dragging = dragging;
         if !turned
@@ -315,20 +325,20 @@ impl Throttled {
             return;
         }
         self.at = Some(now);
-        self.stats = stats::rows(p);
-        self.status = match &p.drag.0 {
+        self.stats = stats::rows(p, s);
+        self.status = match &bar.drag.0 {
             // the same words for the whole drag (its figures are in the
             // Selection section), and the way out
             Some(d) => format!(
                 "turning ({}, {}) {}: release to keep it, Esc to cancel",
-                d.row,
-                d.col,
+                d.handle.row,
+                d.handle.col,
                 match d.kind {
                     DragKind::Trackball { .. } => "on the trackball",
                     DragKind::Sphere => "on the sphere",
                 }
             ),
-            None => status_text(p),
+            None => status_text(bar),
         };
     }
 }
@@ -337,12 +347,13 @@ fn panel(
     meter: Res<crate::ecs::meter::CpuMeter>,
     mut contexts: EguiContexts,
     mut p: PanelCtx,
+    mut sections: Sections,
     mut area: ResMut<ViewArea>,
     mut warmed: Local<bool>,
     mut text: Local<Throttled>,
 ) -> Result {
     let _meter = meter.start();
-    text.refresh(&p);
+    text.refresh(&p, &sections.bar, &sections.stats);
     let ctx = contexts.ctx_mut()?.clone();
     if !*warmed {
         warm_glyphs(&ctx);
@@ -355,7 +366,7 @@ fn panel(
             .layer_id(egui::LayerId::background())
             .max_rect(ctx.viewport_rect()),
     );
-    egui::Panel::top("toolbar").show(&mut root, |ui| toolbar(ui, &mut p));
+    egui::Panel::top("toolbar").show(&mut root, |ui| toolbar(ui, &mut p, &mut sections.bar));
     egui::Panel::bottom("status").show(&mut root, |ui| status(ui, &text.status));
     egui::Panel::left("side_panel")
         .resizable(true)
@@ -372,13 +383,13 @@ fn panel(
                         header = header.open(Some(open));
                     }
                     let shown = header.show(ui, |ui| match name {
-                        PanelName::File => file::show(ui, &mut p),
+                        PanelName::File => file::show(ui, &mut p, &mut sections.file),
                         PanelName::Subdivision => subdivision::show(ui, &mut p),
                         PanelName::Selection => selection::show(ui, &mut p),
-                        PanelName::Display => display::show(ui, &mut p),
+                        PanelName::Display => display::show(ui, &mut sections.display),
                         PanelName::Tuning => tuning::show(ui, &mut p),
-                        PanelName::Analysis => analysis::show(ui, &mut p),
-                        PanelName::Mesh => mesh::show(ui, &mut p),
+                        PanelName::Analysis => analysis::show(ui, &mut sections.analysis),
+                        PanelName::Mesh => mesh::show(ui, &mut sections.mesh),
                         PanelName::Stats => stats::show(ui, &text.stats),
                     });
                     shown.header_response.on_hover_text(name.tooltip());
@@ -393,7 +404,7 @@ fn panel(
     Ok(())
 }
 
-fn toolbar(ui: &mut egui::Ui, p: &mut PanelCtx) {
+fn toolbar(ui: &mut egui::Ui, p: &mut PanelCtx, bar: &mut ToolbarSection) {
     ui.horizontal(|ui| {
         ui.strong("Streamline Studio");
         let name = format!(
@@ -407,8 +418,8 @@ fn toolbar(ui: &mut egui::Ui, p: &mut PanelCtx) {
                 None => "a built-in scene, not saved to a file yet (• = unsaved changes)".into(),
             });
         ui.separator();
-        let undo = p.history.undo_len();
-        let redo = p.history.redo_len();
+        let undo = bar.history.undo_len();
+        let redo = bar.history.redo_len();
         if ui
             .add_enabled(undo > 0, egui::Button::new("⟲ Undo"))
             .on_hover_text(format!("Undo the last edit (Ctrl+Z); {undo} steps"))
@@ -431,9 +442,13 @@ fn toolbar(ui: &mut egui::Ui, p: &mut PanelCtx) {
             .on_hover_text("Fit the whole surface in the view (A or Home)")
             .clicked()
         {
-            p.frame.0 = Some((p.bounds.center(), 0.5 * p.bounds.size()));
+            bar.frame.0 = Some(bar.bounds.all());
         }
-        let sel = p.selection.handle.and_then(|h| p.arrows.find(h)).copied();
+        let sel = p
+            .selection
+            .primary()
+            .and_then(|h| p.handles.find(h))
+            .copied();
         if ui
             .add_enabled(sel.is_some(), egui::Button::new("Frame selected"))
             .on_hover_text("Fit the selected handle in the view (F)")
@@ -441,13 +456,13 @@ fn toolbar(ui: &mut egui::Ui, p: &mut PanelCtx) {
             .clicked()
             && let Some(a) = sel
         {
-            p.frame.0 = Some((a.base, (a.length * 4.0).max(0.05 * p.bounds.size())));
+            bar.frame.0 = Some(a.framing(bar.bounds.size()));
         }
     });
 }
 
-fn status_text(p: &PanelCtx) -> String {
-    let text = p
+fn status_text(bar: &ToolbarSection) -> String {
+    let text = bar
         .log
         .entries
         .iter()

@@ -35,12 +35,9 @@ struct RotateInput {
 }
 
 pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
-    let depth = p.arrows.edit_depth;
-    let (rows, cols) = match p.arrows.handles.last() {
-        Some(a) => (a.row + 1, a.col + 1),
-        None => (0, 0),
-    };
-    let Some((mut row, mut col)) = p.selection.handle else {
+    let depth = p.handles.edit_depth;
+    let (rows, cols) = p.handles.shape();
+    let Some((mut row, mut col)) = p.selection.cell() else {
         ui.label(
             egui::RichText::new("Click an arrow, or a point on the sphere view, to select it.")
                 .weak(),
@@ -51,7 +48,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
                 .on_hover_text("Select the first handle")
                 .clicked()
         {
-            p.selection.handle = Some((0, 0));
+            p.select_cell((0, 0));
         }
         return;
     };
@@ -71,10 +68,8 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
         )
         .on_hover_text("Column (index along the streamline) of the selected handle");
     });
-    if (row, col) != p.selection.handle.unwrap_or_default() {
-        p.selection.handle = Some((row, col));
-    }
-    let Some(a) = p.arrows.find((row, col)).copied() else {
+    p.select_cell((row, col));
+    let Some(a) = p.handles.at((row, col)).copied() else {
         return;
     };
     let id = ui.id().with("rotate_input");

@@ -1,12 +1,23 @@
 //! Stats: sizes, and what the last edit cost stage by stage.
 
 use super::PanelCtx;
+use crate::ecs::Stats;
+use crate::editor::frame_timing::FrameTiming;
+use bevy::ecs::system::SystemParam;
+use bevy::prelude::*;
 use bevy_egui::egui;
 
+/// What only the Stats section reads.
+#[derive(SystemParam)]
+pub struct StatsSection<'w> {
+    pub stats: Res<'w, Stats>,
+    pub timing: Res<'w, FrameTiming>,
+}
+
 /// The section's rows: name, figure, tooltip.
-pub fn rows(p: &PanelCtx) -> Vec<(&'static str, String, &'static str)> {
+pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, &'static str)> {
     let net = &p.model.scene.design.net;
-    let s = &p.stats;
+    let s = &section.stats;
     let mut rows: Vec<(&'static str, String, &'static str)> = Vec::with_capacity(17);
     {
         let mut row = |k: &'static str, v: String, tip: &'static str| rows.push((k, v, tip));
@@ -95,14 +106,17 @@ pub fn rows(p: &PanelCtx) -> Vec<(&'static str, String, &'static str)> {
         );
         row(
             "frame (ms)",
-            format!("{:.2} (max {:.2})", p.timing.last_ms, p.timing.max_ms),
+            format!(
+                "{:.2} (max {:.2})",
+                section.timing.last_ms, section.timing.max_ms
+            ),
             "CPU time of the model's systems in the last frame with an edit, and the largest of the last 120",
         );
         row(
             "our systems (ms)",
             format!(
                 "{:.2} (max {:.2})",
-                p.timing.ours_last_ms, p.timing.ours_max_ms
+                section.timing.ours_last_ms, section.timing.ours_max_ms
             ),
             "CPU time (thread CPU clocks, so time lost to other programs is not counted) of all our systems — the model's stages and the editor's: mesh upload, arrows, sphere view, analysis, panels — in the last frame with an edit, summed over threads, and the largest of the last 120",
         );

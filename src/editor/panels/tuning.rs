@@ -131,8 +131,8 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
 /// `α` along one streamline, `v` from the selected handle's row (or the middle).
 fn plot(ui: &mut egui::Ui, p: &PanelCtx, t: &SurfaceTuning) {
     let rows = p.model.scene.design.net.rows();
-    let v = match p.selection.handle {
-        Some((row, _)) if p.arrows.edit_depth == 0 => {
+    let v = match p.selection.cell() {
+        Some((row, _)) if p.handles.edit_depth == 0 => {
             let ts = &p.model.scene.design.params.t;
             let (lo, hi) = ts
                 .iter()
@@ -142,13 +142,13 @@ fn plot(ui: &mut egui::Ui, p: &PanelCtx, t: &SurfaceTuning) {
             SurfaceTuning::row_v(ts[row.min(ts.len() - 1)], lo, hi)
         }
         Some((row, _)) => {
-            let last = p.arrows.handles.last().map_or(1, |a| a.row.max(1));
+            let last = p.handles.shape().0.saturating_sub(1).max(1);
             row as f64 / last as f64
         }
         None => 0.5,
     };
     let f = t.row_function(v);
-    let which = match p.selection.handle {
+    let which = match p.selection.cell() {
         Some((row, _)) => format!("streamline of row {row} (v = {v:.2})"),
         None => format!("middle streamline (v = {v:.2}); select an arrow for its row"),
     };

@@ -1,0 +1,343 @@
+//! Handles: what the pointer turns. A handle has a kind (today one: a
+//! tangent of the surface's net at a subdivision level), a place (its
+//! streamline point, its unit direction on the Gaussian sphere, the length it
+//! is drawn with) and whether it can be picked. Where a handle is on the
+//! screen and on the sphere view, and which one lies under the pointer, is
+//! answered here for every kind, so the views never need to know how many
+//! kinds there are.
+
+use crate::ecs::components::{LevelData, SubdivisionLevel};
+use crate::ecs::{Edit, Model, SurfaceChanges};
+use bevy::prelude::*;
+use streamline_kernel::DVec3;
+use streamline_kernel::finetune::streamline::point_by_fraction;
+use streamline_kernel::incremental::{LevelState, place_row_tuned};
+
+/// What a handle is a handle of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum HandleKind {
+    /// A tangent of the surface's net at subdivision level `level`: a control
+    /// tangent (level 0) or a multiresolution detail (deeper).
+    SurfaceTangent {
+        /// The level.
+        level: u32,
+    },
+}
+
+/// One handle: its kind and its cell `(row, col)` in that kind's grid.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct HandleId {
+    /// What it is a handle of.
+    pub kind: HandleKind,
+    /// Row (for a surface tangent: its streamline).
+    pub row: usize,
+    /// Column (for a surface tangent: its index along the streamline).
+    pub col: usize,
+}
+
+impl HandleId {
+    /// Surface tangent `(row, col)` of level `level`.
+    pub fn tangent(level: u32, row: usize, col: usize) -> Self {
+        HandleId {
+            kind: HandleKind::SurfaceTangent { level },
+            row,
+            col,
+        }
+    }
+
+    /// Its cell `(row, col)`.
+    pub fn cell(self) -> (usize, usize) {
+        (self.row, self.col)
+    }
+
+    /// Its subdivision level.
+    pub fn level(self) -> u32 {
+        match self.kind {
+            HandleKind::SurfaceTangent { level } => level,
+        }
+    }
+
+    /// The edit that points this handle at `dir` (unit).
+    pub fn set_direction(self, dir: DVec3) -> Edit {
+        match self.kind {
+            // a tangent of the edit depth: the scene's control tangent or detail
+            HandleKind::SurfaceTangent { .. } => Edit::SetDirection {
+                row: self.row,
+                col: self.col,
+                dir,
+            },
+        }
+    }
+}
+
+/// A handle where it is: at its streamline point, pointing its way.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Handle {
+    /// Which handle.
+    pub id: HandleId,
+    /// Its streamline point (kernel coordinates).
+    pub base: DVec3,
+    /// The unit tangent: its point on the Gaussian sphere.
+    pub dir: DVec3,
+    /// Drawn length.
+    pub length: f64,
+}
+
+impl Handle {
+    /// The arrow's tip.
+    pub fn tip(&self) -> DVec3 {
+        self.base + self.dir * self.length
+    }
+
+    /// Its subdivision level.
+    pub fn level(&self) -> u32 {
+        self.id.level()
+    }
+
+    /// Its arrow on the screen (logical px), given how a point of the 3D
+    /// view projects (`None`: behind the camera).
+    pub fn on_screen(&self, project: impl Fn(DVec3) -> Option<Vec2>) -> Option<(Vec2, Vec2)> {
+        Some((project(self.base)?, project(self.tip())?))
+    }
+
+    /// Where framing this handle looks: its base, and a radius that shows it
+    /// in its surroundings (`scene`: the scene's size).
+    pub fn framing(&self, scene: f64) -> (DVec3, f64) {
+        (self.base, (self.length * 4.0).max(0.05 * scene))
+    }
+}
+
+/// How handles are shown.
+#[derive(Resource, Debug, Clone, PartialEq)]
+pub struct HandleSettings {
+    /// Show the level-0 control tangents.
+    pub controls: bool,
+    /// Show the refined tangents of the edit depth (when it is above 0).
+    pub refined: bool,
+    /// Show only every other refined tangent (in both directions).
+    pub every_other: bool,
+    /// Number labels on the control arrows.
+    pub labels: bool,
+}
+
+impl Default for HandleSettings {
+    fn default() -> Self {
+        HandleSettings {
+            controls: true,
+            refined: true,
+            every_other: false,
+            labels: true,
+        }
+    }
+}
+
+impl HandleSettings {
+    /// Whether a handle of the edit depth is shown (and so pickable).
+    pub fn shows(&self, h: &Handle) -> bool {
+        let (row, col) = h.id.cell();
+        h.level() == 0 || !self.every_other || (row.is_multiple_of(2) && col.is_multiple_of(2))
+    }
+}
+
+/// The handles to draw and pick, rebuilt when a level or the surface changes.
+#[derive(Resource, Debug, Default)]
+pub struct Handles {
+    /// Level-0 control tangents (shown; picked only at edit depth 0).
+    pub controls: Vec<Handle>,
+    /// The handles of the edit depth (the same as `controls` at depth 0): the
+    /// ones the pointer picks.
+    pub editable: Vec<Handle>,
+    /// The edit depth they belong to.
+    pub edit_depth: u32,
+}
+
+impl Handles {
+    /// The handle `id`, if it is one of the edit depth's.
+    pub fn find(&self, id: HandleId) -> Option<&Handle> {
+        self.editable.iter().find(|a| a.id == id)
+    }
+
+    /// The handle of the edit depth at `(row, col)`.
+    pub fn at(&self, (row, col): (usize, usize)) -> Option<&Handle> {
+        self.editable
+            .iter()
+            .find(|a| a.id.row == row && a.id.col == col)
+    }
+
+    /// The id of the edit depth's handle at `(row, col)` (which may not exist).
+    pub fn id_at(&self, (row, col): (usize, usize)) -> HandleId {
+        HandleId::tangent(self.edit_depth, row, col)
+    }
+
+    /// `(rows, cols)` of the edit depth's handles.
+    pub fn shape(&self) -> (usize, usize) {
+        self.editable
+            .last()
+            .map_or((0, 0), |a| (a.id.row + 1, a.id.col + 1))
+    }
+
+    /// The handles the pointer may pick (shown ones of the edit depth).
+    pub fn pickable<'a>(
+        &'a self,
+        settings: &'a HandleSettings,
+    ) -> impl Iterator<Item = &'a Handle> {
+        let refined_hidden = self.edit_depth > 0 && !settings.refined;
+        self.editable
+            .iter()
+            .filter(move |a| !refined_hidden && settings.shows(a))
+    }
+
+    /// The pickable handle whose arrow passes nearest `cursor` on the screen,
+    /// within `max_px`.
+    pub fn pick_on_screen(
+        &self,
+        settings: &HandleSettings,
+        cursor: Vec2,
+        project: impl Fn(DVec3) -> Option<Vec2>,
+        max_px: f32,
+    ) -> Option<HandleId> {
+        let mut best: Option<(HandleId, f32)> = None;
+        for a in self.pickable(settings) {
+            let Some((p0, p1)) = a.on_screen(&project) else {
+                continue;
+            };
+            let d = segment_distance(cursor, p0, p1);
+            if d <= max_px && best.is_none_or(|(_, bd)| d < bd) {
+                best = Some((a.id, d));
+            }
+        }
+        best.map(|(h, _)| h)
+    }
+
+    /// The pickable handle whose point on the sphere view lies nearest
+    /// `cursor`, closer than `max_px`, on the side facing `eye` (unit).
+    pub fn pick_on_sphere<'a>(
+        &'a self,
+        settings: &'a HandleSettings,
+        cursor: Vec2,
+        eye: DVec3,
+        project: impl Fn(DVec3) -> Option<Vec2>,
+        max_px: f32,
+    ) -> Option<&'a Handle> {
+        let mut best: Option<(&Handle, f32)> = None;
+        for a in self.pickable(settings) {
+            if a.dir.dot(eye) < 0.0 {
+                continue;
+            }
+            let Some(p) = project(a.dir) else {
+                continue;
+            };
+            let d = p.distance(cursor);
+            if d < max_px && best.is_none_or(|(_, bd)| d < bd) {
+                best = Some((a, d));
+            }
+        }
+        best.map(|(a, _)| a)
+    }
+}
+
+/// Distance from `p` to the segment `a`–`b` (screen px).
+pub fn segment_distance(p: Vec2, a: Vec2, b: Vec2) -> f32 {
+    let ab = b - a;
+    let t = ((p - a).dot(ab) / ab.length_squared().max(1e-9)).clamp(0.0, 1.0);
+    (a + ab * t).distance(p)
+}
+
+/// The handles of one level.
+fn level_handles(model: &Model, l: &LevelState, scale: f64) -> Vec<Handle> {
+    let (rows, cols) = l.shape();
+    let initial = &model.scene.design.initial;
+    let tuning = model.scene.tuning.as_ref();
+    let s = &l.params.s;
+    let span: f64 = (0..rows)
+        .map(|r| (s.get(r, cols - 1) - s.get(r, 0)) / (cols.max(2) - 1) as f64)
+        .sum::<f64>()
+        / rows.max(1) as f64;
+    let length = (span * scale).max(1e-6);
+    let mut pts = Vec::new();
+    let mut out = Vec::with_capacity(rows * cols);
+    for r in 0..rows {
+        place_row_tuned(initial, &l.tangents, &l.params, r, tuning, &mut pts);
+        for c in 0..cols {
+            // control arrows show the designer's tangents (the interpolated
+            // net, when that option is on, is what subdivision starts from)
+            let dir = if l.level == 0 {
+                model.scene.design.net.get(r, c)
+            } else {
+                l.tangents.get(r, c)
+            };
+            let base = point_by_fraction(&pts, s.row(r), s.get(r, c));
+            out.push(Handle {
+                id: HandleId::tangent(l.level, r, c),
+                base,
+                dir,
+                length,
+            });
+        }
+    }
+    out
+}
+
+/// Places the handles again when their level or the surface changed (the
+/// surface moves their base points: fine tuning, the initial curve).
+pub(super) fn rebuild(
+    meter: Res<crate::ecs::meter::CpuMeter>,
+    model: Res<Model>,
+    levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
+    mut surface: SurfaceChanges,
+    mut handles: ResMut<Handles>,
+) {
+    let _meter = meter.start();
+    let edit = model.scene.edit_depth;
+    let moved = surface.take().any();
+    let changed = levels
+        .iter()
+        .any(|(l, d)| (l.0 == 0 || l.0 == edit) && d.is_changed());
+    if !changed && !moved && handles.edit_depth == edit && !handles.controls.is_empty() {
+        return;
+    }
+    let find = |level: u32| levels.iter().find(|(l, _)| l.0 == level).map(|(_, d)| d);
+    let Some(base) = find(0) else {
+        return;
+    };
+    let mut controls = level_handles(&model, &base.0, 0.7);
+    // long intervals (a 3×3 net) would give arrows as large as the scene: cap
+    // them at a tenth of the control points' extent
+    let [lo, hi] = streamline_kernel::mesh::bounds(controls.iter().map(|a| a.base));
+    let cap = ((hi - lo).length() * 0.1).max(1e-6);
+    let clamp = |v: &mut Vec<Handle>| {
+        for a in v.iter_mut() {
+            a.length = a.length.min(cap);
+        }
+    };
+    clamp(&mut controls);
+    let editable = if edit == 0 {
+        controls.clone()
+    } else {
+        match find(edit) {
+            Some(d) => {
+                let mut h = level_handles(&model, &d.0, 0.8);
+                clamp(&mut h);
+                h
+            }
+            None => return,
+        }
+    };
+    *handles = Handles {
+        controls,
+        editable,
+        edit_depth: edit,
+    };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn segment_distance_is_euclidean() {
+        let (a, b) = (Vec2::ZERO, Vec2::new(10.0, 0.0));
+        assert_eq!(segment_distance(Vec2::new(5.0, 3.0), a, b), 3.0);
+        assert_eq!(segment_distance(Vec2::new(-4.0, 3.0), a, b), 5.0);
+    }
+}

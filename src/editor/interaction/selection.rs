@@ -1,0 +1,82 @@
+//! The selection: the handles chosen (one today; kept as a list so a
+//! selection of several can grow from it) and the one under the pointer.
+
+use super::handles::{HandleId, HandleKind, Handles};
+use bevy::prelude::*;
+
+/// The selected handles and the hovered one.
+#[derive(Resource, Debug, Default, Clone, PartialEq)]
+pub struct Selection {
+    /// Selected, the first one primary (the panels and `F` use it).
+    selected: Vec<HandleId>,
+    /// Under the pointer in the 3D view.
+    pub hover: Option<HandleId>,
+}
+
+impl Selection {
+    /// The primary selected handle.
+    pub fn primary(&self) -> Option<HandleId> {
+        self.selected.first().copied()
+    }
+
+    /// The primary handle's cell `(row, col)`.
+    pub fn cell(&self) -> Option<(usize, usize)> {
+        self.primary().map(HandleId::cell)
+    }
+
+    /// Whether `id` is selected.
+    pub fn contains(&self, id: HandleId) -> bool {
+        self.selected.contains(&id)
+    }
+
+    /// The selected handles, the primary first.
+    pub fn iter(&self) -> impl Iterator<Item = HandleId> + '_ {
+        self.selected.iter().copied()
+    }
+
+    /// Selects `id` alone (changes nothing when it already is).
+    pub fn select(&mut self, id: HandleId) {
+        if self.selected != [id] {
+            self.selected = vec![id];
+        }
+    }
+
+    /// Selects nothing.
+    pub fn clear(&mut self) {
+        self.selected.clear();
+    }
+
+    /// Follows a change of the handles: a selected surface tangent whose
+    /// level is no longer the edit depth becomes the edit depth's tangent at
+    /// the same cell; handles that no longer exist are dropped.
+    pub fn follow(&mut self, handles: &Handles) {
+        let moved: Vec<HandleId> = self
+            .selected
+            .iter()
+            .filter_map(|&h| match handles.find(h) {
+                Some(_) => Some(h),
+                None => match h.kind {
+                    HandleKind::SurfaceTangent { .. } => handles.at(h.cell()).map(|a| a.id),
+                },
+            })
+            .collect();
+        if moved != self.selected {
+            self.selected = moved;
+        }
+    }
+}
+
+/// Drops a selection that no longer exists (after a depth change or a load).
+pub(super) fn keep_valid(
+    meter: Res<crate::ecs::meter::CpuMeter>,
+    handles: Res<Handles>,
+    mut selection: ResMut<Selection>,
+) {
+    let _meter = meter.start();
+    if !handles.is_changed() || handles.editable.is_empty() {
+        return;
+    }
+    if selection.iter().any(|h| handles.find(h).is_none()) {
+        selection.follow(&handles);
+    }
+}
