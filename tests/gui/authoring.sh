@@ -5,6 +5,7 @@
 #           Ctrl+S and a typed path (a new design has no file yet), Enter.
 #   insert: opens SCENE with arrow (1, 3) selected, right-clicks that arrow,
 #           picks "Insert row after" from its menu, saves (Ctrl+S).
+#   menu:   as insert, but leaves the menu open for the picture.
 # Usage: authoring.sh BIN OUT.png REPORT.json new SAVE.ron
 #        authoring.sh BIN OUT.png REPORT.json insert SCENE.ron
 set -euo pipefail
@@ -49,6 +50,7 @@ else
   goto "$X" "$Y"
   # a right click (press and release in place) opens the arrow's menu
   xdotool mousedown 3; sleep 0.8; xdotool mouseup 3; sleep 1.5
+  if [ "$MODE" = menu ]; then sleep 2; touch "$REPORT.done"; wait "$PID"; exit; fi
   # its entries start just below and right of the pointer: a label, then
   # "Insert row before", "Insert row after"
   click "$((X + 40))" "$((Y + ${AFTER_DY:-52}))"
