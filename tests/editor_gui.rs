@@ -439,9 +439,17 @@ fn new_design_dialog_and_right_click_insert() {
     let made = authoring(&dir, "new", &file);
     assert!(made.last_edit.contains("save"), "{made:?}");
     let s = streamline_studio::scene::io::load(&file).expect("the new design was saved");
-    assert_eq!((s.design.net.rows(), s.design.net.cols()), (4, 7), "{made:?}");
+    assert_eq!(
+        (s.design.net.rows(), s.design.net.cols()),
+        (4, 7),
+        "{made:?}"
+    );
     assert_eq!(s.design.initial.length(), 3.0, "the typed width");
-    assert_eq!(s.design.streamline_length(0), Some(4.0), "the default length");
+    assert_eq!(
+        s.design.streamline_length(0),
+        Some(4.0),
+        "the default length"
+    );
     assert!(!s.mirror);
     let flat = s.design.build(s.display_depth).unwrap();
     assert!(
@@ -458,7 +466,10 @@ fn new_design_dialog_and_right_click_insert() {
     assert_eq!(inserted.selection, Some((2, 3)), "the new row is selected");
     // the new row got index 2, between the old rows 1 and 2; the others kept theirs
     let (old, new) = (&s.design.params.t, &t.design.params.t);
-    assert_eq!([new[0], new[1], new[3], new[4]], [old[0], old[1], old[2], old[3]]);
+    assert_eq!(
+        [new[0], new[1], new[3], new[4]],
+        [old[0], old[1], old[2], old[3]]
+    );
     assert!(old[1] < new[2] && new[2] < old[2], "{old:?} → {new:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }

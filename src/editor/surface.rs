@@ -139,7 +139,7 @@ fn sync_mesh(
 
 /// How much of the colour the mirrored half keeps (`docs/math.md §9`: it is
 /// shown, analysed and exported, but not edited).
-pub const MIRROR_SHADE: f32 = 0.6;
+pub const MIRROR_SHADE: f32 = 0.4;
 
 /// Vertex colours that dim the mirrored half of a mirrored surface: its
 /// streamlines are the first half of the rows (the doubled net is symmetric,

@@ -6,11 +6,12 @@
 #   insert: opens SCENE with arrow (1, 3) selected, right-clicks that arrow,
 #           picks "Insert row after" from its menu, saves (Ctrl+S).
 #   menu:   as insert, but leaves the menu open for the picture.
+#   dialog: opens the New design dialog, picks Cylinder, leaves it open.
 # Usage: authoring.sh BIN OUT.png REPORT.json new SAVE.ron
 #        authoring.sh BIN OUT.png REPORT.json insert SCENE.ron
 set -euo pipefail
 BIN=$1; OUT=$2; REPORT=$3; MODE=$4; FILE=$5
-if [ "$MODE" = new ]; then SCENE=minimal; else SCENE=$FILE; fi
+case "$MODE" in new|dialog) SCENE=minimal ;; *) SCENE=$FILE ;; esac
 STREAMLINE_STUDIO_SHOT_WAIT="$REPORT.done" STREAMLINE_STUDIO_SHOT_FRAMES=${FRAMES:-30} "$BIN" screenshot "$SCENE" --out "$OUT" \
   --select 1,3 --panel file --report "$REPORT" --size 900x600 2>"$REPORT.log" &
 PID=$!
@@ -32,7 +33,9 @@ field() {
   xdotool type --delay 80 "$3"; sleep 0.4; xdotool key Return; sleep 1
 }
 chord() { xdotool keydown "$1"; sleep 0.6; xdotool key "$2"; sleep 0.6; xdotool keyup "$1"; sleep 1; }
-if [ "$MODE" = new ]; then
+if [ "$MODE" = dialog ]; then
+  click 48 68; click 75 93; click 467 290
+elif [ "$MODE" = new ]; then
   click 48 68     # File ▸ New…
   click 75 93     # New design…
   field 431 242 4 # rows
