@@ -360,7 +360,6 @@ fn panel(
     mut sections: Sections,
     mut area: ResMut<ViewArea>,
     mut warmed: Local<bool>,
-    mut index_fields: Local<structure::IndexFields>,
     mut text: Local<Throttled>,
 ) -> Result {
     let _meter = meter.start();
@@ -396,7 +395,7 @@ fn panel(
                     let shown = header.show(ui, |ui| match name {
                         PanelName::File => file::show(ui, &mut p, &mut sections.file),
                         PanelName::Subdivision => subdivision::show(ui, &mut p),
-                        PanelName::Structure => structure::show(ui, &mut p, &mut index_fields),
+                        PanelName::Structure => structure::show(ui, &mut p),
                         PanelName::Selection => {
                             selection::show(ui, &mut p);
                             lengths::show(ui, &mut p);

@@ -9,14 +9,21 @@ use crate::editor::structure::{self, KEYS, StructureAction};
 use bevy_egui::egui;
 use streamline_kernel::authoring::Axis;
 
-/// The index fields' state (egui memory would lose it with the section closed).
+/// The index fields, kept between frames in egui's memory.
 #[derive(Debug, Default, Clone, Copy)]
-pub struct IndexFields {
+struct IndexFields {
     row: usize,
     col: usize,
 }
 
-pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, fields: &mut IndexFields) {
+pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
+    let id = egui::Id::new("structure_index_fields");
+    let mut fields: IndexFields = ui.data(|d| d.get_temp(id)).unwrap_or_default();
+    body(ui, p, &mut fields);
+    ui.data_mut(|d| d.insert_temp(id, fields));
+}
+
+fn body(ui: &mut egui::Ui, p: &mut PanelCtx, fields: &mut IndexFields) {
     let (rows, cols) = {
         let net = &p.model.scene.design.net;
         (net.rows(), net.cols())
