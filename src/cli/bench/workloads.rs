@@ -1,5 +1,5 @@
 //! The benchmark workloads, shared by `streamline-studio bench` and `cargo bench`
-//! so both measure exactly the same thing.
+//! (`benches/table1.rs`) so both measure exactly the same thing.
 
 use streamline_kernel::curve::{CurveScheme, subdivide_into};
 use streamline_kernel::qi::QiCurve;
