@@ -11,7 +11,7 @@ use crate::ecs::{Edit, Model, SurfaceChanges};
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
 use streamline_kernel::finetune::streamline::point_by_fraction;
-use streamline_kernel::incremental::{LevelState, place_row_tuned};
+use streamline_kernel::levels::incremental::{LevelState, place_row_tuned};
 
 /// What a handle is a handle of.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -254,7 +254,7 @@ fn level_handles(
     model: &Model,
     l: &LevelState,
     scale: f64,
-    initial: &streamline_kernel::initial_curve::InitialCurve,
+    initial: &streamline_kernel::streamline::initial_curve::InitialCurve,
     reflected: usize,
 ) -> (Vec<Handle>, Vec<Handle>) {
     let (rows, cols) = l.shape();
@@ -344,8 +344,9 @@ pub(super) fn rebuild(
     let (mut controls, mut mirrored) = level_handles(&model, &base.0, 0.7, initial, reflected);
     // long intervals (a 3×3 net) would give arrows as large as the scene: cap
     // them at a tenth of the control points' extent
-    let [lo, hi] =
-        streamline_kernel::mesh::bounds(controls.iter().chain(&mirrored).map(|a| a.base));
+    let [lo, hi] = streamline_kernel::streamline::surface_mesh::bounds(
+        controls.iter().chain(&mirrored).map(|a| a.base),
+    );
     let cap = ((hi - lo).length() * 0.1).max(1e-6);
     let clamp = |v: &mut Vec<Handle>| {
         for a in v.iter_mut() {
