@@ -26,3 +26,20 @@ shot editor-qi-side qi-side --select 1,2
 for m in snail fertility camelhead; do
   shot "mesh-$m" car1 --mesh "tests/data/meshes/$m.obj" --panel mesh
 done
+# docs/authoring.md: the walk-through's scenes, step by step
+T=$(mktemp -d)
+cp scripts/authoring-shots.ron "$T/steps.ron"
+"$BIN" play "$T/steps.ron" >/dev/null
+shot authoring-1-new "$T/1-new.ron" --panel structure
+shot panel-structure "$T/2-insert.ron" --panel structure --select 2,3
+shot authoring-3-shaped "$T/3-shaped.ron" --panel subdivision
+shot panel-lengths "$T/4-lengths.ron" --panel selection --select 4,2
+shot authoring-5-mirror "$T/5-mirror.ron" --panel structure --select 1,2
+shot authoring-6-curvature "$T/5-mirror.ron" --panel analysis --analysis gaussian
+shot authoring-7-save "$T/5-mirror.ron" --panel file
+# the dialog and the arrow's menu need a pointer (xdotool)
+xvfb-run -a -s "-screen 0 1280x800x24" bash tests/gui/authoring.sh "$BIN" docs/img/dialog-new-design.png "$T/d.json" dialog -
+cp "$T/2-insert.ron" "$T/menu.ron"
+xvfb-run -a -s "-screen 0 1280x800x24" bash tests/gui/authoring.sh "$BIN" docs/img/menu-arrow.png "$T/m.json" menu "$T/menu.ron"
+echo docs/img/dialog-new-design.png docs/img/menu-arrow.png
+rm -rf "$T"

@@ -138,6 +138,7 @@ fn screenshots_show_the_surface_panels_and_curvature() {
 struct Report {
     undo: usize,
     last_edit: String,
+    selection: Option<(usize, usize)>,
     net: Vec<[f64; 3]>,
     cols: usize,
     shown_gap: Option<f64>,
@@ -399,5 +400,76 @@ fn a_1gib_obj_is_opened_off_the_frame_and_refused() {
     // the car is still shown (its blue-white shading), not a mesh
     let surface = share(w, h, &px, |[r, g, b]| b > 150 && b >= r && g > 100);
     assert!(surface > 0.05, "the streamline surface stays: {surface:.3}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Runs `tests/gui/authoring.sh` in `mode` on `file` and returns the report.
+fn authoring(dir: &Path, mode: &str, file: &Path) -> Report {
+    let report = dir.join(format!("{mode}.json"));
+    let run = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24", "bash"])
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/gui/authoring.sh"))
+        .arg(BIN)
+        .arg(dir.join(format!("{mode}.png")))
+        .arg(&report)
+        .arg(mode)
+        .arg(file)
+        .env_remove("DISPLAY")
+        .output()
+        .expect("xvfb-run and xdotool are installed by scripts/setup.sh");
+    assert!(
+        run.status.success(),
+        "authoring run ({mode}) failed: {}{}",
+        String::from_utf8_lossy(&run.stderr),
+        std::fs::read_to_string(report.with_extension("json.log")).unwrap_or_default()
+    );
+    serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap()
+}
+
+/// Issue 20: with a real pointer, File ▸ New ▸ New design… with rows 4,
+/// columns 7 and a Flat width of 3 makes exactly that net (the rectangle
+/// `[0, 4] × [0, 3]`), saved under a typed path; then a right click on arrow
+/// (1, 3) and "Insert row after" from its menu give a fifth row at index 2
+/// (one undo step, the new row selected), saved with Ctrl+S.
+#[test]
+fn new_design_dialog_and_right_click_insert() {
+    let _gui = gui_lock();
+    let dir = temp_dir("authoring");
+    let file = dir.join("design.ron");
+    let made = authoring(&dir, "new", &file);
+    assert!(made.last_edit.contains("save"), "{made:?}");
+    let s = streamline_studio::scene::io::load(&file).expect("the new design was saved");
+    assert_eq!(
+        (s.design.net.rows(), s.design.net.cols()),
+        (4, 7),
+        "{made:?}"
+    );
+    assert_eq!(s.design.initial.length(), 3.0, "the typed width");
+    assert_eq!(
+        s.design.streamline_length(0),
+        Some(4.0),
+        "the default length"
+    );
+    assert!(!s.mirror);
+    let flat = s.design.build(s.display_depth).unwrap();
+    assert!(
+        flat.mesh.positions.iter().all(|p| p.z.abs() < 1e-12
+            && (-1e-9..=4.0 + 1e-9).contains(&p.x)
+            && (-1e-9..=3.0 + 1e-9).contains(&p.y)),
+        "Flat lies in the rectangle [0, 4] × [0, 3] of z = 0"
+    );
+    let inserted = authoring(&dir, "insert", &file);
+    assert_eq!(inserted.undo, 1, "an insert is one undo step: {inserted:?}");
+    assert!(inserted.last_edit.contains("save"), "{inserted:?}");
+    let t = streamline_studio::scene::io::load(&file).expect("saved after the insert");
+    assert_eq!((t.design.net.rows(), t.design.net.cols()), (5, 7));
+    assert_eq!(inserted.selection, Some((2, 3)), "the new row is selected");
+    // the new row got index 2, between the old rows 1 and 2; the others kept theirs
+    let (old, new) = (&s.design.params.t, &t.design.params.t);
+    assert_eq!(
+        [new[0], new[1], new[3], new[4]],
+        [old[0], old[1], old[2], old[3]]
+    );
+    assert!(old[1] < new[2] && new[2] < old[2], "{old:?} → {new:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }

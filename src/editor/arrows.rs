@@ -1,7 +1,8 @@
 //! Drawing the handles ([`Handles`], placed by the interaction core) as
 //! arrows: the control tangents (level 0) as yellow arrows at their
 //! streamline points, and the refined tangents of the edit depth as red arrows
-//! (optionally every other one). The head's shape tells the column index apart
+//! (optionally every other one); with mirror symmetry on, the reflected
+//! copies on the other half dimmed (they cannot be picked). The head's shape tells the column index apart
 //! (cone, ball, cross, ring, repeating, as the paper's prototype gives each
 //! index its own head), and a number label names it.
 
@@ -34,6 +35,8 @@ const YELLOW: Color = Color::srgb(1.0, 0.85, 0.1);
 const RED: Color = Color::srgb(0.95, 0.25, 0.2);
 const SELECTED: Color = Color::srgb(1.0, 1.0, 1.0);
 const HOVER: Color = Color::srgb(1.0, 0.6, 0.1);
+/// The mirrored half's copies of the control arrows: the yellow, dimmed.
+const MIRRORED: Color = Color::srgb(0.55, 0.47, 0.14);
 
 fn draw(
     meter: Res<crate::ecs::meter::CpuMeter>,
@@ -58,6 +61,9 @@ fn draw(
     if settings.controls || edit == 0 {
         for a in &arrows.controls {
             arrow(&mut gizmos, a, colour(a, YELLOW));
+        }
+        for a in &arrows.mirrored {
+            arrow(&mut gizmos, a, MIRRORED);
         }
     }
     if edit > 0 && settings.refined {

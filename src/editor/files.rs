@@ -56,6 +56,8 @@ impl EditorDirs {
 pub enum Pending {
     /// Replace the scene with a built-in one.
     New(String),
+    /// Replace the scene with a new design (File ▸ New ▸ New design…).
+    NewDesign(Box<crate::ecs::authoring::AuthorEdit>),
     /// Open a file.
     Open(PathBuf),
     /// Quit the editor.
@@ -202,6 +204,9 @@ fn run_pending(
             }
             Err(e) => ui.errors.push(e.to_string()),
         },
+        Pending::NewDesign(e) => {
+            edits.write(EditMessage::from(Edit::Author(*e)));
+        }
         Pending::Open(path) => {
             edits.write(EditMessage::from(Edit::Load(path)));
         }

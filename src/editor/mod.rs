@@ -15,12 +15,14 @@ pub mod files;
 mod frame_timing;
 pub mod interaction;
 pub mod mesh_mode;
+pub mod new_design;
 mod overlay;
 pub mod pacing;
 mod panels;
 mod picking;
 mod screenshot;
 mod sphere_view;
+mod structure;
 mod surface;
 
 use crate::ecs::{Model, ModelPlugin};
@@ -71,7 +73,8 @@ impl Plugin for EditorPlugin {
             autosave::AutosavePlugin,
             mesh_mode::MeshModePlugin,
             screenshot::ScreenshotPlugin,
-        ));
+        ))
+        .add_plugins((new_design::NewDesignPlugin, structure::StructurePlugin));
     }
 }
 

@@ -3,7 +3,7 @@
 //! are patched in place, anything else rebuilds the Bevy mesh. Lights.
 
 use super::interaction::EditorSet;
-use crate::ecs::{SurfaceChange, SurfaceChanges, SurfaceData};
+use crate::ecs::{Model, SurfaceChange, SurfaceChanges, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
@@ -80,6 +80,7 @@ fn setup(
 fn sync_mesh(
     meter: Res<crate::ecs::meter::CpuMeter>,
     data: Res<SurfaceData>,
+    model: Res<Model>,
     mut changes: SurfaceChanges,
     mut shown: ResMut<ShownSurface>,
     mut meshes: ResMut<Assets<Mesh>>,
@@ -127,7 +128,32 @@ fn sync_mesh(
         return;
     }
     *mesh = to_bevy_mesh(points, &data.normals, &data.indices);
+    if model.scene.mirror {
+        mesh.insert_attribute(
+            Mesh::ATTRIBUTE_COLOR,
+            mirror_shades(data.points.rows(), cols),
+        );
+    }
     shown.full = true;
+}
+
+/// How much of the colour the mirrored half keeps (`docs/math.md §9`: it is
+/// shown, analysed and exported, but not edited).
+pub const MIRROR_SHADE: f32 = 0.4;
+
+/// Vertex colours that dim the mirrored half of a mirrored surface: its
+/// streamlines are the first half of the rows (the doubled net is symmetric,
+/// so every scheme's levels are: the seam is the middle row, or lies between
+/// the two middle rows), the design's own rows (the seam included) keep
+/// their colour. The materials multiply their colour by it, the analysis
+/// maps' too.
+pub fn mirror_shades(rows: usize, cols: usize) -> Vec<[f32; 4]> {
+    let mut out = Vec::with_capacity(rows * cols);
+    for r in 0..rows {
+        let k = if r < rows / 2 { MIRROR_SHADE } else { 1.0 };
+        out.extend(std::iter::repeat_n([k, k, k, 1.0], cols));
+    }
+    out
 }
 
 /// Converts the kernel's mesh buffers into a Bevy mesh (kernel axes; the
@@ -304,6 +330,24 @@ mod tests {
     /// Issue 19: the surface's changes reach the mesh sync as messages with
     /// their windows, read with its own cursor; run only every second or
     /// third frame during a drag, the mesh still equals the model bit for bit.
+    /// The mirrored half (the first half of the rows, the seam excluded) is
+    /// dimmed, the design's half keeps its colour, for odd (a primal
+    /// scheme's seam row) and even (a dual scheme's) row counts.
+    #[test]
+    fn mirror_shades_dim_exactly_the_reflected_rows() {
+        for (rows, dimmed) in [(9, 4), (8, 4), (3, 1), (2, 1)] {
+            let shades = mirror_shades(rows, 5);
+            assert_eq!(shades.len(), rows * 5);
+            for r in 0..rows {
+                let want = if r < dimmed { MIRROR_SHADE } else { 1.0 };
+                assert!(
+                    shades[r * 5..(r + 1) * 5].iter().all(|c| c[0] == want),
+                    "{rows} rows: row {r} should have shade {want}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn mesh_sync_that_skips_frames_ends_up_exact() {
         for every in [1, 2, 3] {

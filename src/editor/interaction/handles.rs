@@ -149,6 +149,10 @@ pub struct Handles {
     pub editable: Vec<Handle>,
     /// The edit depth they belong to.
     pub edit_depth: u32,
+    /// With mirror symmetry on (`docs/math.md §9`): the reflected copies of
+    /// the control tangents, on the other half; shown dimmed, never picked.
+    /// Each has the id of the control tangent it reflects.
+    pub mirrored: Vec<Handle>,
 }
 
 impl Handles {
@@ -243,10 +247,17 @@ pub fn segment_distance(p: Vec2, a: Vec2, b: Vec2) -> f32 {
     (a + ab * t).distance(p)
 }
 
-/// The handles of one level.
-fn level_handles(model: &Model, l: &LevelState, scale: f64) -> Vec<Handle> {
+/// The handles of one level, placed on the streamlines of `initial`; with
+/// the mirror on (level 0 of the doubled net, `docs/math.md §9`) its first
+/// `reflected` rows are the reflected copies, returned apart.
+fn level_handles(
+    model: &Model,
+    l: &LevelState,
+    scale: f64,
+    initial: &streamline_kernel::streamline::initial_curve::InitialCurve,
+    reflected: usize,
+) -> (Vec<Handle>, Vec<Handle>) {
     let (rows, cols) = l.shape();
-    let initial = &model.scene.design.initial;
     let tuning = model.scene.tuning.as_ref();
     let s = &l.params.s;
     let span: f64 = (0..rows)
@@ -256,26 +267,39 @@ fn level_handles(model: &Model, l: &LevelState, scale: f64) -> Vec<Handle> {
     let length = (span * scale).max(1e-6);
     let mut pts = Vec::new();
     let mut out = Vec::with_capacity(rows * cols);
+    let mut copies = Vec::with_capacity(reflected * cols);
+    let net = &model.scene.design.net;
     for r in 0..rows {
         place_row_tuned(initial, &l.tangents, &l.params, r, tuning, &mut pts);
         for c in 0..cols {
+            let base = point_by_fraction(&pts, s.row(r), s.get(r, c));
+            if r < reflected {
+                // row r of the doubled net reflects control row `reflected − r`
+                copies.push(Handle {
+                    id: HandleId::tangent(0, reflected - r, c),
+                    base,
+                    dir: l.tangents.get(r, c),
+                    length,
+                });
+                continue;
+            }
+            let row = r - reflected;
             // control arrows show the designer's tangents (the interpolated
             // net, when that option is on, is what subdivision starts from)
-            let dir = if l.level == 0 {
-                model.scene.design.net.get(r, c)
+            let dir = if l.level == 0 && row < net.rows() && c < net.cols() {
+                net.get(row, c)
             } else {
                 l.tangents.get(r, c)
             };
-            let base = point_by_fraction(&pts, s.row(r), s.get(r, c));
             out.push(Handle {
-                id: HandleId::tangent(l.level, r, c),
+                id: HandleId::tangent(l.level, row, c),
                 base,
                 dir,
                 length,
             });
         }
     }
-    out
+    (out, copies)
 }
 
 /// Places the handles again when their level or the surface changed (the
@@ -300,11 +324,29 @@ pub(super) fn rebuild(
     let Some(base) = find(0) else {
         return;
     };
-    let mut controls = level_handles(&model, &base.0, 0.7);
+    // mirrored: the levels are the doubled design's, placed on its initial
+    // curve (the scene's own, reflected for the other half)
+    let shown = if model.scene.mirror {
+        match model.scene.shown_design() {
+            Ok(d) => Some(d),
+            Err(_) => return,
+        }
+    } else {
+        None
+    };
+    let initial = shown
+        .as_ref()
+        .map_or(&model.scene.design.initial, |d| &d.initial);
+    let reflected = match &shown {
+        Some(_) => model.scene.design.net.rows().saturating_sub(1),
+        None => 0,
+    };
+    let (mut controls, mut mirrored) = level_handles(&model, &base.0, 0.7, initial, reflected);
     // long intervals (a 3×3 net) would give arrows as large as the scene: cap
     // them at a tenth of the control points' extent
-    let [lo, hi] =
-        streamline_kernel::streamline::surface_mesh::bounds(controls.iter().map(|a| a.base));
+    let [lo, hi] = streamline_kernel::streamline::surface_mesh::bounds(
+        controls.iter().chain(&mirrored).map(|a| a.base),
+    );
     let cap = ((hi - lo).length() * 0.1).max(1e-6);
     let clamp = |v: &mut Vec<Handle>| {
         for a in v.iter_mut() {
@@ -312,12 +354,13 @@ pub(super) fn rebuild(
         }
     };
     clamp(&mut controls);
+    clamp(&mut mirrored);
     let editable = if edit == 0 {
         controls.clone()
     } else {
         match find(edit) {
             Some(d) => {
-                let mut h = level_handles(&model, &d.0, 0.8);
+                let (mut h, _) = level_handles(&model, &d.0, 0.8, initial, 0);
                 clamp(&mut h);
                 h
             }
@@ -328,6 +371,7 @@ pub(super) fn rebuild(
         controls,
         editable,
         edit_depth: edit,
+        mirrored,
     };
 }
 

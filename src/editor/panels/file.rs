@@ -1,8 +1,9 @@
-//! File: new (from a built-in scene), open, save, save as, export, recent files.
+//! File: new (a new design, or a built-in scene), open, save, save as, export, recent files.
 
 use super::PanelCtx;
 use crate::ecs::runner::ScriptRun;
 use crate::editor::files::{self, Dialog, FileUi, PathAction, Pending};
+use crate::editor::new_design::NewDesignForm;
 use crate::scene::builtin;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
@@ -14,6 +15,7 @@ pub struct FileSection<'w> {
     pub files: ResMut<'w, FileUi>,
     pub exit: MessageWriter<'w, AppExit>,
     pub script: ResMut<'w, ScriptRun>,
+    pub new_design: ResMut<'w, NewDesignForm>,
 }
 
 pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
@@ -27,6 +29,19 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
         .on_hover_text("The file the scene was opened from or saved to");
     ui.horizontal_wrapped(|ui| {
         ui.menu_button("New…", |ui| {
+            if ui
+                .button("New design…")
+                .on_hover_text(
+                    "A design from nothing: rows × columns, a Flat or Cylinder template, \
+                     the streamline length and the scheme",
+                )
+                .clicked()
+            {
+                s.new_design.open = true;
+                ui.close();
+            }
+            ui.separator();
+            ui.label(egui::RichText::new("Built-in scenes").weak().small());
             for (name, _) in builtin::SCENES {
                 if ui
                     .button(name)
@@ -46,7 +61,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
             }
         })
         .response
-        .on_hover_text("Start a new scene from a built-in one");
+        .on_hover_text("Start a new design, or from a built-in scene");
         if ui
             .button("Open…")
             .on_hover_text("Open a scene file (.ron), Ctrl+O")

@@ -1,5 +1,5 @@
 //! The egui panels: a toolbar (undo, redo, frame) and a side panel of
-//! sections (File, Subdivision, Selection, Display, Fine tuning, Analysis,
+//! sections (File, Subdivision, Structure, Selection, Display, Fine tuning, Analysis,
 //! Loop mesh, Stats). Panels are thin views: they read resources and send
 //! edit messages (or change display settings, only when a value really
 //! changes); they never compute geometry. What every section reads is
@@ -10,9 +10,11 @@ mod analysis;
 mod cad_export;
 mod display;
 mod file;
+mod lengths;
 mod mesh;
 mod selection;
 mod stats;
+mod structure;
 mod subdivision;
 mod tuning;
 
@@ -31,6 +33,8 @@ pub enum PanelName {
     File,
     /// Scheme, ω, blend order, depths.
     Subdivision,
+    /// The net's rows and columns: insert, delete; mirror symmetry.
+    Structure,
     /// The selected handle: index, x/y/z, rotate, length, reset.
     Selection,
     /// What is drawn: arrows, labels, streamlines, sphere view.
@@ -47,9 +51,10 @@ pub enum PanelName {
 
 impl PanelName {
     /// All sections in panel order.
-    pub const ALL: [PanelName; 8] = [
+    pub const ALL: [PanelName; 9] = [
         PanelName::File,
         PanelName::Subdivision,
+        PanelName::Structure,
         PanelName::Selection,
         PanelName::Display,
         PanelName::Tuning,
@@ -63,6 +68,7 @@ impl PanelName {
         match self {
             PanelName::File => "file",
             PanelName::Subdivision => "subdivision",
+            PanelName::Structure => "structure",
             PanelName::Selection => "selection",
             PanelName::Display => "display",
             PanelName::Tuning => "tuning",
@@ -76,6 +82,9 @@ impl PanelName {
         match self {
             PanelName::File => "New, open, save, export, recent files",
             PanelName::Subdivision => "Scheme, ω, blend order, display and edit depth",
+            PanelName::Structure => {
+                "Insert and delete rows (streamlines) and columns of the control net; mirror symmetry"
+            }
             PanelName::Selection => "The selected handle: direction, rotation, length, reset",
             PanelName::Display => "What is drawn in the 3D view and the sphere view",
             PanelName::Tuning => {
@@ -95,6 +104,7 @@ impl PanelName {
         match self {
             PanelName::File => "File",
             PanelName::Subdivision => "Subdivision",
+            PanelName::Structure => "Structure",
             PanelName::Selection => "Selection",
             PanelName::Display => "Display",
             PanelName::Tuning => "Fine tuning",
@@ -390,7 +400,11 @@ fn panel(
                             cad_export::show(ui, &mut p, &mut sections.cad);
                         }
                         PanelName::Subdivision => subdivision::show(ui, &mut p),
-                        PanelName::Selection => selection::show(ui, &mut p),
+                        PanelName::Structure => structure::show(ui, &mut p),
+                        PanelName::Selection => {
+                            selection::show(ui, &mut p);
+                            lengths::show(ui, &mut p);
+                        }
                         PanelName::Display => display::show(ui, &mut sections.display),
                         PanelName::Tuning => tuning::show(ui, &mut p),
                         PanelName::Analysis => analysis::show(ui, &mut sections.analysis),
