@@ -1,7 +1,8 @@
 //! Drawing the handles ([`Handles`], placed by the interaction core) as
 //! arrows: the control tangents (level 0) as yellow arrows at their
 //! streamline points, and the refined tangents of the edit depth as red arrows
-//! (optionally every other one). The head's shape tells the column index apart
+//! (optionally every other one), and the initial curve with its control
+//! tangents in cyan (a second kind of handle). The head's shape tells the column index apart
 //! (cone, ball, cross, ring, repeating, as the paper's prototype gives each
 //! index its own head), and a number label names it.
 
@@ -34,9 +35,14 @@ const YELLOW: Color = Color::srgb(1.0, 0.85, 0.1);
 const RED: Color = Color::srgb(0.95, 0.25, 0.2);
 const SELECTED: Color = Color::srgb(1.0, 1.0, 1.0);
 const HOVER: Color = Color::srgb(1.0, 0.6, 0.1);
+const CYAN: Color = Color::srgb(0.2, 0.85, 0.95);
+/// Also selected (a group; the primary is [`SELECTED`]).
+const GROUP: Color = Color::srgb(0.75, 0.8, 1.0);
 
+#[allow(clippy::too_many_arguments)]
 fn draw(
     meter: Res<crate::ecs::meter::CpuMeter>,
+    model: Res<crate::ecs::Model>,
     arrows: Res<Handles>,
     settings: Res<HandleSettings>,
     selection: Res<Selection>,
@@ -51,6 +57,8 @@ fn draw(
             SELECTED
         } else if a.level() == edit && Some(a.id) == selection.hover {
             HOVER
+        } else if a.level() == edit && selection.contains(a.id) {
+            GROUP
         } else {
             base
         }
@@ -65,6 +73,23 @@ fn draw(
             if settings.shows(a) {
                 arrow(&mut gizmos, a, colour(a, RED));
             }
+        }
+    }
+    if settings.initial {
+        let curve = &model.scene.design.initial;
+        let line: Vec<Vec3> = curve.polyline(96).into_iter().map(to_view).collect();
+        gizmos.linestrip(line, CYAN.with_alpha(0.6));
+        for a in &arrows.initial {
+            let c = if Some(a.id) == active {
+                SELECTED
+            } else if Some(a.id) == selection.hover {
+                HOVER
+            } else if selection.contains(a.id) {
+                GROUP
+            } else {
+                CYAN
+            };
+            arrow(&mut gizmos, a, c);
         }
     }
 }
@@ -146,12 +171,22 @@ fn labels(
             );
         }
     }
+    if settings.initial && settings.labels {
+        for a in &arrows.initial {
+            put(
+                a.tip(),
+                format!("i{}", a.id.col),
+                egui::Color32::from_rgb(51, 217, 242),
+            );
+        }
+    }
     if let Some(a) = selection.primary().and_then(|h| arrows.find(h)) {
-        put(
-            a.tip(),
-            format!("({}, {}) L{}", a.id.row, a.id.col, a.level()),
-            egui::Color32::WHITE,
-        );
+        let text = if a.id.is_surface() {
+            format!("({}, {}) L{}", a.id.row, a.id.col, a.level())
+        } else {
+            format!("initial {}", a.id.col)
+        };
+        put(a.tip(), text, egui::Color32::WHITE);
     }
     Ok(())
 }

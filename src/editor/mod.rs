@@ -9,6 +9,7 @@ mod analysis;
 pub mod antialias;
 mod arrows;
 pub mod autosave;
+mod box_select;
 mod camera;
 mod coords;
 pub mod files;
@@ -71,7 +72,8 @@ impl Plugin for EditorPlugin {
             autosave::AutosavePlugin,
             mesh_mode::MeshModePlugin,
             screenshot::ScreenshotPlugin,
-        ));
+        ))
+        .add_plugins(box_select::BoxSelectPlugin);
     }
 }
 

@@ -7,8 +7,11 @@
 //! parameter (`FileSection`, `DisplaySection`, …), defined beside it.
 
 mod analysis;
+mod curvature;
 mod display;
 mod file;
+mod group;
+mod initial;
 mod mesh;
 mod selection;
 mod stats;
@@ -42,14 +45,20 @@ pub enum PanelName {
     Mesh,
     /// Sizes and the cost of the last edit.
     Stats,
+    /// The initial curve: order, length, origin, anchor column, its tangents.
+    InitialCurve,
+    /// The selected streamline's curvature and logarithmic curvature graph.
+    Curvature,
 }
 
 impl PanelName {
     /// All sections in panel order.
-    pub const ALL: [PanelName; 8] = [
+    pub const ALL: [PanelName; 10] = [
         PanelName::File,
         PanelName::Subdivision,
         PanelName::Selection,
+        PanelName::InitialCurve,
+        PanelName::Curvature,
         PanelName::Display,
         PanelName::Tuning,
         PanelName::Analysis,
@@ -68,6 +77,8 @@ impl PanelName {
             PanelName::Analysis => "analysis",
             PanelName::Mesh => "mesh",
             PanelName::Stats => "stats",
+            PanelName::InitialCurve => "initial",
+            PanelName::Curvature => "curvature",
         }
     }
 
@@ -87,6 +98,12 @@ impl PanelName {
                 "Open a triangle mesh (OBJ) and make a Loop surface pass through its vertices"
             }
             PanelName::Stats => "Sizes, and what the last edit cost stage by stage",
+            PanelName::InitialCurve => {
+                "The initial curve: its order, length, origin, the anchor column, its control tangents"
+            }
+            PanelName::Curvature => {
+                "The selected streamline's curvature over arc length and its logarithmic curvature graph"
+            }
         }
     }
 
@@ -100,6 +117,8 @@ impl PanelName {
             PanelName::Analysis => "Analysis",
             PanelName::Mesh => "Loop mesh",
             PanelName::Stats => "Stats",
+            PanelName::InitialCurve => "Initial curve",
+            PanelName::Curvature => "Curvature",
         }
     }
 
@@ -156,13 +175,14 @@ pub struct ToolbarSection<'w> {
 
 /// The sections' own parameters.
 #[derive(SystemParam)]
-pub struct Sections<'w> {
+pub struct Sections<'w, 's> {
     bar: ToolbarSection<'w>,
     file: file::FileSection<'w>,
     display: display::DisplaySection<'w>,
     analysis: analysis::AnalysisSection<'w>,
     mesh: mesh::MeshSection<'w>,
     stats: stats::StatsSection<'w>,
+    curvature: curvature::CurvatureSection<'w, 's>,
 }
 
 /// The control net as the scene was opened (the Selection panel's reset).
@@ -330,9 +350,8 @@ impl Throttled {
             // the same words for the whole drag (its figures are in the
             // Selection section), and the way out
             Some(d) => format!(
-                "turning ({}, {}) {}: release to keep it, Esc to cancel",
-                d.handle.row,
-                d.handle.col,
+                "turning {} {}: release to keep it, Esc to cancel",
+                d.handle.name(),
                 match d.kind {
                     DragKind::Trackball { .. } => "on the trackball",
                     DragKind::Sphere => "on the sphere",
@@ -385,12 +404,16 @@ fn panel(
                     let shown = header.show(ui, |ui| match name {
                         PanelName::File => file::show(ui, &mut p, &mut sections.file),
                         PanelName::Subdivision => subdivision::show(ui, &mut p),
-                        PanelName::Selection => selection::show(ui, &mut p),
+                        PanelName::Selection => group::show(ui, &mut p),
                         PanelName::Display => display::show(ui, &mut sections.display),
                         PanelName::Tuning => tuning::show(ui, &mut p),
                         PanelName::Analysis => analysis::show(ui, &mut sections.analysis),
                         PanelName::Mesh => mesh::show(ui, &mut sections.mesh),
                         PanelName::Stats => stats::show(ui, &text.stats),
+                        PanelName::InitialCurve => initial::show(ui, &mut p),
+                        PanelName::Curvature => {
+                            curvature::show(ui, &mut p, &sections.curvature)
+                        }
                     });
                     shown.header_response.on_hover_text(name.tooltip());
                 }
