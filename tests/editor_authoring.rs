@@ -106,13 +106,19 @@ fn an_initial_tangent_is_a_handle_whose_drag_moves_the_streamlines_rigidly() {
         let got = scene(&app).design.initial.qi().tangents()[1];
         assert!((got - t).length() < 1e-12, "{got} != {t}");
         let stats = &app.world().resource::<Stats>().last;
-        assert_eq!(stats.tangents_reblended, 0, "an initial-curve edit re-blends nothing");
+        assert_eq!(
+            stats.tangents_reblended, 0,
+            "an initial-curve edit re-blends nothing"
+        );
         assert!(stats.streamlines_replaced > 0, "{stats:?}");
         // the handle follows the curve's new tangent
         let a = app.world().resource::<Handles>().find(h).copied().unwrap();
         assert!((a.dir - t).length() < 1e-12);
     }
-    assert!(scene(&app).design.net == net_before, "no surface tangent moved");
+    assert!(
+        scene(&app).design.net == net_before,
+        "no surface tangent moved"
+    );
     assert_eq!(undo_steps(&app), 1, "a drag is one undo step");
     esc(&mut app);
     assert_eq!(
@@ -131,14 +137,20 @@ fn an_initial_tangent_is_a_handle_whose_drag_moves_the_streamlines_rigidly() {
             streamline_studio::ecs::Edit::Undo,
         ));
     frame(&mut app);
-    assert_eq!(scene(&app).design.initial.qi().tangents(), &initial_before[..]);
+    assert_eq!(
+        scene(&app).design.initial.qi().tangents(),
+        &initial_before[..]
+    );
 }
 
 #[test]
 fn shift_click_selects_several_and_a_drag_turns_them_all_by_one_rotation() {
     let mut app = app();
     let cells = [(2, 1), (4, 2), (6, 3)];
-    let ids: Vec<HandleId> = cells.iter().map(|&(r, c)| HandleId::tangent(0, r, c)).collect();
+    let ids: Vec<HandleId> = cells
+        .iter()
+        .map(|&(r, c)| HandleId::tangent(0, r, c))
+        .collect();
     let net_before = scene(&app).design.net.clone();
     let init_before = scene(&app).design.initial.qi().tangents().to_vec();
     // plain click the first, Shift-click the others and an initial tangent
@@ -163,7 +175,10 @@ fn shift_click_selects_several_and_a_drag_turns_them_all_by_one_rotation() {
     frame(&mut app);
     let sel: Vec<HandleId> = app.world().resource::<Selection>().iter().collect();
     assert_eq!(sel, [ids[0], ids[1], ids[2], init]);
-    assert!(app.world().resource::<Drag>().0.is_none(), "Shift-click starts no drag");
+    assert!(
+        app.world().resource::<Drag>().0.is_none(),
+        "Shift-click starts no drag"
+    );
     // drag the second: it becomes primary, the group stays
     press(&mut app, Some(ids[1]), Some(DragKind::Sphere));
     assert_eq!(app.world().resource::<Selection>().primary(), Some(ids[1]));
@@ -188,7 +203,10 @@ fn shift_click_selects_several_and_a_drag_turns_them_all_by_one_rotation() {
         );
     }
     let got = scene(&app).design.initial.qi().tangents()[2];
-    assert!((got - q * init_before[2]).length() < 1e-9, "the initial tangent turns too");
+    assert!(
+        (got - q * init_before[2]).length() < 1e-9,
+        "the initial tangent turns too"
+    );
     for r in 0..net.rows() {
         for c in 0..net.cols() {
             if !cells.contains(&(r, c)) {
@@ -198,7 +216,10 @@ fn shift_click_selects_several_and_a_drag_turns_them_all_by_one_rotation() {
     }
     assert_eq!(undo_steps(&app), 1, "a group drag is one undo step");
     esc(&mut app);
-    assert!(scene(&app).design.net == net_before, "Esc restores every tangent");
+    assert!(
+        scene(&app).design.net == net_before,
+        "Esc restores every tangent"
+    );
     assert_eq!(scene(&app).design.initial.qi().tangents(), &init_before[..]);
     assert_eq!(undo_steps(&app), 0);
 }

@@ -57,14 +57,28 @@ fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
 fn pointer_drag_turns_an_initial_tangent_and_leaves_the_net() {
     let dir = temp_dir("initial-drag");
     let scene = streamline_studio::scene::builtin::default_scene();
-    let net: Vec<[f64; 3]> = scene.design.net.data().iter().map(|v| v.to_array()).collect();
+    let net: Vec<[f64; 3]> = scene
+        .design
+        .net
+        .data()
+        .iter()
+        .map(|v| v.to_array())
+        .collect();
     let k = 1;
     let start = scene.design.initial.qi().tangents()[k].to_array();
     for mode in ["arrow", "sphere"] {
         let moved = drag(&dir, k, mode);
         let turn = dist(moved.initial[k], start);
-        assert!(turn > 0.05, "{mode}: initial tangent {k} turned by {turn}: {moved:?}");
-        for (i, (&got, want)) in moved.initial.iter().zip(scene.design.initial.qi().tangents()).enumerate() {
+        assert!(
+            turn > 0.05,
+            "{mode}: initial tangent {k} turned by {turn}: {moved:?}"
+        );
+        for (i, (&got, want)) in moved
+            .initial
+            .iter()
+            .zip(scene.design.initial.qi().tangents())
+            .enumerate()
+        {
             if i != k {
                 assert_eq!(got, want.to_array(), "{mode}: initial tangent {i} moved");
             }

@@ -17,17 +17,28 @@ use streamline_kernel::DVec3;
 
 pub struct ArrowsPlugin;
 
+/// The initial curve and its arrows: drawn over the surface (the curve is the
+/// surface's edge, which would hide them) and a little wider.
+#[derive(Default, Reflect, GizmoConfigGroup)]
+pub struct InitialGizmos;
+
 impl Plugin for ArrowsPlugin {
     fn build(&self, app: &mut App) {
-        app.add_systems(
-            Update,
-            draw.run_if(in_state(EditorMode::Streamline))
-                .in_set(EditorSet::Present),
-        )
-        .add_systems(
-            EguiPrimaryContextPass,
-            labels.run_if(in_state(EditorMode::Streamline)),
-        );
+        app.init_gizmo_group::<InitialGizmos>()
+            .add_systems(Startup, |mut config: ResMut<GizmoConfigStore>| {
+                let (cfg, _) = config.config_mut::<InitialGizmos>();
+                cfg.depth_bias = -1.0;
+                cfg.line.width = 2.5;
+            })
+            .add_systems(
+                Update,
+                draw.run_if(in_state(EditorMode::Streamline))
+                    .in_set(EditorSet::Present),
+            )
+            .add_systems(
+                EguiPrimaryContextPass,
+                labels.run_if(in_state(EditorMode::Streamline)),
+            );
     }
 }
 
@@ -48,6 +59,7 @@ fn draw(
     selection: Res<Selection>,
     drag: Res<Drag>,
     mut gizmos: Gizmos,
+    mut initial: Gizmos<InitialGizmos>,
 ) {
     let _meter = meter.start();
     let edit = arrows.edit_depth;
@@ -78,7 +90,7 @@ fn draw(
     if settings.initial {
         let curve = &model.scene.design.initial;
         let line: Vec<Vec3> = curve.polyline(96).into_iter().map(to_view).collect();
-        gizmos.linestrip(line, CYAN.with_alpha(0.6));
+        initial.linestrip(line, CYAN.with_alpha(0.6));
         for a in &arrows.initial {
             let c = if Some(a.id) == active {
                 SELECTED
@@ -89,13 +101,13 @@ fn draw(
             } else {
                 CYAN
             };
-            arrow(&mut gizmos, a, c);
+            arrow(&mut initial, a, c);
         }
     }
 }
 
 /// A shaft and a head whose shape follows the column index: cone, ball, cross, ring.
-fn arrow(gizmos: &mut Gizmos, a: &Handle, color: Color) {
+fn arrow<G: GizmoConfigGroup>(gizmos: &mut Gizmos<G>, a: &Handle, color: Color) {
     let base = to_view(a.base);
     let tip = to_view(a.tip());
     let dir = to_view(a.dir).normalize_or(Vec3::X);

@@ -34,7 +34,8 @@ impl Plugin for BoxSelectPlugin {
                 Update,
                 (
                     start.run_if(
-                        not(egui_wants_any_pointer_input).and_then(in_state(EditorMode::Streamline)),
+                        not(egui_wants_any_pointer_input)
+                            .and_then(in_state(EditorMode::Streamline)),
                     ),
                     follow,
                 )

@@ -56,12 +56,7 @@ pub struct ActiveDrag {
 impl ActiveDrag {
     /// Points the dragged handle at `dir`: one edit of the drag's undo group,
     /// unless it barely moved.
-    fn steer(
-        &mut self,
-        dir: DVec3,
-        selection: &Selection,
-        edits: &mut MessageWriter<EditMessage>,
-    ) {
+    fn steer(&mut self, dir: DVec3, selection: &Selection, edits: &mut MessageWriter<EditMessage>) {
         if (dir - self.last).length() < 1e-7 {
             return;
         }

@@ -7,8 +7,8 @@
 //! answered here for every kind, so the views never need to know how many
 //! kinds there are.
 
-use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::authoring::AuthorEdit;
+use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::{Edit, Model, SurfaceChanges};
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
@@ -406,8 +406,11 @@ pub(super) fn rebuild(
             None => return,
         }
     };
-    let length = controls.iter().map(|a| a.length).fold(0.0, f64::max);
-    let initial = initial_handles(&model, length.max(1e-6));
+    // the initial curve's arrows: a good part of its spacing between
+    // tangents, so they stand out of the column of control arrows there
+    let curve = &model.scene.design.initial;
+    let spacing = curve.length() / (curve.qi().tangents().len().max(2) - 1) as f64;
+    let initial = initial_handles(&model, (0.6 * spacing).min(2.0 * cap).max(1e-6));
     *handles = Handles {
         controls,
         editable,

@@ -46,8 +46,11 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, c: &CurvatureSection) {
     let row = display_row(h.row, e.0.shape().0, d.0.shape().0);
     let (tangents, s) = d.row(row);
     let profile = curvature_profile(tangents, s);
-    ui.label(format!("streamline {row} of depth {depth} ({} samples)", profile.s.len()))
-        .on_hover_text("The display depth's streamline through the selected arrow's row");
+    ui.label(format!(
+        "streamline {row} of depth {depth} ({} samples)",
+        profile.s.len()
+    ))
+    .on_hover_text("The display depth's streamline through the selected arrow's row");
     let kappa: Vec<[f64; 2]> = profile
         .s
         .iter()

@@ -32,12 +32,10 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
 /// Axis fields and an angle, kept in egui's memory under `key`.
 fn turn_input(ui: &mut egui::Ui, key: &str) -> (Turn, bool) {
     let id = ui.id().with(key);
-    let mut t = ui
-        .data(|d| d.get_temp::<Turn>(id))
-        .unwrap_or(Turn {
-            axis: [0.0, 0.0, 1.0],
-            degrees: 10.0,
-        });
+    let mut t = ui.data(|d| d.get_temp::<Turn>(id)).unwrap_or(Turn {
+        axis: [0.0, 0.0, 1.0],
+        degrees: 10.0,
+    });
     let mut go = false;
     ui.horizontal(|ui| {
         ui.label("axis");

@@ -39,7 +39,9 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
                 .range(1e-6..=f64::MAX)
                 .prefix("length "),
         )
-        .on_hover_text("The initial curve's arc length: the streamlines keep their t and move apart");
+        .on_hover_text(
+            "The initial curve's arc length: the streamlines keep their t and move apart",
+        );
     if length != cur_length {
         let g = p.slider_group("initial length", &r);
         p.send_grouped(Edit::Author(AuthorEdit::SetInitialLength(length)), g);
@@ -52,7 +54,9 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
         for (v, name) in origin.iter_mut().zip(["x ", "y ", "z "]) {
             let r = ui
                 .add(egui::DragValue::new(v).speed(speed).prefix(name))
-                .on_hover_text("Where the initial curve starts: every streamline moves by the same vector");
+                .on_hover_text(
+                    "Where the initial curve starts: every streamline moves by the same vector",
+                );
             if r.changed() {
                 moved = Some(r);
             }

@@ -411,9 +411,7 @@ fn panel(
                         PanelName::Mesh => mesh::show(ui, &mut sections.mesh),
                         PanelName::Stats => stats::show(ui, &text.stats),
                         PanelName::InitialCurve => initial::show(ui, &mut p),
-                        PanelName::Curvature => {
-                            curvature::show(ui, &mut p, &sections.curvature)
-                        }
+                        PanelName::Curvature => curvature::show(ui, &mut p, &sections.curvature),
                     });
                     shown.header_response.on_hover_text(name.tooltip());
                 }
