@@ -56,7 +56,13 @@ pub struct ActiveDrag {
 impl ActiveDrag {
     /// Points the dragged handle at `dir`: one edit of the drag's undo group,
     /// unless it barely moved.
-    fn steer(&mut self, dir: DVec3, selection: &Selection, edits: &mut MessageWriter<EditMessage>) {
+    fn steer(
+        &mut self,
+        dir: DVec3,
+        selection: &Selection,
+        handles: &Handles,
+        edits: &mut MessageWriter<EditMessage>,
+    ) {
         if (dir - self.last).length() < 1e-7 {
             return;
         }
@@ -78,10 +84,15 @@ impl ActiveDrag {
         }
         self.turned = total;
         self.sent = true;
-        let surface: Vec<(usize, usize)> = selection
+        // only handles that exist (a refused RotateMany would turn none)
+        let members: Vec<HandleId> = selection
+            .iter()
+            .filter(|&h| handles.find(h).is_some())
+            .collect();
+        let surface: Vec<(usize, usize)> = members
             .iter()
             .filter(|h| h.is_surface())
-            .map(HandleId::cell)
+            .map(|h| h.cell())
             .collect();
         if !surface.is_empty() {
             edits.write(EditMessage {
@@ -93,7 +104,7 @@ impl ActiveDrag {
                 group,
             });
         }
-        for h in selection.iter().filter(|h| !h.is_surface()) {
+        for h in members.iter().filter(|h| !h.is_surface()) {
             edits.write(EditMessage {
                 edit: h.rotate(axis, radians),
                 group,
@@ -182,7 +193,7 @@ pub(super) fn run(
         }
     }
     if let (Some(d), Some(DragTo(dir))) = (drag.0.as_mut(), targets.read().last()) {
-        d.steer(*dir, &selection, &mut edits);
+        d.steer(*dir, &selection, &handles, &mut edits);
     }
     if keys.just_pressed(KeyCode::Escape) {
         match drag.0.take() {
