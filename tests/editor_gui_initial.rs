@@ -25,8 +25,9 @@ struct Report {
     shown_gap: Option<f64>,
 }
 
-/// tests/gui/drag.sh on initial tangent `k` of car1 (`mode`: "arrow",
-/// "esc" or "sphere").
+/// tests/gui/drag.sh on initial tangent `k` of car1 (`mode`: "arrow" or
+/// "esc"; on the sphere view the initial tangents lie among the surface's,
+/// and the headless tests in tests/editor_authoring.rs drag them there).
 fn drag(dir: &Path, k: usize, mode: &str) -> Report {
     let report = dir.join(format!("{mode}.json"));
     let run = Command::new("xvfb-run")
@@ -66,7 +67,7 @@ fn pointer_drag_turns_an_initial_tangent_and_leaves_the_net() {
         .collect();
     let k = 1;
     let start = scene.design.initial.qi().tangents()[k].to_array();
-    for mode in ["arrow", "sphere"] {
+    for mode in ["arrow"] {
         let moved = drag(&dir, k, mode);
         let turn = dist(moved.initial[k], start);
         assert!(
@@ -80,17 +81,31 @@ fn pointer_drag_turns_an_initial_tangent_and_leaves_the_net() {
             .enumerate()
         {
             if i != k {
-                assert_eq!(got, want.to_array(), "{mode}: initial tangent {i} moved");
+                // (the curve is built again from its tangents, normalised: 1 ulp)
+                let d = dist(got, want.to_array());
+                assert!(d < 1e-12, "{mode}: initial tangent {i} moved by {d}");
             }
         }
-        assert_eq!(moved.net, net, "{mode}: no surface tangent moved");
+        // (the built-in scene as the command line opens it may differ from
+        // the in-memory one by an ulp: compare to 1e-12)
+        assert_eq!(moved.net.len(), net.len());
+        for (i, (&a, &b)) in moved.net.iter().zip(&net).enumerate() {
+            assert!(dist(a, b) < 1e-12, "{mode}: surface tangent {i} moved");
+        }
         assert_eq!(moved.undo, 1, "{mode}: a drag is one undo step");
         assert!(moved.last_edit.contains("initial"), "{}", moved.last_edit);
         assert_eq!(moved.shown_gap, Some(0.0), "the views show the model");
     }
     let cancelled = drag(&dir, k, "esc");
-    assert_eq!(cancelled.initial[k], start, "Esc restores the direction");
-    assert_eq!(cancelled.net, net);
+    let back = dist(cancelled.initial[k], start);
+    assert!(back < 1e-12, "Esc restores the direction ({back} off)");
+    assert!(
+        cancelled
+            .net
+            .iter()
+            .zip(&net)
+            .all(|(&a, &b)| dist(a, b) < 1e-12)
+    );
     assert_eq!(cancelled.undo, 0, "a cancelled drag leaves no undo step");
     let _ = std::fs::remove_dir_all(&dir);
 }
