@@ -1,7 +1,7 @@
 //! The paper's Table 1 side by side (subdivision vs QI curves, 5 control tangents)
 //! and full builds of the 9×6 car surface at depths 0–5 (fresh, and into a
 //! kept `Builder` on one thread with and without the vector path, and on two). The workloads are the
-//! ones `streamline-studio bench` runs (`src/workloads.rs`); the `incremental`
+//! ones `streamline-studio bench` runs (`src/cli/bench/workloads.rs`); the `incremental`
 //! group times one edit through the ECS against a full rebuild (issue 3), and
 //! one fine-tuning value edit on the car at depth 3 (issue 6); the
 //! `authoring` group an insert, an initial-curve edit and the mirrored car (issue 20).
@@ -11,7 +11,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::time::Duration;
-use streamline_studio::workloads;
+use streamline_studio::cli::bench::workloads;
 
 fn table1(c: &mut Criterion) {
     let mut g = c.benchmark_group("table1");

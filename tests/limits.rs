@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 use streamline_studio::ecs::runner::{MAX_BATCH, RunState, ScriptRun, ScriptRunPlugin};
 use streamline_studio::ecs::{self, Edit, headless_app};
-use streamline_studio::job::{Job, Poll};
+use streamline_studio::scene::job::{Job, Poll};
 use streamline_studio::scene::{builtin, obj};
 
 /// A long time: a job that has not finished by then is hung.

@@ -2,13 +2,15 @@
 //! with a one-line message on stderr, never a panic.
 
 #[cfg(feature = "app")]
-mod bench;
+pub mod bench;
 #[cfg(feature = "app")]
 mod build;
 #[cfg(feature = "app")]
 mod command;
 #[cfg(feature = "app")]
 mod editor;
+#[cfg(feature = "fuzz")]
+pub mod fuzz;
 pub mod geometry;
 pub mod input;
 #[cfg(feature = "app")]

@@ -138,7 +138,19 @@ pub(crate) fn reblend(
     ls.sort_by_key(|(l, _)| *l);
     let mut refs: Vec<&mut LevelState> = ls.iter_mut().map(|(_, d)| &mut d.0).collect();
     sd.resize(refs.len(), None);
-    let result = propagate(&model.scene.design, &model.scene.details, &mut refs, &sd);
+    // mirrored: the levels are the doubled net's (docs/math.md §9)
+    let doubled = match model.scene.mirror {
+        true => match model.scene.shown_design() {
+            Ok(d) => Some(d),
+            Err(e) => {
+                log.entries.push(Err(format!("rebuild failed: {e}")));
+                return;
+            }
+        },
+        false => None,
+    };
+    let design = doubled.as_ref().unwrap_or(&model.scene.design);
+    let result = propagate(design, &model.scene.details, &mut refs, &sd);
     match result {
         Ok(p) => {
             stats.last.tangents_reblended += p.reblended;

@@ -37,6 +37,7 @@ pub(crate) fn apply_edits(
     let t0 = Instant::now();
     let mut labels = Vec::new();
     let mut any = false;
+    let mut mirrored_edit = false;
     for msg in reader.read() {
         if !any {
             log.entries.clear();
@@ -51,11 +52,7 @@ pub(crate) fn apply_edits(
         let snapshot = before_undoable.then(|| ctx.model.scene.clone());
         match apply(&mut ctx, &msg.edit) {
             Ok(done) => {
-                if ctx.model.scene.mirror && before_undoable {
-                    // both halves come from the doubled net: rebuilt in
-                    // full (docs/math.md §9)
-                    full(&mut ctx);
-                }
+                mirrored_edit |= ctx.model.scene.mirror && before_undoable;
                 if let Some(s) = snapshot {
                     let limit = ctx.config.history_limit;
                     let was = ctx.model.unsaved;
@@ -66,6 +63,13 @@ pub(crate) fn apply_edits(
             }
             Err(e) => log.entries.push(Err(e)),
         }
+    }
+    if mirrored_edit && ctx.model.scene.mirror {
+        // both halves come from the doubled net (docs/math.md §9): the cells
+        // the frame's edits marked are dirty in both copies (once a frame:
+        // the windows are in half rows until here)
+        let m = ctx.model.scene.design.net.rows();
+        ctx.dirty.mirror_rows(m);
     }
     if any {
         stats.last = EditStats {
@@ -118,7 +122,7 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             let s = s.validate().map_err(|e| e.to_string())?;
             let mut d = ctx.model.scene.design.clone();
             d.scheme = s;
-            check_design(&d, ctx.model.scene.max_depth())?;
+            check_design(&d, ctx.model.scene.max_depth(), ctx.model.scene.mirror)?;
             ctx.model.scene.design = d;
             let dropped = prune_details(&mut ctx.model.scene);
             full(ctx);
@@ -131,7 +135,7 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
         }
         Edit::SetDisplayDepth(n) => {
             let depth = (*n).max(ctx.model.scene.edit_depth);
-            check_design(&ctx.model.scene.design, depth)?;
+            check_design(&ctx.model.scene.design, depth, ctx.model.scene.mirror)?;
             ctx.model.scene.display_depth = *n;
             full(ctx);
             Ok(format!("display depth {n}"))
@@ -141,7 +145,7 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
                 return Err(super::authoring::mirror_depth_msg());
             }
             let depth = (*n).max(ctx.model.scene.display_depth);
-            check_design(&ctx.model.scene.design, depth)?;
+            check_design(&ctx.model.scene.design, depth, ctx.model.scene.mirror)?;
             ctx.model.scene.edit_depth = *n;
             full(ctx);
             Ok(format!("edit depth {n}"))
@@ -281,11 +285,21 @@ fn author(ctx: &mut EditCtx, a: &super::authoring::AuthorEdit) -> Result<String,
     Ok(msg)
 }
 
-fn check_design(d: &Design, depth: u32) -> Result<(), String> {
+/// `d` can be built to `depth`; mirrored, its doubled design too
+/// (`docs/math.md §9`: the levels are the doubled net's).
+fn check_design(d: &Design, depth: u32, mirror: bool) -> Result<(), String> {
     d.scheme
         .check_depth(d.net.rows(), d.net.cols(), depth)
         .map_err(|e| e.to_string())?;
-    check_params(d, depth).map_err(|e| e.to_string())
+    check_params(d, depth).map_err(|e| e.to_string())?;
+    if mirror {
+        let m = d.mirrored().map_err(|e| e.to_string())?;
+        m.scheme
+            .check_depth(m.net.rows(), m.net.cols(), depth)
+            .and_then(|_| check_params(&m, depth))
+            .map_err(|e| format!("the mirrored surface: {e}"))?;
+    }
+    Ok(())
 }
 
 /// Asks for a full rebuild (the levels' shapes may change).
@@ -415,7 +429,7 @@ fn set_length(ctx: &mut EditCtx, row: usize, col: usize, k: f64) -> Result<Strin
             "length coefficient {k} makes s overflow; use a smaller one"
         ));
     }
-    check_params(&d, ctx.model.scene.max_depth())
+    check_design(&d, ctx.model.scene.max_depth(), ctx.model.scene.mirror)
         .map_err(|e| format!("length coefficient {k} at ({row}, {col}) refused: {e}"))?;
     for (c, (a, b)) in old.iter().zip(d.params.s.row(row)).enumerate() {
         if a != b {

@@ -307,6 +307,18 @@ impl Dirty {
             .is_some_and(Option::is_some)
     }
 
+    /// Mirror symmetry (`docs/math.md §9`): the level-0 cells marked so far
+    /// are rows of the half, whose `m` rows are rows `m − 1 ..` of the
+    /// doubled net the levels are built from, and whose reflections are rows
+    /// `.. m − 1`: a window of half rows `lo ..= hi` becomes doubled rows
+    /// `m − 1 − hi ..= m − 1 + hi` (both copies and the rows between).
+    pub fn mirror_rows(&mut self, m: usize) {
+        if let Some(Some(w)) = self.windows.first_mut() {
+            let (lo, hi) = (m - 1 - w.rows.hi.min(m - 1), m - 1 + w.rows.hi);
+            w.rows = streamline_kernel::window::Span::new(lo, hi);
+        }
+    }
+
     /// Takes what is pending, leaving nothing: `(full, replace, windows)`.
     pub(crate) fn take(&mut self) -> (bool, bool, Vec<Option<Window>>) {
         let full = std::mem::take(&mut self.full);

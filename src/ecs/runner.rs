@@ -7,7 +7,7 @@
 
 use super::messages::EditMessage;
 use super::resources::Stats;
-use crate::job::{Job, Poll};
+use crate::scene::job::{Job, Poll};
 use crate::scene::script::Script;
 use bevy::prelude::*;
 use std::path::{Path, PathBuf};

@@ -10,7 +10,7 @@
 use super::coords::kernel_to_view;
 use super::interaction::{EditorMode, FrameRequest};
 use super::surface::SurfaceEntity;
-use crate::job::{Job, Poll, Progress};
+use crate::scene::job::{Job, Poll, Progress};
 use crate::scene::obj;
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology};

@@ -7,6 +7,7 @@ pub mod error;
 pub mod export;
 pub mod format;
 pub mod io;
+pub mod job;
 pub mod model;
 pub mod obj;
 pub mod script;

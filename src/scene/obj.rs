@@ -12,7 +12,7 @@
 
 use super::error::SceneError;
 use super::io::write_atomic;
-use crate::job::Progress;
+use crate::scene::job::Progress;
 use std::fmt::Write as _;
 use std::io::BufRead;
 use std::path::Path;

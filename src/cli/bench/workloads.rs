@@ -1,5 +1,5 @@
 //! The benchmark workloads, shared by `streamline-studio bench` and `cargo bench`
-//! so both measure exactly the same thing.
+//! (`benches/table1.rs`) so both measure exactly the same thing.
 
 use streamline_kernel::curve::{CurveScheme, subdivide_into};
 use streamline_kernel::qi::QiCurve;
@@ -140,7 +140,7 @@ pub fn all() -> Vec<Workload> {
 /// placed again, no tangent re-blended; compare `ecs/car/d5/edit-interior`),
 /// and the mirrored car (11 doubled rows): its full build beside the plain
 /// one's (`surface/kobbelt/9x6-mirrored/d5/full`) and a tangent edit
-/// (`ecs/car-mirrored/d5/edit-interior`, rebuilt in full).
+/// (`ecs/car-mirrored/d5/edit-interior`: both copies of the cell re-blended).
 pub fn authoring() -> Vec<Workload> {
     use crate::ecs::{self, Edit, SurfaceData, authoring::AuthorEdit};
     use crate::scene::Scene;

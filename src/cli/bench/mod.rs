@@ -1,8 +1,9 @@
 //! `bench`: a quick built-in benchmark for users who want their machine's figures.
 //! For careful numbers use `cargo bench` (criterion), which runs the same workloads.
 
+pub mod workloads;
+
 use super::input::CliError;
-use crate::workloads;
 use clap::Args;
 use std::time::Instant;
 
