@@ -57,13 +57,13 @@ impl PanelName {
         PanelName::File,
         PanelName::Subdivision,
         PanelName::Selection,
-        PanelName::InitialCurve,
-        PanelName::Curvature,
         PanelName::Display,
         PanelName::Tuning,
         PanelName::Analysis,
         PanelName::Mesh,
         PanelName::Stats,
+        PanelName::InitialCurve,
+        PanelName::Curvature,
     ];
 
     /// The section's title and command-line name.
