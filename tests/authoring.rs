@@ -9,7 +9,7 @@ mod common;
 use common::{max_diff, points, scene};
 use proptest::prelude::*;
 use streamline_kernel::authoring::{Axis, Template};
-use streamline_kernel::{DVec3, presets};
+use streamline_kernel::{DVec3, levels::presets};
 use streamline_studio::ecs::authoring::AuthorEdit;
 use streamline_studio::ecs::{self, Edit, Stats};
 use streamline_studio::scene::Scene;
@@ -210,7 +210,7 @@ fn new_design_replaces_the_scene_unsaved() {
     assert_eq!(m.scene.design.net.rows(), 3);
     assert_eq!(app.world().resource::<ecs::History>().undo_len(), 0);
     let p = points(&app);
-    let [lo, hi] = streamline_kernel::mesh::bounds(p.data().iter().copied());
+    let [lo, hi] = streamline_kernel::streamline::surface_mesh::bounds(p.data().iter().copied());
     assert!(
         lo.length() < 1e-12 && (hi - DVec3::new(2.0, 1.0, 0.0)).length() < 1e-12,
         "{lo:?} {hi:?}"

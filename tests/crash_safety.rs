@@ -9,7 +9,7 @@
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::Duration;
-use streamline_kernel::presets;
+use streamline_kernel::levels::presets;
 use streamline_studio::scene::{Scene, io};
 
 #[test]

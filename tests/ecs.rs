@@ -7,9 +7,9 @@ mod common;
 use bevy::prelude::*;
 use common::{max_diff, points, scene};
 use proptest::prelude::*;
-use streamline_kernel::incremental::{place_row, reference_levels};
-use streamline_kernel::multires;
-use streamline_kernel::{BlendOrder, DVec3, Design, Grid, SurfaceScheme, presets};
+use streamline_kernel::levels::incremental::{place_row, reference_levels};
+use streamline_kernel::levels::multires;
+use streamline_kernel::{BlendOrder, DVec3, Design, Grid, SurfaceScheme, levels::presets};
 use streamline_studio::ecs::{self, Edit, ModelConfig, Stats, SurfaceData};
 use streamline_studio::scene::Scene;
 
@@ -150,7 +150,7 @@ proptest! {
         // those of a mesh made afresh from them, and so are the triangles and
         // the bounding box kept row by row.
         let surface = app.world().resource::<SurfaceData>();
-        let fresh_mesh = streamline_kernel::mesh::SurfaceMesh::from_points(&got);
+        let fresh_mesh = streamline_kernel::streamline::surface_mesh::SurfaceMesh::from_points(&got);
         prop_assert_eq!(&surface.mesh(), &fresh_mesh);
         prop_assert!(surface.normals.iter().all(|n| n.is_finite()));
         let (lo, hi) = got.data().iter().fold(
@@ -502,7 +502,7 @@ fn bad_edits_are_refused() {
 fn replacing_the_streamlines_equals_a_fresh_build() {
     let mut app = car_app(0, 3);
     let c = scene(&app).design.initial.clone();
-    let moved = streamline_kernel::initial_curve::InitialCurve::new(
+    let moved = streamline_kernel::streamline::initial_curve::InitialCurve::new(
         c.qi().tangents(),
         c.qi().order(),
         c.length() * 1.3,

@@ -5,7 +5,7 @@
 mod common;
 
 use common::{max_diff, points, scene};
-use streamline_kernel::{BlendOrder, Grid, SurfaceScheme, presets};
+use streamline_kernel::{BlendOrder, Grid, SurfaceScheme, levels::presets};
 use streamline_studio::ecs::{self, Edit, Stats};
 use streamline_studio::scene::Scene;
 
@@ -15,7 +15,7 @@ use streamline_studio::scene::Scene;
 /// same scene, and undo gives back the exact surface.
 #[test]
 fn tuning_edit_is_local_and_equals_a_fresh_build() {
-    use streamline_kernel::bspline::TensorBSpline;
+    use streamline_kernel::finetune::bspline::TensorBSpline;
     use streamline_kernel::finetune::{Constraint, SurfaceTuning};
     let mut s = Scene::from_design("car", presets::car1(), 3);
     s.tuning = Some(SurfaceTuning {
@@ -76,7 +76,7 @@ fn tuning_edit_is_local_and_equals_a_fresh_build() {
 /// 1e-9 rad; the border is kept; the option survives save → load.
 #[test]
 fn interpolated_control_tangents_are_reached_at_the_limit() {
-    use streamline_kernel::sphere_pi::limit_tangent;
+    use streamline_kernel::levels::tangent_interpolation::limit_tangent;
     use streamline_studio::ecs::components::{LevelData, SubdivisionLevel};
     for scheme in [SurfaceScheme::CatmullClark, SurfaceScheme::DooSabin] {
         for order in [BlendOrder::SFirst, BlendOrder::TFirst] {

@@ -7,7 +7,7 @@
 //! (one `RotateMany` per step, one undo step, Esc restores every one).
 
 use bevy::prelude::*;
-use streamline_kernel::{DQuat, DVec3, presets};
+use streamline_kernel::{DQuat, DVec3, levels::presets};
 use streamline_studio::ecs::{History, Model, ModelPlugin, Stats};
 use streamline_studio::editor::interaction::{
     Drag, DragKind, DragTo, HandleId, HandlePressed, Handles, InteractionPlugin, Selection,

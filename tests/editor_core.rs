@@ -7,7 +7,7 @@
 //! drive the same core through a real pointer).
 
 use bevy::prelude::*;
-use streamline_kernel::{DVec3, presets};
+use streamline_kernel::{DVec3, levels::presets};
 use streamline_studio::ecs::{History, Model, ModelPlugin};
 use streamline_studio::editor::interaction::{
     Drag, DragKind, DragTo, HandleId, HandlePressed, HandleSettings, Handles, InteractionPlugin,

@@ -98,7 +98,7 @@ fn random_scene() -> impl Strategy<Value = Scene> {
                     cols - 1,
                     scheme,
                     order,
-                    streamline_kernel::presets::car1().initial.clone(),
+                    streamline_kernel::levels::presets::car1().initial.clone(),
                 )
                 .ok()?;
                 let mut scene = Scene::from_design("random", design, display);
@@ -132,8 +132,10 @@ fn random_scene() -> impl Strategy<Value = Scene> {
                     let vals =
                         Grid::new(nt, ns, (0..ns * nt).map(|_| 1.0 + rnd()).collect()).ok()?;
                     scene.tuning = Some(streamline_kernel::finetune::SurfaceTuning {
-                        function: streamline_kernel::bspline::TensorBSpline::new(ds, dt, vals)
-                            .ok()?,
+                        function: streamline_kernel::finetune::bspline::TensorBSpline::new(
+                            ds, dt, vals,
+                        )
+                        .ok()?,
                         constraint: [
                             streamline_kernel::finetune::Constraint::Free,
                             streamline_kernel::finetune::Constraint::KeepEnds,

@@ -7,7 +7,7 @@ use crate::ecs::{self, Edit, EditLog, Stats, SurfaceData};
 use clap::Args;
 use serde::Serialize;
 use std::path::PathBuf;
-use streamline_kernel::streamline::polyline_length;
+use streamline_kernel::streamline::integrate::polyline_length;
 
 /// Arguments of `build`.
 #[derive(Debug, Args)]
@@ -62,7 +62,7 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
                 d.max(scene.edit_depth),
             )
             .map_err(|e| CliError::Usage(format!("--depth {d}: {e}")))?;
-        streamline_kernel::incremental::check_params(design, d)
+        streamline_kernel::levels::incremental::check_params(design, d)
             .map_err(|e| CliError::Usage(format!("--depth {d}: {e}")))?;
         scene.display_depth = d;
     }

@@ -17,9 +17,9 @@ use crate::scene::script::{Script, output_path};
 use crate::scene::{Scene, obj};
 use std::path::Path;
 use streamline_kernel::finetune::{Constraint, SurfaceTuning, fine_tune_into};
-use streamline_kernel::interpolate::{Method, Options, interpolate};
-use streamline_kernel::loop_subdiv::{limit_points, subdivide as loop_subdivide};
-use streamline_kernel::trimesh::TriMesh;
+use streamline_kernel::loop_subdiv::mesh_interpolation::{Method, Options, interpolate};
+use streamline_kernel::loop_subdiv::subdivide::{limit_points, subdivide as loop_subdivide};
+use streamline_kernel::loop_subdiv::trimesh::TriMesh;
 use streamline_kernel::{
     BlendOrder, CurveScheme, DVec3, Design, Grid, SurfaceScheme, Tangent, curve, sphere, sphere_pi,
     surface,
@@ -177,7 +177,7 @@ pub fn obj(data: &[u8]) {
 }
 
 /// Limit points, one Loop step and a few interpolation iterations of a valid mesh.
-fn check_mesh(mesh: &TriMesh, topo: &streamline_kernel::trimesh::Topology) {
+fn check_mesh(mesh: &TriMesh, topo: &streamline_kernel::loop_subdiv::trimesh::Topology) {
     if mesh.faces.len() > 20_000 {
         return;
     }
@@ -398,7 +398,7 @@ pub fn kernel(data: &[u8]) {
             let m = n.small(0, 64);
             let count = n.small(0, 12);
             let t = n.vecs(count);
-            if let Ok(q) = streamline_kernel::qi::QiCurve::new(&t, order)
+            if let Ok(q) = streamline_kernel::curve::qi::QiCurve::new(&t, order)
                 && let Ok(out) = q.sample(m)
             {
                 unit("QI curve", &out);
@@ -410,7 +410,9 @@ pub fn kernel(data: &[u8]) {
             let s: Vec<f64> = (0..n.small(0, 17)).map(|_| n.f64()).collect();
             let anchor = n.small(0, 17);
             let origin = DVec3::new(n.f64(), n.f64(), n.f64());
-            if let Ok(p) = streamline_kernel::streamline::streamline(&t, &s, anchor, origin) {
+            if let Ok(p) =
+                streamline_kernel::streamline::integrate::streamline(&t, &s, anchor, origin)
+            {
                 finite("streamline", &p);
             }
         }
@@ -473,7 +475,7 @@ pub fn kernel(data: &[u8]) {
         _ => {
             let count = n.small(2, 12);
             let t = n.vecs(count);
-            let Ok(t) = streamline_kernel::tangent::normalize_all(&t) else {
+            let Ok(t) = streamline_kernel::sphere::tangent::normalize_all(&t) else {
                 return;
             };
             let mut s = vec![0.0];
@@ -488,7 +490,7 @@ pub fn kernel(data: &[u8]) {
                 Constraint::KeepEnds,
                 Constraint::KeepClosed,
             ][n.small(0, 2)];
-            if let Ok(f) = streamline_kernel::bspline::BSpline::uniform(degree, values) {
+            if let Ok(f) = streamline_kernel::finetune::bspline::BSpline::uniform(degree, values) {
                 let mut out = Vec::new();
                 fine_tune_into(&t, &s, s[0], DVec3::ZERO, &f, constraint, &mut out);
                 finite("fine-tuned streamline", &out);
@@ -518,9 +520,9 @@ fn design(n: &mut Numbers) {
     let Ok(s) = Grid::new(rows, cols, s) else {
         return;
     };
-    let Ok(initial) =
-        streamline_kernel::initial_curve::InitialCurve::new(&init, order, length, origin)
-    else {
+    let Ok(initial) = streamline_kernel::streamline::initial_curve::InitialCurve::new(
+        &init, order, length, origin,
+    ) else {
         return;
     };
     let Ok(d) = Design::new(

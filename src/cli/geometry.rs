@@ -3,10 +3,10 @@
 use super::input::{CliError, parse, read_stdin_text, write_stdout};
 use clap::{Args, ValueEnum};
 use serde::Deserialize;
-use streamline_kernel::curve::{self, CurveScheme, OMEGA_DEFAULT};
-use streamline_kernel::qi::QiCurve;
-use streamline_kernel::streamline::streamline;
-use streamline_kernel::surface::{self, BlendOrder, SurfaceScheme};
+use streamline_kernel::curve::qi::QiCurve;
+use streamline_kernel::curve::scheme::{self as curve, CurveScheme, OMEGA_DEFAULT};
+use streamline_kernel::levels::surface::{self, BlendOrder, SurfaceScheme};
+use streamline_kernel::streamline::integrate::streamline;
 use streamline_kernel::{DVec3, Grid};
 
 /// A curve scheme on the command line.

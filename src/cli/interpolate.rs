@@ -8,8 +8,8 @@ use clap::{Args, ValueEnum};
 use serde::Serialize;
 use std::path::PathBuf;
 use std::time::Instant;
-use streamline_kernel::interpolate::{Method, Options, interpolate};
-use streamline_kernel::loop_subdiv::subdivide;
+use streamline_kernel::loop_subdiv::mesh_interpolation::{Method, Options, interpolate};
+use streamline_kernel::loop_subdiv::subdivide::subdivide;
 
 /// Which iteration.
 #[derive(Debug, Clone, Copy, ValueEnum)]
@@ -105,7 +105,7 @@ pub fn run(a: InterpolateArgs) -> Result<(), CliError> {
         obj::write(out, &ctrl, &mesh.faces, &comment).map_err(CliError::Scene)?;
     }
     if let Some(surf) = &a.surface {
-        let mut m = streamline_kernel::trimesh::TriMesh {
+        let mut m = streamline_kernel::loop_subdiv::trimesh::TriMesh {
             positions: ctrl.clone(),
             faces: mesh.faces.clone(),
         };

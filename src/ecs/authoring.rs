@@ -15,7 +15,7 @@ use crate::scene::Scene;
 use crate::scene::format::InitialSpec;
 use bevy::prelude::*;
 use streamline_kernel::authoring::{Axis, Template};
-use streamline_kernel::incremental::check_params;
+use streamline_kernel::levels::incremental::check_params;
 use streamline_kernel::{DQuat, DVec3, Design, SurfaceScheme, Tangent};
 
 /// One authoring edit (the [`super::Edit::Author`] payload).
@@ -298,7 +298,7 @@ fn initial_edit(d: &Design, e: &AuthorEdit) -> Result<Design, String> {
 
 /// `σ` of every level after an initial-curve or anchor edit: level 0's
 /// (`s` of the anchor column) refined level by level with the scheme's scalar
-/// step, the very step [`streamline_kernel::params::ParamGrid::refine`] takes
+/// step, the very step [`streamline_kernel::levels::params::ParamGrid::refine`] takes
 /// in a full build (so the same bits), written into the levels where it
 /// differs. Returns them by level. No tangent is touched.
 pub(crate) fn sigma_of_levels(

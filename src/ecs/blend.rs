@@ -1,6 +1,6 @@
 //! The blend stage: takes what the edits marked [`Dirty`] and re-blends only
 //! the dirty window of each level
-//! ([`streamline_kernel::incremental::propagate`]), or builds everything
+//! ([`streamline_kernel::levels::incremental::propagate`]), or builds everything
 //! afresh; rows of the display depth whose tangents changed, or every row
 //! when the initial curve changed, get new [`StreamlineTangents`].
 
@@ -8,11 +8,11 @@ use super::components::*;
 use super::resources::*;
 use bevy::prelude::*;
 use std::time::Instant;
-use streamline_kernel::incremental::{LevelState, build_levels, propagate};
-use streamline_kernel::window::Span;
+use streamline_kernel::levels::dirty_window::Span;
+use streamline_kernel::levels::incremental::{LevelState, build_levels, propagate};
 
 fn streamline_of(
-    initial: &streamline_kernel::initial_curve::InitialCurve,
+    initial: &streamline_kernel::streamline::initial_curve::InitialCurve,
     level: &LevelState,
     row: usize,
 ) -> StreamlineTangents {

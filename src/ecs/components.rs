@@ -3,9 +3,9 @@
 
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
-use streamline_kernel::bspline::BSpline;
 use streamline_kernel::finetune::Constraint;
-use streamline_kernel::incremental::LevelState;
+use streamline_kernel::finetune::bspline::BSpline;
+use streamline_kernel::levels::incremental::LevelState;
 
 /// A subdivision level entity.
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]

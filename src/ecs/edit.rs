@@ -12,8 +12,8 @@ use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use std::time::Instant;
 use streamline_kernel::finetune::SurfaceTuning;
-use streamline_kernel::incremental::check_params;
-use streamline_kernel::multires;
+use streamline_kernel::levels::incremental::check_params;
+use streamline_kernel::levels::multires;
 use streamline_kernel::{DQuat, DVec3, Design, Tangent};
 
 /// What the edit system reads and writes.
@@ -194,7 +194,11 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             ctx.model.scene.interpolate_tangents = *on;
             full(ctx);
             Ok(
-                if *on && !streamline_kernel::sphere_pi::applies(ctx.model.scene.design.scheme) {
+                if *on
+                    && !streamline_kernel::levels::tangent_interpolation::applies(
+                        ctx.model.scene.design.scheme,
+                    )
+                {
                     "interpolate control tangents on (Kobbelt interpolates them already)".into()
                 } else {
                     format!("interpolate control tangents {on}")

@@ -8,8 +8,8 @@ use super::resources::{Model, Stats, SurfaceData};
 use bevy::prelude::*;
 use std::time::Instant;
 use streamline_kernel::finetune::{SurfaceTuning, fine_tune_into};
-use streamline_kernel::mesh::bounds;
-use streamline_kernel::streamline::{place_slice, place_slice_from};
+use streamline_kernel::streamline::integrate::{place_slice, place_slice_from};
+use streamline_kernel::streamline::surface_mesh::bounds;
 use streamline_kernel::{DVec3, Grid};
 
 /// Gives every streamline its row of the scene's fine-tuning function; only

@@ -6,8 +6,8 @@ use super::components::*;
 use super::resources::{Stats, SurfaceChanged, SurfaceData};
 use bevy::prelude::*;
 use std::time::Instant;
-use streamline_kernel::mesh::{normals_and_indices, normals_window};
-use streamline_kernel::window::{Span, Window};
+use streamline_kernel::levels::dirty_window::{DirtyWindow, Span};
+use streamline_kernel::streamline::surface_mesh::{normals_and_indices, normals_window};
 
 pub(crate) fn patch_mesh(
     meter: Res<super::meter::CpuMeter>,
@@ -42,7 +42,7 @@ pub(crate) fn patch_mesh(
         // that moved are rewritten (a drag on the car at depth 5 moves nearly
         // every row; rewriting 82k triangles would be wasted); a normal reads
         // its neighbours across and along
-        let around = Window {
+        let around = DirtyWindow {
             rows: span.widen(1, rows),
             cols: Span {
                 lo: from.saturating_sub(1).min(cols - 1),

@@ -4,9 +4,9 @@ use crate::scene::Scene;
 use bevy::prelude::*;
 use std::collections::VecDeque;
 use std::path::PathBuf;
-use streamline_kernel::mesh::SurfaceMesh;
-use streamline_kernel::multires::Details;
-use streamline_kernel::window::Window;
+use streamline_kernel::levels::dirty_window::DirtyWindow;
+use streamline_kernel::levels::multires::Details;
+use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 use streamline_kernel::{DVec3, Grid};
 
 /// The scene being edited: the edit stage is the only writer, and it records
@@ -255,7 +255,7 @@ impl SurfaceData {
 pub struct Dirty {
     full: bool,
     replace: bool,
-    windows: Vec<Option<Window>>,
+    windows: Vec<Option<DirtyWindow>>,
 }
 
 impl Default for Dirty {
@@ -276,7 +276,10 @@ impl Dirty {
         if self.windows.len() <= l {
             self.windows.resize(l + 1, None);
         }
-        self.windows[l] = Some(Window::merge(self.windows[l], Window::cell(row, col)));
+        self.windows[l] = Some(DirtyWindow::merge(
+            self.windows[l],
+            DirtyWindow::cell(row, col),
+        ));
     }
 
     /// Every streamline must be placed again on the initial curve (its
@@ -315,12 +318,12 @@ impl Dirty {
     pub fn mirror_rows(&mut self, m: usize) {
         if let Some(Some(w)) = self.windows.first_mut() {
             let (lo, hi) = (m - 1 - w.rows.hi.min(m - 1), m - 1 + w.rows.hi);
-            w.rows = streamline_kernel::window::Span::new(lo, hi);
+            w.rows = streamline_kernel::levels::dirty_window::Span::new(lo, hi);
         }
     }
 
     /// Takes what is pending, leaving nothing: `(full, replace, windows)`.
-    pub(crate) fn take(&mut self) -> (bool, bool, Vec<Option<Window>>) {
+    pub(crate) fn take(&mut self) -> (bool, bool, Vec<Option<DirtyWindow>>) {
         let full = std::mem::take(&mut self.full);
         let replace = std::mem::take(&mut self.replace);
         (full, replace, std::mem::take(&mut self.windows))
@@ -333,7 +336,7 @@ impl Dirty {
 #[derive(Message, Debug, Clone, Copy, PartialEq)]
 pub struct SurfaceChanged {
     /// Points (rows × columns of [`SurfaceData::points`]) rewritten; `None`: all.
-    pub window: Option<Window>,
+    pub window: Option<DirtyWindow>,
 }
 
 /// What a reader of the surface must redo since it last looked.
@@ -342,7 +345,7 @@ pub enum SurfaceChange {
     /// Nothing changed.
     Unchanged,
     /// Only these points (the union of the windows of the changes).
-    Window(Window),
+    Window(DirtyWindow),
     /// Everything (a new surface, or changes the reader did not see).
     All,
 }

@@ -20,9 +20,11 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 use streamline_kernel::DVec3;
-use streamline_kernel::interpolate::{Method, Options, Report, interpolate_observed};
-use streamline_kernel::loop_subdiv::subdivide;
-use streamline_kernel::trimesh::{Topology, TriMesh};
+use streamline_kernel::loop_subdiv::mesh_interpolation::{
+    Method, Options, Report, interpolate_observed,
+};
+use streamline_kernel::loop_subdiv::subdivide::subdivide;
+use streamline_kernel::loop_subdiv::trimesh::{Topology, TriMesh};
 
 /// The deepest subdivision shown (each level multiplies the faces by 4).
 pub const MAX_DEPTH: u32 = 4;

@@ -171,7 +171,7 @@ mod tests {
     /// strictly as Bevy ever drops them: a reader that skips two frames
     /// misses some.
     fn app(every: u64) -> App {
-        let mut s = Scene::from_design("car1", streamline_kernel::presets::car1(), 3);
+        let mut s = Scene::from_design("car1", streamline_kernel::levels::presets::car1(), 3);
         s.edit_depth = 0;
         let mut app = App::new();
         app.add_plugins(TaskPoolPlugin::default())

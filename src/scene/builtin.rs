@@ -42,7 +42,7 @@ pub fn default_scene() -> Scene {
 
 /// The kernel preset each shipped scene was written from, with its display depth.
 pub fn preset(name: &str) -> Option<Scene> {
-    use streamline_kernel::presets;
+    use streamline_kernel::levels::presets;
     let (d, depth) = match name {
         "car1" => (presets::car1(), 4),
         "car2" => (presets::car2(), 4),
@@ -64,7 +64,7 @@ pub fn preset(name: &str) -> Option<Scene> {
         ])
         .expect("3×4");
         s.tuning = Some(streamline_kernel::finetune::SurfaceTuning {
-            function: streamline_kernel::bspline::TensorBSpline::new(2, 2, values)
+            function: streamline_kernel::finetune::bspline::TensorBSpline::new(2, 2, values)
                 .expect("quadratic 3×4"),
             constraint: streamline_kernel::finetune::Constraint::KeepEnds,
         });

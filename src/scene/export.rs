@@ -5,7 +5,7 @@ use super::error::SceneError;
 use super::io::write_atomic;
 use std::fmt::Write as _;
 use std::path::Path;
-use streamline_kernel::mesh::SurfaceMesh;
+use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 
 /// The formats [`export`] writes, chosen by the file extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

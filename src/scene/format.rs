@@ -27,7 +27,7 @@
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize};
 use streamline_kernel::DVec3;
-use streamline_kernel::curve::OMEGA_MAX;
+use streamline_kernel::curve::scheme::OMEGA_MAX;
 
 /// The version this build writes (and the newest it reads).
 pub const VERSION: u32 = 2;

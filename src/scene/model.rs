@@ -4,11 +4,11 @@
 use super::error::SceneError;
 use super::format::*;
 use std::path::Path;
-use streamline_kernel::bspline::TensorBSpline;
+use streamline_kernel::finetune::bspline::TensorBSpline;
 use streamline_kernel::finetune::{Constraint, SurfaceTuning};
-use streamline_kernel::incremental::check_params;
-use streamline_kernel::initial_curve::InitialCurve;
-use streamline_kernel::multires::Details;
+use streamline_kernel::levels::incremental::check_params;
+use streamline_kernel::levels::multires::Details;
+use streamline_kernel::streamline::initial_curve::InitialCurve;
 use streamline_kernel::{BlendOrder, DVec3, Design, Grid, KernelError, SurfaceScheme};
 
 /// The most tangents the finest shown level of a new design gets
@@ -218,7 +218,9 @@ impl Scene {
     /// A view of the default angles that frames the surface at the display depth.
     pub fn framing_view(&self) -> Result<ViewSpec, KernelError> {
         let built = self.design.build(self.display_depth)?;
-        let [lo, hi] = streamline_kernel::mesh::bounds(built.mesh.positions.iter().copied());
+        let [lo, hi] = streamline_kernel::streamline::surface_mesh::bounds(
+            built.mesh.positions.iter().copied(),
+        );
         let centre = (lo + hi) * 0.5;
         let diag = (hi - lo).length().max(1e-3);
         Ok(ViewSpec {
@@ -238,7 +240,8 @@ impl Scene {
     /// Whether the control tangents are interpolated (the option is on and
     /// the scheme approximates: Catmull–Clark or Doo–Sabin).
     pub fn interpolates_tangents(&self) -> bool {
-        self.interpolate_tangents && streamline_kernel::sphere_pi::applies(self.design.scheme)
+        self.interpolate_tangents
+            && streamline_kernel::levels::tangent_interpolation::applies(self.design.scheme)
     }
 
     /// The design the levels are built from: the designer's, or with
@@ -247,7 +250,7 @@ impl Scene {
     pub fn effective_design(&self) -> Design {
         let mut d = self.design.clone();
         if self.interpolates_tangents() {
-            d.net = streamline_kernel::sphere_pi::interpolate_net(
+            d.net = streamline_kernel::levels::tangent_interpolation::interpolate_net(
                 d.scheme,
                 d.order,
                 &self.design.net,

@@ -18,7 +18,7 @@ use std::io::BufRead;
 use std::path::Path;
 use streamline_kernel::DVec3;
 use streamline_kernel::limits::{MEMORY_CAP_BYTES, mesh_bytes};
-use streamline_kernel::trimesh::{MeshError, Topology, TriMesh};
+use streamline_kernel::loop_subdiv::trimesh::{MeshError, Topology, TriMesh};
 
 /// The largest OBJ file read (bytes).
 pub const MAX_OBJ_BYTES: u64 = 2 << 30;

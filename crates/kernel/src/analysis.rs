@@ -16,7 +16,7 @@
 //!   change of parameters, so the index parametrisation is as good as any, and
 //!   the error is `O(h²)` in the grid spacing. The normal is
 //!   `P_u × P_v` (along the streamline × across), the mesh's normal
-//!   ([`crate::mesh`]); `H > 0` where the surface bends towards it.
+//!   ([`crate::streamline::surface_mesh`]); `H > 0` where the surface bends towards it.
 //!
 //! Degenerate places (a zero-length step, a collapsed row) give curvature `0`,
 //! never NaN.

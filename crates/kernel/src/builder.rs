@@ -8,12 +8,12 @@
 //! the net) recomputes every entry and allocates nothing. The numbers are the
 //! same, bit for bit, as [`Design::build`]'s, which is a `Builder` used once.
 
-use crate::design::{Built, Design, Level};
 use crate::error::KernelError;
 use crate::grid::Grid;
-use crate::mesh::{SurfaceMesh, normals_rows, write_indices};
-use crate::params::ParamGrid;
-use crate::surface::refine_grid_into;
+use crate::levels::design::{Built, Design, Level};
+use crate::levels::params::ParamGrid;
+use crate::levels::surface::refine_grid_into;
+use crate::streamline::surface_mesh::{SurfaceMesh, normals_rows, write_indices};
 use glam::DVec3;
 
 /// One level's buffers: the level and the grids of its first blend direction.
@@ -149,8 +149,8 @@ impl Builder {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::presets;
-    use crate::surface::{BlendOrder, SurfaceScheme};
+    use crate::levels::presets;
+    use crate::levels::surface::{BlendOrder, SurfaceScheme};
 
     /// The build composed from the kernel's separate steps.
     fn by_steps(d: &Design, depth: u32) -> (Level, Grid<DVec3>, SurfaceMesh) {

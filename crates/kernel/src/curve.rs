@@ -13,8 +13,8 @@
 
 use crate::error::KernelError;
 use crate::limits::{MAX_DEPTH, MAX_TANGENTS_PER_LEVEL};
-use crate::sphere::{FixedBlend, mid, quarter, quarters, three_quarters};
-use crate::tangent::normalize_all;
+use crate::sphere::blend::{FixedBlend, mid, quarter, quarters, three_quarters};
+use crate::sphere::tangent::normalize_all;
 use glam::DVec3;
 
 /// The upper bound (exclusive) of ω for the 4-point rule: `2(√5 − 1)`, where the
@@ -195,7 +195,7 @@ impl CurveScheme {
     /// One refinement step of planar scalars (the parameter grids: SPEC §4), the
     /// same scheme with the ordinary affine combinations (Eqs. 49–50, 55–56, 60).
     pub fn refine_scalars(self, input: &[f64], out: &mut Vec<f64>) {
-        crate::scalar::refine(self, input, out);
+        crate::curve::scalar::refine(self, input, out);
     }
 }
 
@@ -300,7 +300,7 @@ impl FourPointRule {
 
 /// Which inputs one output of a step reads, and by which rule (SPEC §2).
 /// The same stencils drive tangents ([`Prepared::tangent`]) and scalars
-/// ([`crate::scalar::apply`]), so the parameter grids follow the tangents.
+/// ([`crate::curve::scalar::apply`]), so the parameter grids follow the tangents.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Stencil {
     /// Input `i` itself (4-point, even outputs).

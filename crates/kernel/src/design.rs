@@ -1,14 +1,14 @@
 //! A whole streamline surface: control net, parameters, scheme, blend order,
 //! anchor column and initial curve, and its full build (blend → integrate → mesh).
 
-use crate::builder::Builder;
 use crate::error::{KernelError, Place};
 use crate::grid::Grid;
-use crate::initial_curve::InitialCurve;
-use crate::mesh::SurfaceMesh;
-use crate::params::ParamGrid;
-use crate::streamline::place_slice;
-use crate::surface::{BlendOrder, SurfaceScheme, normalize_grid, refine_grid};
+use crate::levels::builder::Builder;
+use crate::levels::params::ParamGrid;
+use crate::levels::surface::{BlendOrder, SurfaceScheme, normalize_grid, refine_grid};
+use crate::streamline::initial_curve::InitialCurve;
+use crate::streamline::integrate::place_slice;
+use crate::streamline::surface_mesh::SurfaceMesh;
 use glam::DVec3;
 
 /// Everything that defines a streamline surface at level 0.
@@ -155,7 +155,7 @@ impl Design {
                 len: self.net.data().len(),
             });
         }
-        let t = crate::tangent::normalize_at(v, Place::Grid { row, col })?;
+        let t = crate::sphere::tangent::normalize_at(v, Place::Grid { row, col })?;
         self.net.set(row, col, t);
         Ok(())
     }

@@ -105,7 +105,7 @@ impl fmt::Display for KernelError {
             OmegaOutOfRange { omega } => write!(
                 f,
                 "omega {omega} is outside the 4-point rule's range 0 <= omega < {:.6} (2(sqrt 5 - 1)); the default is 1",
-                crate::curve::OMEGA_MAX
+                crate::curve::scheme::OMEGA_MAX
             ),
             TooFewTangents { what, got, need } => {
                 write!(
@@ -116,7 +116,7 @@ impl fmt::Display for KernelError {
             OrderOutOfRange { order, tangents } => write!(
                 f,
                 "QI curve order {order} is not allowed with {tangents} tangents; use an order from 2 to {} (3, 4 or 5 are usual)",
-                (*tangents).min(crate::qi::MAX_ORDER)
+                (*tangents).min(crate::curve::qi::MAX_ORDER)
             ),
             DepthTooLarge {
                 depth,

@@ -2,23 +2,23 @@
 //! (DESIGN, "Incremental rebuild, exactly"; SPEC §5 for the details).
 //!
 //! A [`LevelState`] holds one level: the intermediate grid of its first blend
-//! direction (none for s-first Kobbelt, [`crate::window::in_place`]), the
+//! direction (none for s-first Kobbelt, [`crate::levels::dirty_window::in_place`]), the
 //! *base* (subdivided, before details; kept only where the level has details),
 //! the tangents (with the details of that level applied) and the parameters. [`LevelState::update`]
 //! recomputes only the entries that read a dirty entry of the previous level,
 //! with the same per-entry rules as the full step, so the result is identical
 //! to a rebuild from scratch ([`reference_levels`]).
 
-use crate::design::{Design, Level};
+use crate::curve::scalar;
 use crate::error::KernelError;
 use crate::finetune::{SurfaceTuning, fine_tune_into};
 use crate::grid::Grid;
-use crate::initial_curve::InitialCurve;
-use crate::multires::{self, Details};
-use crate::params::ParamGrid;
-use crate::scalar;
-use crate::streamline::place_into;
-use crate::window::{Window, half_shape, refine_grid_window};
+use crate::levels::design::{Design, Level};
+use crate::levels::dirty_window::{DirtyWindow, half_shape, refine_grid_window};
+use crate::levels::multires::{self, Details};
+use crate::levels::params::ParamGrid;
+use crate::streamline::initial_curve::InitialCurve;
+use crate::streamline::integrate::place_into;
 use glam::DVec3;
 
 /// One subdivision level and what is needed to update it in place.
@@ -27,7 +27,7 @@ pub struct LevelState {
     /// Depth of this level (0 = the control net).
     pub level: u32,
     /// Intermediate grid of the first blend direction (empty at level 0 and
-    /// where the step writes the next level in place, [`crate::window::in_place`]).
+    /// where the step writes the next level in place, [`crate::levels::dirty_window::in_place`]).
     pub half: Grid<DVec3>,
     /// The same for the `s` parameters.
     pub half_s: Grid<f64>,
@@ -84,7 +84,7 @@ impl LevelState {
                 sigma: vec![0.0; nr],
             },
         };
-        me.update(design, details, prev, Window::all(rows, cols))?;
+        me.update(design, details, prev, DirtyWindow::all(rows, cols))?;
         Ok(me)
     }
 
@@ -126,8 +126,8 @@ impl LevelState {
         design: &Design,
         details: &Details,
         prev: &LevelState,
-        win: Window,
-    ) -> Result<(Window, UpdateCount), KernelError> {
+        win: DirtyWindow,
+    ) -> Result<(DirtyWindow, UpdateCount), KernelError> {
         self.update_with(design, details, prev, win, true)
     }
 
@@ -139,9 +139,9 @@ impl LevelState {
         design: &Design,
         details: &Details,
         prev: &LevelState,
-        win: Window,
+        win: DirtyWindow,
         params: bool,
-    ) -> Result<(Window, UpdateCount), KernelError> {
+    ) -> Result<(DirtyWindow, UpdateCount), KernelError> {
         let (scheme, order) = (design.scheme, design.order);
         self.keep_base(details);
         let into = if self.keeps_base() {
@@ -194,7 +194,7 @@ impl LevelState {
     }
 
     /// Re-applies the details of this level inside `win` (after a detail edit).
-    pub fn reapply_details(&mut self, details: &Details, win: Window) -> Window {
+    pub fn reapply_details(&mut self, details: &Details, win: DirtyWindow) -> DirtyWindow {
         let (rows, cols) = self.shape();
         let win = win.widen(0, rows, cols);
         self.keep_base(details);
@@ -213,7 +213,7 @@ impl LevelState {
     }
 }
 
-fn check_window(p: &ParamGrid, level: u32, w: Window) -> Result<(), KernelError> {
+fn check_window(p: &ParamGrid, level: u32, w: DirtyWindow) -> Result<(), KernelError> {
     let cols = p.s.cols();
     let (lo, hi) = (w.cols.lo.saturating_sub(1), (w.cols.hi + 1).min(cols - 1));
     for r in w.rows.iter() {
@@ -338,7 +338,7 @@ pub fn place_row_tuned(
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Propagation {
     /// The dirty window of each level (`None`: untouched).
-    pub dirty: Vec<Option<Window>>,
+    pub dirty: Vec<Option<DirtyWindow>>,
     /// Tangents re-blended over all levels.
     pub reblended: usize,
     /// Details re-applied over all levels.
@@ -360,7 +360,7 @@ pub fn propagate(
     design: &Design,
     details: &Details,
     levels: &mut [&mut LevelState],
-    seeds: &[Option<Window>],
+    seeds: &[Option<DirtyWindow>],
 ) -> Result<Propagation, KernelError> {
     let mut prop = Propagation {
         dirty: vec![None; levels.len()],
@@ -401,7 +401,7 @@ pub fn propagate(
         }
         if let Some(Some(seed)) = seeds.get(l) {
             let w = me.reapply_details(details, *seed);
-            dirty = Some(Window::merge(dirty, w));
+            dirty = Some(DirtyWindow::merge(dirty, w));
         }
         prop.dirty[l] = dirty;
     }

@@ -13,8 +13,8 @@
 //! Outside `[0, L]` the curve continues along its end tangents.
 
 use crate::authoring::MirrorPlane;
+use crate::curve::qi::QiCurve;
 use crate::error::{KernelError, Place};
-use crate::qi::QiCurve;
 use glam::DVec3;
 
 /// 5-point Gauss–Legendre nodes on [−1, 1].

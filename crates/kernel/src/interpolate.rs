@@ -16,8 +16,8 @@
 //! Errors are measured as in 002 Table 1: `|V^0 − V_∞|` on the mesh scaled so
 //! that its bounding box's largest side is 1.
 
-use crate::loop_subdiv::{limit_beta, limit_point};
-use crate::trimesh::{Topology, TriMesh};
+use crate::loop_subdiv::subdivide::{limit_beta, limit_point};
+use crate::loop_subdiv::trimesh::{Topology, TriMesh};
 use glam::DVec3;
 
 /// Which iteration.

@@ -21,7 +21,7 @@
 //! the neighbours' types, gives the mask for each of the 6 configurations
 //! ([`boundary_mask`]).
 
-use crate::trimesh::{MeshError, Topology, TriMesh};
+use crate::loop_subdiv::trimesh::{MeshError, Topology, TriMesh};
 use glam::DVec3;
 
 /// Loop's vertex weight `β` for an interior vertex of valence `n`.
@@ -115,11 +115,11 @@ pub fn limit_point(positions: &[DVec3], topo: &Topology, v: usize) -> DVec3 {
 pub fn subdivide(mesh: &TriMesh, topo: &Topology) -> Result<TriMesh, MeshError> {
     let nv = mesh.positions.len();
     let total = nv + topo.edges.len();
-    if total > crate::trimesh::MAX_VERTICES {
+    if total > crate::loop_subdiv::trimesh::MAX_VERTICES {
         return Err(MeshError::TooLarge {
             what: "vertices after subdivision",
             count: total,
-            cap: crate::trimesh::MAX_VERTICES,
+            cap: crate::loop_subdiv::trimesh::MAX_VERTICES,
         });
     }
     let p = &mesh.positions;

@@ -12,7 +12,7 @@
 //! unchanged, so undoing a coarse edit gives back the same numbers exactly.
 
 use crate::grid::Grid;
-use crate::window::Window;
+use crate::levels::dirty_window::DirtyWindow;
 use glam::DVec3;
 use std::collections::BTreeMap;
 
@@ -74,7 +74,7 @@ pub fn apply_window(
     tangents: &mut Grid<DVec3>,
     details: &Details,
     level: u32,
-    win: Window,
+    win: DirtyWindow,
 ) -> usize {
     for r in win.rows.iter() {
         let (lo, hi) = (win.cols.lo, win.cols.hi);

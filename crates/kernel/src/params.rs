@@ -7,7 +7,7 @@
 
 use crate::error::{KernelError, Place};
 use crate::grid::Grid;
-use crate::surface::{BlendOrder, SurfaceScheme, refine_grid_into};
+use crate::levels::surface::{BlendOrder, SurfaceScheme, refine_grid_into};
 
 /// The parameters of one subdivision level.
 #[derive(Debug, Clone, PartialEq)]

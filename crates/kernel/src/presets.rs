@@ -4,10 +4,10 @@
 //! Axes: `x` along the car (the streamlines' direction `s`), `y` across it (the
 //! initial curve's direction `t`), `z` up.
 
-use crate::design::Design;
 use crate::grid::Grid;
-use crate::initial_curve::InitialCurve;
-use crate::surface::{BlendOrder, SurfaceScheme};
+use crate::levels::design::Design;
+use crate::levels::surface::{BlendOrder, SurfaceScheme};
+use crate::streamline::initial_curve::InitialCurve;
 use glam::DVec3;
 
 fn dir(pitch_deg: f64, yaw_deg: f64) -> DVec3 {

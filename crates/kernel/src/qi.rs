@@ -14,8 +14,8 @@
 //! rotations of the active span are applied, starting from the first active tangent.
 
 use crate::error::KernelError;
-use crate::sphere::{DEGENERATE_SIN, antipodal_axis};
-use crate::tangent::normalize_all;
+use crate::sphere::blend::{DEGENERATE_SIN, antipodal_axis};
+use crate::sphere::tangent::normalize_all;
 use glam::DVec3;
 
 /// A QI curve of order `k` through unit tangents `t₀ … t_n`.

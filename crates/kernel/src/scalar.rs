@@ -3,7 +3,7 @@
 //! Planar rules: Chaikin Eqs. 49–50, cubic B-spline Eqs. 55–56, 4-point Eq. 60
 //! with `w = ω/16` and the quadratic end rule `⅜p₀ + ¾p₁ − ⅛p₂`.
 
-use crate::curve::{CurveScheme, Stencil};
+use crate::curve::scheme::{CurveScheme, Stencil};
 
 /// One step of `scheme` on scalars into `out` (cleared first).
 pub fn refine(scheme: CurveScheme, p: &[f64], out: &mut Vec<f64>) {

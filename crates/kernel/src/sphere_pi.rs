@@ -26,8 +26,8 @@
 //! angle is below the tolerance.
 
 use crate::grid::Grid;
-use crate::sphere::{mid, quarter, quarters, three_quarters};
-use crate::surface::{BlendOrder, SurfaceScheme};
+use crate::levels::surface::{BlendOrder, SurfaceScheme};
+use crate::sphere::blend::{mid, quarter, quarters, three_quarters};
 use glam::{DQuat, DVec3};
 
 /// Local subdivision steps taken for a limit tangent (the error shrinks by about
@@ -213,7 +213,7 @@ pub fn interpolate_net(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::surface::subdivide;
+    use crate::levels::surface::subdivide;
 
     fn net(rows: usize, cols: usize, seed: f64) -> Grid<DVec3> {
         let data = (0..rows * cols)

@@ -11,7 +11,7 @@
 //! range) continues the end segment's direction.
 
 use crate::error::{KernelError, Place};
-use crate::tangent::normalize_all;
+use crate::sphere::tangent::normalize_all;
 use glam::DVec3;
 
 /// Eq. 65 from `p₀ = 0`, appending `n+2` points to `out` (cleared first).

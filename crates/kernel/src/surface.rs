@@ -7,11 +7,11 @@
 //! commute, so the [`BlendOrder`] is chosen by the scene (000 §4, last paragraph
 //! before §5): [`BlendOrder::SFirst`] refines every row, then every column of the result.
 
-use crate::curve::{CurveScheme, OMEGA_DEFAULT, Prepared, Stencil};
+use crate::curve::scheme::{CurveScheme, OMEGA_DEFAULT, Prepared, Stencil};
 use crate::error::{KernelError, Place};
 use crate::grid::Grid;
-use crate::tangent::normalize_at;
-use crate::window::Span;
+use crate::levels::dirty_window::Span;
+use crate::sphere::tangent::normalize_at;
 use glam::DVec3;
 
 /// A tensor-product subdivision scheme for regular nets.
@@ -186,7 +186,7 @@ pub trait Refine: Copy + Default {
 }
 
 impl Refine for DVec3 {
-    const PARALLEL_MIN_ENTRIES: usize = crate::window::PARALLEL_MIN_ENTRIES;
+    const PARALLEL_MIN_ENTRIES: usize = crate::levels::dirty_window::PARALLEL_MIN_ENTRIES;
     type Rule = Prepared;
     fn prepare(scheme: CurveScheme) -> Prepared {
         Prepared::new(scheme)
@@ -264,11 +264,11 @@ impl Refine for f64 {
     }
     #[inline(always)]
     fn apply(scheme: &CurveScheme, st: Stencil, f: impl Fn(usize) -> Self) -> Self {
-        crate::scalar::apply(*scheme, st, f)
+        crate::curve::scalar::apply(*scheme, st, f)
     }
 
     /// Copies and inserts as whole-row loops (the stencil is the same for
-    /// every entry of the row), with the operations of [`crate::scalar::apply`].
+    /// every entry of the row), with the operations of [`crate::curve::scalar::apply`].
     fn apply_across<'a>(
         scheme: &CurveScheme,
         st: Stencil,
@@ -281,15 +281,15 @@ impl Refine for f64 {
         match st {
             Stencil::Copy(i) => out[r.clone()].copy_from_slice(row(i)),
             Stencil::Insert(i) => {
-                let w = crate::scalar::insert_weight(*scheme);
+                let w = crate::curve::scalar::insert_weight(*scheme);
                 let (a, b, c, d) = (row(i - 1), row(i), row(i + 1), row(i + 2));
                 for (k, o) in out[r.clone()].iter_mut().enumerate() {
-                    *o = crate::scalar::insert(w, a[k], b[k], c[k], d[k]);
+                    *o = crate::curve::scalar::insert(w, a[k], b[k], c[k], d[k]);
                 }
             }
             _ => {
                 for (k, o) in out[r.clone()].iter_mut().enumerate() {
-                    *o = crate::scalar::apply(*scheme, st, |j| row(j)[k]);
+                    *o = crate::curve::scalar::apply(*scheme, st, |j| row(j)[k]);
                 }
             }
         }
@@ -306,21 +306,21 @@ impl Refine for f64 {
         let n = input.len();
         if !matches!(c, CurveScheme::FourPoint { .. }) || n < 4 {
             for k in cols.iter() {
-                out[k] = crate::scalar::apply(*scheme, c.stencil(n, k), |j| input[j]);
+                out[k] = crate::curve::scalar::apply(*scheme, c.stencil(n, k), |j| input[j]);
             }
             return;
         }
         // the run of copies and inserts as one plain loop; the rest entry by entry
         let (lo, hi) = four_point_run(cols, n);
         for k in outside(cols, 2 * lo, 2 * hi + 1) {
-            out[k] = crate::scalar::apply(*scheme, c.stencil(n, k), |j| input[j]);
+            out[k] = crate::curve::scalar::apply(*scheme, c.stencil(n, k), |j| input[j]);
         }
         if lo <= hi {
-            let w = crate::scalar::insert_weight(c);
+            let w = crate::curve::scalar::insert_weight(c);
             let pairs = out[2 * lo..2 * hi + 2].chunks_exact_mut(2);
             for (o, q) in pairs.zip(input[lo - 1..hi + 3].windows(4)) {
                 o[0] = q[1];
-                o[1] = crate::scalar::insert(w, q[0], q[1], q[2], q[3]);
+                o[1] = crate::curve::scalar::insert(w, q[0], q[1], q[2], q[3]);
             }
         }
     }
@@ -371,7 +371,7 @@ pub fn refine_cols<T: Refine>(scheme: CurveScheme, g: &Grid<T>) -> Grid<T> {
 }
 
 /// One tensor-product step in the given blend order: the whole grid as one
-/// window ([`crate::window::refine_grid_window`]: rows and columns both
+/// window ([`crate::levels::dirty_window::refine_grid_window`]: rows and columns both
 /// passed row by row, large grids on two threads).
 pub fn refine_grid<T: Refine + Send + Sync>(
     scheme: SurfaceScheme,
@@ -388,7 +388,7 @@ pub fn refine_grid<T: Refine + Send + Sync>(
 
 /// [`refine_grid`] into buffers kept by the caller: `half` (the grid of the
 /// first direction; left empty where the step needs none,
-/// [`crate::window::in_place`]) and `next` are reshaped and overwritten.
+/// [`crate::levels::dirty_window::in_place`]) and `next` are reshaped and overwritten.
 pub fn refine_grid_into<T: Refine + Send + Sync>(
     scheme: SurfaceScheme,
     order: BlendOrder,
@@ -397,20 +397,20 @@ pub fn refine_grid_into<T: Refine + Send + Sync>(
     next: &mut Grid<T>,
 ) {
     let c = scheme.curve();
-    let (hr, hc) = crate::window::half_shape(scheme, order, g.rows(), g.cols());
+    let (hr, hc) = crate::levels::dirty_window::half_shape(scheme, order, g.rows(), g.cols());
     half.reshape(hr, hc, T::default());
     next.reshape(
         c.refined_len(g.rows()),
         c.refined_len(g.cols()),
         T::default(),
     );
-    crate::window::refine_grid_window(
+    crate::levels::dirty_window::refine_grid_window(
         scheme,
         order,
         g,
         half,
         next,
-        crate::window::Window::all(g.rows(), g.cols()),
+        crate::levels::dirty_window::DirtyWindow::all(g.rows(), g.cols()),
     );
 }
 

@@ -207,7 +207,7 @@ impl TriMesh {
 
     /// The bounding box `(min, max)`.
     pub fn bounds(&self) -> (DVec3, DVec3) {
-        let [lo, hi] = crate::mesh::bounds(self.positions.iter().copied());
+        let [lo, hi] = crate::streamline::surface_mesh::bounds(self.positions.iter().copied());
         (lo, hi)
     }
 

@@ -4,14 +4,14 @@
 //! step maps a dirty input range `[a, b]` to the outputs that read any of it:
 //! the stencil radius of the scheme on each side, indices doubled
 //! ([`Span::refine`]). Every entry in the new window is recomputed with the
-//! same per-entry rule as the full step (the [`crate::curve::Stencil`] of the
-//! entry, applied by [`crate::curve::Prepared::tangent`] or
-//! [`crate::scalar::apply`]), so a windowed update gives bit-for-bit the
+//! same per-entry rule as the full step (the [`crate::curve::scheme::Stencil`] of the
+//! entry, applied by [`crate::curve::scheme::Prepared::tangent`] or
+//! [`crate::curve::scalar::apply`]), so a windowed update gives bit-for-bit the
 //! numbers of a full rebuild.
 
-use crate::curve::CurveScheme;
+use crate::curve::scheme::CurveScheme;
 use crate::grid::Grid;
-use crate::surface::{BlendOrder, Refine, SurfaceScheme};
+use crate::levels::surface::{BlendOrder, Refine, SurfaceScheme};
 
 /// An inclusive, non-empty index range `lo ..= hi`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -373,7 +373,7 @@ pub fn half_shape(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::surface::refine_grid_gathered;
+    use crate::levels::surface::refine_grid_gathered;
     use glam::DVec3;
 
     fn net(rows: usize, cols: usize) -> Grid<DVec3> {
@@ -441,7 +441,7 @@ mod tests {
                     Grid::filled(0, 0, DVec3::ZERO),
                     Grid::filled(0, 0, DVec3::ZERO),
                 );
-                crate::surface::refine_grid_into(scheme, order, &g, &mut half, &mut next);
+                crate::levels::surface::refine_grid_into(scheme, order, &g, &mut half, &mut next);
                 assert_eq!((half.rows(), half.cols()), (hr, hc));
                 let windows = [
                     Window::cell(35, 40),

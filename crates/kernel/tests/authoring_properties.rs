@@ -9,12 +9,12 @@ use common::*;
 use glam::{DQuat, DVec3};
 use proptest::prelude::*;
 use streamline_kernel::authoring::{Axis, MAX_NET_SIDE, Template};
-use streamline_kernel::curve::CurveScheme;
+use streamline_kernel::curve::scheme::CurveScheme;
 use streamline_kernel::grid::Grid;
-use streamline_kernel::mesh::bounds;
-use streamline_kernel::presets;
-use streamline_kernel::streamline::polyline_length;
-use streamline_kernel::surface::refine_cols;
+use streamline_kernel::levels::presets;
+use streamline_kernel::levels::surface::refine_cols;
+use streamline_kernel::streamline::integrate::polyline_length;
+use streamline_kernel::streamline::surface_mesh::bounds;
 use streamline_kernel::{BlendOrder, Design, KernelError, SurfaceScheme};
 
 const SCHEMES: [SurfaceScheme; 3] = [
@@ -53,7 +53,7 @@ fn design() -> impl Strategy<Value = Design> {
             let t = (0..rows).map(|r| 0.4 * r as f64).collect();
             let start = (DVec3::Y * 2.0 + c0 * 0.5).normalize();
             let turn = DQuat::from_axis_angle(DVec3::X, bend);
-            let initial = streamline_kernel::initial_curve::InitialCurve::new(
+            let initial = streamline_kernel::streamline::initial_curve::InitialCurve::new(
                 &[start, turn * start, turn * turn * start],
                 3,
                 len,
@@ -261,7 +261,7 @@ proptest! {
         let e = match d.inserted(axis, at) { Ok(e) => e, Err(KernelError::ParamsNotIncreasing { .. }) => return Ok(()), Err(x) => panic!("{x}") };
         // a column insert is a row insert of the transposed net
         let (tr, tn) = if col {
-            let dt = Design { net: d.net.transpose(), params: streamline_kernel::params::ParamGrid { s: d.params.s.transpose(), t: vec![0.0; d.net.cols()], sigma: vec![0.0; d.net.cols()] }, ..d.clone() };
+            let dt = Design { net: d.net.transpose(), params: streamline_kernel::levels::params::ParamGrid { s: d.params.s.transpose(), t: vec![0.0; d.net.cols()], sigma: vec![0.0; d.net.cols()] }, ..d.clone() };
             let (row, s, _) = reference_row(&dt, at);
             (row, s)
         } else {

@@ -5,9 +5,9 @@ mod common;
 use common::*;
 use glam::DVec3;
 use proptest::prelude::*;
-use streamline_kernel::curve::{CurveScheme, subdivide};
-use streamline_kernel::sphere::{blend, combine, mid};
-use streamline_kernel::tangent::normalize_all;
+use streamline_kernel::curve::scheme::{CurveScheme, subdivide};
+use streamline_kernel::sphere::blend::{blend, combine, mid};
+use streamline_kernel::sphere::tangent::normalize_all;
 
 fn schemes(omega: f64) -> [(CurveScheme, &'static str); 3] {
     [

@@ -8,9 +8,9 @@ mod common;
 use common::*;
 use glam::DVec3;
 use proptest::prelude::*;
-use streamline_kernel::bspline::BSpline;
+use streamline_kernel::finetune::bspline::BSpline;
 use streamline_kernel::finetune::{Constraint, fine_tune_into};
-use streamline_kernel::streamline::{place_into, point_arclength};
+use streamline_kernel::streamline::integrate::{place_into, point_arclength};
 
 /// Random increasing `s` (intervals 0.05 … 2) for `n` tangents.
 fn params(n: usize) -> impl Strategy<Value = Vec<f64>> {

@@ -5,10 +5,12 @@
 mod common;
 
 use proptest::prelude::*;
-use streamline_kernel::incremental::{LevelState, build_levels, propagate, reference_levels};
-use streamline_kernel::multires::{self, Details};
-use streamline_kernel::window::Window;
-use streamline_kernel::{BlendOrder, DVec3, Design, Grid, SurfaceScheme, presets};
+use streamline_kernel::levels::dirty_window::DirtyWindow;
+use streamline_kernel::levels::incremental::{
+    LevelState, build_levels, propagate, reference_levels,
+};
+use streamline_kernel::levels::multires::{self, Details};
+use streamline_kernel::{BlendOrder, DVec3, Design, Grid, SurfaceScheme, levels::presets};
 
 #[derive(Debug, Clone)]
 enum Edit {
@@ -93,13 +95,13 @@ fn check_sequence(
         match *e {
             Edit::Control { r, c, v } => {
                 d.set_tangent(r, c, v).unwrap();
-                seeds[0] = Some(Window::cell(r, c));
+                seeds[0] = Some(DirtyWindow::cell(r, c));
             }
             Edit::Detail { level, r, c, v } => {
                 let lv = &levels[level as usize];
                 let (r, c) = (r % lv.base().rows(), c % lv.base().cols());
                 details.insert((level, r, c), multires::to_local(lv.base(), r, c, v));
-                seeds[level as usize] = Some(Window::cell(r, c));
+                seeds[level as usize] = Some(DirtyWindow::cell(r, c));
             }
             Edit::Length { r, c, k } => {
                 let s = d.params.s.row_mut(r);
@@ -111,13 +113,16 @@ fn check_sequence(
                     *x += shift_next;
                 }
                 d.params.sigma[r] = d.params.s.get(r, d.anchor);
-                seeds[0] = Some(Window {
-                    rows: streamline_kernel::window::Span::single(r),
-                    cols: streamline_kernel::window::Span::new(c, d.params.s.cols() - 1),
+                seeds[0] = Some(DirtyWindow {
+                    rows: streamline_kernel::levels::dirty_window::Span::single(r),
+                    cols: streamline_kernel::levels::dirty_window::Span::new(
+                        c,
+                        d.params.s.cols() - 1,
+                    ),
                 });
             }
         }
-        if streamline_kernel::incremental::check_params(&d, depth).is_err() {
+        if streamline_kernel::levels::incremental::check_params(&d, depth).is_err() {
             // only new lengths can be refused; the design stays as it was
             prop_assert!(matches!(e, Edit::Length { .. }), "refused {e:?}");
             d = before;
@@ -184,7 +189,7 @@ fn single_edit_is_local_on_20x20_depth_3() {
     let mut levels = build_levels(&d, &details, 3).unwrap();
     d.set_tangent(10, 10, DVec3::new(0.3, 0.9, 0.1)).unwrap();
     let mut refs: Vec<&mut LevelState> = levels.iter_mut().collect();
-    let seeds = [Some(Window::cell(10, 10)), None, None, None];
+    let seeds = [Some(DirtyWindow::cell(10, 10)), None, None, None];
     let p = propagate(&d, &details, &mut refs, &seeds).unwrap();
     let total: usize = levels[1..].iter().map(|l| l.shape().0 * l.shape().1).sum();
     let fine = p.dirty[3].unwrap();

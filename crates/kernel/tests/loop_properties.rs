@@ -5,9 +5,9 @@
 //! subdividing, not by the masks — match the given vertices.
 
 use glam::DVec3;
-use streamline_kernel::interpolate::{Method, Options, interpolate};
-use streamline_kernel::loop_subdiv::{limit_points, subdivide};
-use streamline_kernel::trimesh::{Topology, TriMesh};
+use streamline_kernel::loop_subdiv::mesh_interpolation::{Method, Options, interpolate};
+use streamline_kernel::loop_subdiv::subdivide::{limit_points, subdivide};
+use streamline_kernel::loop_subdiv::trimesh::{Topology, TriMesh};
 
 /// A plain `v`/`f` OBJ reader for the test data (independent of the app's tobj path).
 fn read_obj(name: &str) -> (TriMesh, Topology) {

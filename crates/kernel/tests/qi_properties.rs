@@ -7,7 +7,7 @@ mod common;
 use common::*;
 use glam::DVec3;
 use proptest::prelude::*;
-use streamline_kernel::qi::QiCurve;
+use streamline_kernel::curve::qi::QiCurve;
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 150, ..ProptestConfig::default() })]

@@ -5,11 +5,11 @@ mod common;
 use common::*;
 use glam::DVec3;
 use proptest::prelude::*;
-use streamline_kernel::design::Design;
 use streamline_kernel::grid::Grid;
-use streamline_kernel::initial_curve::InitialCurve;
-use streamline_kernel::streamline::{point_at, polyline_length, streamline};
-use streamline_kernel::surface::{BlendOrder, SurfaceScheme};
+use streamline_kernel::levels::design::Design;
+use streamline_kernel::levels::surface::{BlendOrder, SurfaceScheme};
+use streamline_kernel::streamline::initial_curve::InitialCurve;
+use streamline_kernel::streamline::integrate::{point_at, polyline_length, streamline};
 
 fn intervals(n: std::ops::RangeInclusive<usize>) -> impl Strategy<Value = Vec<f64>> {
     (-5.0f64..5.0, prop::collection::vec(1e-3f64..3.0, n)).prop_map(|(s0, d)| {
@@ -58,7 +58,7 @@ proptest! {
         for r in 0..pts.rows() {
             let srow = level.params.s.row(r);
             for k in 0..pts.cols() {
-                let arclen = streamline_kernel::streamline::point_arclength(srow, k);
+                let arclen = streamline_kernel::streamline::integrate::point_arclength(srow, k);
                 let want = DVec3::Y * level.params.t[r] + x * (arclen - level.params.sigma[r]);
                 let got = pts.get(r, k);
                 prop_assert!((got - want).length() < 1e-11, "row {r} point {k}: {got:?} vs {want:?}");

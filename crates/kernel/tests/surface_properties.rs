@@ -6,7 +6,7 @@ use common::*;
 use glam::{DQuat, DVec3};
 use proptest::prelude::*;
 use streamline_kernel::grid::Grid;
-use streamline_kernel::surface::{BlendOrder, SurfaceScheme, subdivide};
+use streamline_kernel::levels::surface::{BlendOrder, SurfaceScheme, subdivide};
 
 fn schemes(omega: f64) -> [(SurfaceScheme, &'static str); 3] {
     [
@@ -200,8 +200,8 @@ proptest! {
         let g = Grid::new(g.rows(), cols, data).unwrap();
         let scheme = SurfaceScheme::Kobbelt { omega };
         for order in ORDERS {
-            let fast = streamline_kernel::surface::refine_grid(scheme, order, &g);
-            let plain = streamline_kernel::surface::refine_grid_gathered(scheme, order, &g);
+            let fast = streamline_kernel::levels::surface::refine_grid(scheme, order, &g);
+            let plain = streamline_kernel::levels::surface::refine_grid_gathered(scheme, order, &g);
             prop_assert_eq!(&fast, &plain, "{:?}", order);
         }
     }

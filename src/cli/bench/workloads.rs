@@ -1,9 +1,9 @@
 //! The benchmark workloads, shared by `streamline-studio bench` and `cargo bench`
 //! (`benches/table1.rs`) so both measure exactly the same thing.
 
-use streamline_kernel::curve::{CurveScheme, subdivide_into};
-use streamline_kernel::qi::QiCurve;
-use streamline_kernel::{Builder, DVec3, Design, presets};
+use streamline_kernel::curve::qi::QiCurve;
+use streamline_kernel::curve::scheme::{CurveScheme, subdivide_into};
+use streamline_kernel::{Builder, DVec3, Design, levels::presets};
 
 /// The five control tangents of the Table 1 rows (a wavy curve on the sphere).
 pub fn table1_tangents() -> Vec<DVec3> {
@@ -224,7 +224,7 @@ fn surface_row_named(design: Design, name: String, depth: u32) -> Workload {
 
 /// The test meshes, where the checkout keeps them (rows that need one are
 /// left out when it is missing, e.g. for an installed binary).
-fn test_mesh(name: &str) -> Option<streamline_kernel::trimesh::TriMesh> {
+fn test_mesh(name: &str) -> Option<streamline_kernel::loop_subdiv::trimesh::TriMesh> {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/data/meshes")
         .join(format!("{name}.obj"));
@@ -237,9 +237,9 @@ fn test_mesh(name: &str) -> Option<streamline_kernel::trimesh::TriMesh> {
 /// subdivided 4 times, every vertex then moved by up to 2 mean edge lengths),
 /// topology included (`pi/1m/<plain|fast>`) — issue 5.
 pub fn loop_rows() -> Vec<Workload> {
-    use streamline_kernel::interpolate::{Method, Options, interpolate};
-    use streamline_kernel::loop_subdiv::subdivide;
-    use streamline_kernel::trimesh::TriMesh;
+    use streamline_kernel::loop_subdiv::mesh_interpolation::{Method, Options, interpolate};
+    use streamline_kernel::loop_subdiv::subdivide::subdivide;
+    use streamline_kernel::loop_subdiv::trimesh::TriMesh;
     let mut out = Vec::new();
     for name in ["knight", "spot", "camelhead"] {
         let Some(mesh) = test_mesh(name) else {
@@ -288,7 +288,7 @@ pub fn loop_rows() -> Vec<Workload> {
 
 /// Moves every vertex by a deterministic pseudo-random offset of up to
 /// `amount` × the mean edge length over 2 in each coordinate.
-pub fn rough_up(m: &mut streamline_kernel::trimesh::TriMesh, amount: f64) {
+pub fn rough_up(m: &mut streamline_kernel::loop_subdiv::trimesh::TriMesh, amount: f64) {
     let t = m.topology().expect("valid mesh");
     let mean = m.mean_edge_length(&t);
     let mut x: u64 = 88_172_645_463_325_252;

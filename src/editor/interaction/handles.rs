@@ -13,7 +13,7 @@ use crate::ecs::{Edit, Model, SurfaceChanges};
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
 use streamline_kernel::finetune::streamline::point_by_fraction;
-use streamline_kernel::incremental::{LevelState, place_row_tuned};
+use streamline_kernel::levels::incremental::{LevelState, place_row_tuned};
 
 /// What a handle is a handle of.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -386,7 +386,8 @@ pub(super) fn rebuild(
     let mut controls = level_handles(&model, &base.0, 0.7);
     // long intervals (a 3×3 net) would give arrows as large as the scene: cap
     // them at a tenth of the control points' extent
-    let [lo, hi] = streamline_kernel::mesh::bounds(controls.iter().map(|a| a.base));
+    let [lo, hi] =
+        streamline_kernel::streamline::surface_mesh::bounds(controls.iter().map(|a| a.base));
     let cap = ((hi - lo).length() * 0.1).max(1e-6);
     let clamp = |v: &mut Vec<Handle>| {
         for a in v.iter_mut() {

@@ -7,7 +7,7 @@ use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::egui;
 use std::path::PathBuf;
-use streamline_kernel::interpolate::Method;
+use streamline_kernel::loop_subdiv::mesh_interpolation::Method;
 
 /// What only the Loop mesh section touches.
 #[derive(SystemParam)]

@@ -3,7 +3,7 @@
 use super::PanelCtx;
 use crate::ecs::Edit;
 use bevy_egui::egui;
-use streamline_kernel::curve::OMEGA_MAX;
+use streamline_kernel::curve::scheme::OMEGA_MAX;
 use streamline_kernel::{BlendOrder, SurfaceScheme};
 
 /// The deepest level the sliders offer (the model refuses sizes past its cap).
@@ -71,7 +71,8 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
         p.send(Edit::SetEditDepth(edit));
     }
     let mut interp = p.model.scene.interpolate_tangents;
-    let approximating = streamline_kernel::sphere_pi::applies(p.model.scene.design.scheme);
+    let approximating =
+        streamline_kernel::levels::tangent_interpolation::applies(p.model.scene.design.scheme);
     if ui
         .add_enabled(
             approximating,

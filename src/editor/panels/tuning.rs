@@ -7,7 +7,7 @@ use super::PanelCtx;
 use crate::ecs::Edit;
 use bevy_egui::egui;
 use streamline_kernel::Grid;
-use streamline_kernel::bspline::TensorBSpline;
+use streamline_kernel::finetune::bspline::TensorBSpline;
 use streamline_kernel::finetune::{Constraint, SurfaceTuning};
 
 /// Largest control value the editor offers (α scales the derivative; 1 keeps it).

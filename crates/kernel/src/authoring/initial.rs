@@ -9,10 +9,10 @@
 //! length edit). Each returns a new design and leaves this one as it was.
 
 use super::check_length;
-use crate::design::Design;
 use crate::error::{KernelError, Place};
-use crate::initial_curve::InitialCurve;
-use crate::tangent::normalize_at;
+use crate::levels::design::Design;
+use crate::sphere::tangent::normalize_at;
+use crate::streamline::initial_curve::InitialCurve;
 use glam::DVec3;
 
 impl Design {

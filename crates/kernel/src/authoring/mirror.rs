@@ -22,9 +22,9 @@
 //! a tangent already in `P` (within [`SEAM_IN_PLANE`]) leaves it as it is,
 //! so doing it twice changes nothing.
 
-use crate::design::Design;
 use crate::error::KernelError;
 use crate::grid::Grid;
+use crate::levels::design::Design;
 use glam::DVec3;
 
 /// A seam tangent within this angle (radians) of `P` counts as in the plane
@@ -139,7 +139,7 @@ impl Design {
         }
         let net = Grid::new(2 * m - 1, cols, net).expect("2m − 1 rows");
         let s = Grid::new(2 * m - 1, cols, s).expect("2m − 1 rows");
-        let params = crate::params::ParamGrid::new(s, t, self.anchor)?;
+        let params = crate::levels::params::ParamGrid::new(s, t, self.anchor)?;
         Ok(Design {
             net,
             params,

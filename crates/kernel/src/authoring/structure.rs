@@ -29,12 +29,12 @@
 //! passes the anchor to the column that takes its place, or the new last one).
 
 use super::check_net_size;
-use crate::curve::{CurveScheme, Prepared, Stencil};
-use crate::design::Design;
+use crate::curve::scheme::{CurveScheme, Prepared, Stencil};
 use crate::error::KernelError;
 use crate::grid::Grid;
-use crate::params::ParamGrid;
-use crate::sphere::blend;
+use crate::levels::design::Design;
+use crate::levels::params::ParamGrid;
+use crate::sphere::blend::blend;
 use glam::DVec3;
 
 /// Rows (streamlines, across `t`) or columns (along `s`).
@@ -90,7 +90,7 @@ fn new_tangent(p: &Prepared, w: Slot, n: usize, f: impl Fn(usize) -> DVec3) -> D
 
 fn new_scalar(scheme: CurveScheme, w: Slot, n: usize, f: impl Fn(usize) -> f64) -> f64 {
     match w {
-        Slot::Inside(st) => crate::scalar::apply(scheme, st, f),
+        Slot::Inside(st) => crate::curve::scalar::apply(scheme, st, f),
         Slot::Before => 2.0 * f(0) - f(1),
         Slot::After => 2.0 * f(n - 1) - f(n - 2),
     }

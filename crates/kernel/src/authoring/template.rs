@@ -21,13 +21,13 @@
 //! most 60° apart (at least 4, so the designer has handles to shape).
 
 use super::{check_length, check_net_size};
-use crate::design::Design;
+use crate::curve::qi::QiCurve;
 use crate::error::KernelError;
 use crate::grid::Grid;
-use crate::initial_curve::InitialCurve;
-use crate::params::ParamGrid;
-use crate::qi::QiCurve;
-use crate::surface::{BlendOrder, SurfaceScheme};
+use crate::levels::design::Design;
+use crate::levels::params::ParamGrid;
+use crate::levels::surface::{BlendOrder, SurfaceScheme};
+use crate::streamline::initial_curve::InitialCurve;
 use glam::DVec3;
 
 /// The order of a template's initial curve.

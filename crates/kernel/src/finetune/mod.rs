@@ -6,7 +6,7 @@
 //!
 //! - [`streamline`]: one streamline of Eq. 65 (whose derivative is the
 //!   piecewise-constant tangent), with `α(u)`, `u = (s − s₀)/(s_n − s₀)`;
-//!   a surface uses the tensor function `α(u, v)` of [`crate::bspline::TensorBSpline`],
+//!   a surface uses the tensor function `α(u, v)` of [`crate::finetune::bspline::TensorBSpline`],
 //!   each streamline the restriction to its `v`.
 //! - [`chaikin`]: a closed Chaikin (uniform quadratic B-spline) curve times a
 //!   linear periodic function: a cubic B-spline with double knots (003 Eqs. 9–12).

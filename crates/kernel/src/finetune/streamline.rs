@@ -11,8 +11,8 @@
 //! approximating schemes give) it keeps its end value.
 
 use super::constraint::{Constraint, nearest_meeting};
-use crate::bspline::BSpline;
-use crate::streamline::point_arclength;
+use crate::finetune::bspline::BSpline;
+use crate::streamline::integrate::point_arclength;
 use glam::DVec3;
 
 /// What one fine-tuned streamline used.
@@ -73,7 +73,7 @@ fn polyline(
         p += tangents[k] * (big[k + 1] - big[k]);
         out.push(p);
     }
-    let k = crate::streamline::segment_at(s, sigma);
+    let k = crate::streamline::integrate::segment_at(s, sigma);
     let (base, dir) = if k > n {
         (n + 1, tangents[n])
     } else {
@@ -86,7 +86,7 @@ fn polyline(
 /// length `sigma` is `origin`, writing `n+2` points into `out`; `alpha` is
 /// the designer's function, changed as little as possible (least squares in
 /// its control values) to meet `constraint`. Inputs as for
-/// [`crate::streamline::place_into`] (unit tangents, `s` increasing).
+/// [`crate::streamline::integrate::place_into`] (unit tangents, `s` increasing).
 pub fn fine_tune_into(
     tangents: &[DVec3],
     s: &[f64],
@@ -125,7 +125,7 @@ pub fn fine_tune_into(
 /// holds it (exact for the identity; the editor puts arrows there).
 pub fn point_by_fraction(points: &[DVec3], s: &[f64], x: f64) -> DVec3 {
     let n = s.len() - 1;
-    let k = crate::streamline::segment_at(s, x).min(n);
+    let k = crate::streamline::integrate::segment_at(s, x).min(n);
     let (a0, a1) = (point_arclength(s, k), point_arclength(s, k + 1));
     let f = if a1 > a0 {
         ((x - a0) / (a1 - a0)).clamp(0.0, 1.0)
@@ -199,7 +199,7 @@ fn constraint_rows(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::streamline::place_into;
+    use crate::streamline::integrate::place_into;
 
     fn arc(n: usize) -> (Vec<DVec3>, Vec<f64>) {
         let t = (0..n)

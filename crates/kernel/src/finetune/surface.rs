@@ -7,7 +7,7 @@
 //! values `dᵢ = Σ_j c_{j,i} M_j(v)` take the least-squares change instead.
 
 use super::constraint::Constraint;
-use crate::bspline::{BSpline, TensorBSpline};
+use crate::finetune::bspline::{BSpline, TensorBSpline};
 use crate::grid::Grid;
 
 /// The fine-tuning of a surface: the function and the constraint.

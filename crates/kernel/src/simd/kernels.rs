@@ -6,8 +6,8 @@
 
 use super::Rule4;
 use super::lanes::{Lanes, V3};
-use crate::curve::FourPointRule;
-use crate::sphere::{FixedBlend, MID_MIN_NORM2, MIN_TERMS, TERM_THRESHOLDS, terms_for};
+use crate::curve::scheme::FourPointRule;
+use crate::sphere::blend::{FixedBlend, MID_MIN_NORM2, MIN_TERMS, TERM_THRESHOLDS, terms_for};
 use glam::DVec3;
 use std::arch::x86_64::{__m256d, __m512d};
 
@@ -61,7 +61,7 @@ unsafe fn combine<L: Lanes>(a: V3<L>, b: V3<L>, h: L, (cu, su): (L, L)) -> V3<L>
     }
 }
 
-/// [`crate::sphere::mid`]; antipodal lanes are flagged in `bad`.
+/// [`crate::sphere::blend::mid`]; antipodal lanes are flagged in `bad`.
 #[inline(always)]
 unsafe fn mid<L: Lanes>(a: V3<L>, b: V3<L>, bad: &mut L::Mask) -> V3<L> {
     unsafe {

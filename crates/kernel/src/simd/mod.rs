@@ -11,12 +11,12 @@
 //! Elsewhere, and with [`set_limit`]`(Width::Scalar)`, everything is scalar.
 //!
 //! The insert is `mid(blend(a, b, (8+ω)/8), blend(c, d, −ω/8))` with the
-//! trig-free blend of [`crate::sphere::FixedBlend`]: `cos(uθ)` and
+//! trig-free blend of [`crate::sphere::blend::FixedBlend`]: `cos(uθ)` and
 //! `sin(uθ)/sin θ` as series in `h = sin²(θ/2)`, with as many terms as the
-//! lane's `h` needs ([`crate::sphere::TERM_THRESHOLDS`]).
+//! lane's `h` needs ([`crate::sphere::blend::TERM_THRESHOLDS`]).
 
-use crate::curve::FourPointRule;
-use crate::sphere::FixedBlend;
+use crate::curve::scheme::FourPointRule;
+use crate::sphere::blend::FixedBlend;
 use glam::DVec3;
 use std::sync::atomic::{AtomicU8, Ordering};
 
