@@ -16,6 +16,8 @@ shot panel-subdivision car1 --panel subdivision
 shot panel-selection car1 --panel selection --select 3,4
 shot panel-display car1 --panel display
 shot panel-stats car1 --panel stats
+shot panel-initial car1 --panel initial --select i1
+shot panel-curvature car1 --panel curvature --select 4,3
 shot panel-tuning car1-tuned --panel tuning --select 2,4
 shot analysis-tuned-mean car1-tuned --panel analysis --analysis mean
 shot analysis-gaussian car1 --panel analysis --analysis gaussian

@@ -43,7 +43,7 @@ pub struct ScreenshotArgs {
     /// Window size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x800")]
     size: String,
-    /// Open only this panel section: file, subdivision, selection, display, tuning, analysis, mesh, stats.
+    /// Open only this panel section: file, subdivision, selection, initial, curvature, display, tuning, analysis, mesh, stats.
     #[arg(long)]
     panel: Option<String>,
     /// Surface display: shaded, gaussian, mean, zebra.
@@ -52,7 +52,7 @@ pub struct ScreenshotArgs {
     /// Draw curvature combs.
     #[arg(long)]
     comb: bool,
-    /// Select handle ROW,COL of the edit depth.
+    /// Select handle ROW,COL of the edit depth, or iK: the initial curve's tangent K.
     #[arg(long)]
     select: Option<String>,
     /// For GUI tests: write a JSON report here on exit.
@@ -100,7 +100,7 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
         None => None,
         Some(p) => Some(PanelName::parse(p).ok_or_else(|| {
             CliError::Usage(format!(
-                "--panel '{p}': choose file, subdivision, selection, display, tuning, analysis, mesh or stats"
+                "--panel '{p}': choose file, subdivision, selection, initial, curvature, display, tuning, analysis, mesh or stats"
             ))
         })?),
     };
@@ -112,8 +112,17 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
             ))
         })?),
     };
+    let select_initial = match a.select.as_deref().and_then(|s| s.strip_prefix('i')) {
+        None => None,
+        Some(k) => Some(k.trim().parse::<usize>().map_err(|_| {
+            CliError::Usage(format!(
+                "--select 'i{k}': give iK for the initial curve's tangent K, e.g. i1"
+            ))
+        })?),
+    };
     let select = match &a.select {
         None => None,
+        Some(_) if select_initial.is_some() => None,
         Some(s) => Some(
             s.split_once(',')
                 .and_then(|(r, c)| Some((r.trim().parse().ok()?, c.trim().parse().ok()?)))
@@ -131,6 +140,7 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
     req.analysis = analysis;
     req.comb = a.comb;
     req.select = select;
+    req.select_initial = select_initial;
     req.report = a.report.clone();
     // a screenshot never touches the user's recent files or recovery
     let dirs = EditorDirs {

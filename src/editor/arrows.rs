@@ -1,8 +1,9 @@
 //! Drawing the handles ([`Handles`], placed by the interaction core) as
 //! arrows: the control tangents (level 0) as yellow arrows at their
 //! streamline points, and the refined tangents of the edit depth as red arrows
-//! (optionally every other one); with mirror symmetry on, the reflected
-//! copies on the other half dimmed (they cannot be picked). The head's shape tells the column index apart
+//! (optionally every other one), and the initial curve with its control
+//! tangents in cyan (a second kind of handle); with mirror symmetry on, the
+//! reflected copies on the other half dimmed (they cannot be picked). The head's shape tells the column index apart
 //! (cone, ball, cross, ring, repeating, as the paper's prototype gives each
 //! index its own head), and a number label names it.
 
@@ -17,17 +18,28 @@ use streamline_kernel::DVec3;
 
 pub struct ArrowsPlugin;
 
+/// The initial curve and its arrows: drawn over the surface (the curve is the
+/// surface's edge, which would hide them) and a little wider.
+#[derive(Default, Reflect, GizmoConfigGroup)]
+pub struct InitialGizmos;
+
 impl Plugin for ArrowsPlugin {
     fn build(&self, app: &mut App) {
-        app.add_systems(
-            Update,
-            draw.run_if(in_state(EditorMode::Streamline))
-                .in_set(EditorSet::Present),
-        )
-        .add_systems(
-            EguiPrimaryContextPass,
-            labels.run_if(in_state(EditorMode::Streamline)),
-        );
+        app.init_gizmo_group::<InitialGizmos>()
+            .add_systems(Startup, |mut config: ResMut<GizmoConfigStore>| {
+                let (cfg, _) = config.config_mut::<InitialGizmos>();
+                cfg.depth_bias = -1.0;
+                cfg.line.width = 2.5;
+            })
+            .add_systems(
+                Update,
+                draw.run_if(in_state(EditorMode::Streamline))
+                    .in_set(EditorSet::Present),
+            )
+            .add_systems(
+                EguiPrimaryContextPass,
+                labels.run_if(in_state(EditorMode::Streamline)),
+            );
     }
 }
 
@@ -37,14 +49,20 @@ const SELECTED: Color = Color::srgb(1.0, 1.0, 1.0);
 const HOVER: Color = Color::srgb(1.0, 0.6, 0.1);
 /// The mirrored half's copies of the control arrows: the yellow, dimmed.
 const MIRRORED: Color = Color::srgb(0.55, 0.47, 0.14);
+const CYAN: Color = Color::srgb(0.2, 0.85, 0.95);
+/// Also selected (a group; the primary is [`SELECTED`]).
+const GROUP: Color = Color::srgb(0.75, 0.8, 1.0);
 
+#[allow(clippy::too_many_arguments)]
 fn draw(
     meter: Res<crate::ecs::meter::CpuMeter>,
+    model: Res<crate::ecs::Model>,
     arrows: Res<Handles>,
     settings: Res<HandleSettings>,
     selection: Res<Selection>,
     drag: Res<Drag>,
     mut gizmos: Gizmos,
+    mut initial: Gizmos<InitialGizmos>,
 ) {
     let _meter = meter.start();
     let edit = arrows.edit_depth;
@@ -54,6 +72,8 @@ fn draw(
             SELECTED
         } else if a.level() == edit && Some(a.id) == selection.hover {
             HOVER
+        } else if a.level() == edit && selection.contains(a.id) {
+            GROUP
         } else {
             base
         }
@@ -73,10 +93,27 @@ fn draw(
             }
         }
     }
+    if settings.initial {
+        let curve = &model.scene.design.initial;
+        let line: Vec<Vec3> = curve.polyline(96).into_iter().map(to_view).collect();
+        initial.linestrip(line, CYAN.with_alpha(0.6));
+        for a in &arrows.initial {
+            let c = if Some(a.id) == active {
+                SELECTED
+            } else if Some(a.id) == selection.hover {
+                HOVER
+            } else if selection.contains(a.id) {
+                GROUP
+            } else {
+                CYAN
+            };
+            arrow(&mut initial, a, c);
+        }
+    }
 }
 
 /// A shaft and a head whose shape follows the column index: cone, ball, cross, ring.
-fn arrow(gizmos: &mut Gizmos, a: &Handle, color: Color) {
+fn arrow<G: GizmoConfigGroup>(gizmos: &mut Gizmos<G>, a: &Handle, color: Color) {
     let base = to_view(a.base);
     let tip = to_view(a.tip());
     let dir = to_view(a.dir).normalize_or(Vec3::X);
@@ -152,12 +189,22 @@ fn labels(
             );
         }
     }
+    if settings.initial && settings.labels {
+        for a in &arrows.initial {
+            put(
+                a.tip(),
+                format!("i{}", a.id.col),
+                egui::Color32::from_rgb(51, 217, 242),
+            );
+        }
+    }
     if let Some(a) = selection.primary().and_then(|h| arrows.find(h)) {
-        put(
-            a.tip(),
-            format!("({}, {}) L{}", a.id.row, a.id.col, a.level()),
-            egui::Color32::WHITE,
-        );
+        let text = if a.id.is_surface() {
+            format!("({}, {}) L{}", a.id.row, a.id.col, a.level())
+        } else {
+            format!("initial {}", a.id.col)
+        };
+        put(a.tip(), text, egui::Color32::WHITE);
     }
     Ok(())
 }

@@ -9,6 +9,7 @@ mod analysis;
 pub mod antialias;
 mod arrows;
 pub mod autosave;
+mod box_select;
 mod camera;
 mod coords;
 pub mod files;
@@ -74,7 +75,11 @@ impl Plugin for EditorPlugin {
             mesh_mode::MeshModePlugin,
             screenshot::ScreenshotPlugin,
         ))
-        .add_plugins((new_design::NewDesignPlugin, structure::StructurePlugin));
+        .add_plugins((
+            new_design::NewDesignPlugin,
+            structure::StructurePlugin,
+            box_select::BoxSelectPlugin,
+        ));
     }
 }
 

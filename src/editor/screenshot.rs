@@ -31,6 +31,8 @@ pub struct ScreenshotRequest {
     pub comb: bool,
     /// Select this handle `(row, col)`.
     pub select: Option<(usize, usize)>,
+    /// Select the initial curve's control tangent `k` instead (`--select iK`).
+    pub select_initial: Option<usize>,
     /// Write a JSON report here on exit (for GUI tests), and `REPORT.at` with
     /// the selected handle's shaft midpoint on screen (`x y`) once it is drawn.
     pub report: Option<PathBuf>,
@@ -58,6 +60,7 @@ impl ScreenshotRequest {
             analysis: None,
             comb: false,
             select: None,
+            select_initial: None,
             report: None,
             wait_for: std::env::var_os("STREAMLINE_STUDIO_SHOT_WAIT").map(PathBuf::from),
             mesh: None,
@@ -165,6 +168,9 @@ fn set_up_view(
     if let Some(b) = req.mesh_boundary {
         mesh.boundary = b;
     }
+    if let Some(k) = req.select_initial {
+        selection.select(HandleId::initial(k));
+    }
     if let Some(path) = &req.mesh {
         mesh.input = path.display().to_string();
         mesh.open(path.clone());
@@ -181,6 +187,8 @@ struct Report {
     last_edit: String,
     net: Vec<[f64; 3]>,
     cols: usize,
+    /// The initial curve's control tangents.
+    initial: Vec<[f64; 3]>,
     /// The model's systems in frames with an edit: last and largest (ms).
     model_ms: (f64, f64),
     /// All our systems (model and editor) in frames with an edit: last and largest (ms).
@@ -329,6 +337,15 @@ fn drive(
                     last_edit: stats.last.edit.clone(),
                     net: net.data().iter().map(|v| v.to_array()).collect(),
                     cols: net.cols(),
+                    initial: model
+                        .scene
+                        .design
+                        .initial
+                        .qi()
+                        .tangents()
+                        .iter()
+                        .map(|v| v.to_array())
+                        .collect(),
                     model_ms: (timing.last_ms, timing.max_ms),
                     ours_ms: (timing.ours_last_ms, timing.ours_max_ms),
                     depth: model.scene.display_depth,

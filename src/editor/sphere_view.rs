@@ -329,6 +329,21 @@ fn draw(
     for a in &arrows.controls {
         dot(&mut gizmos, a.dir, 0.025, Color::srgb(1.0, 0.85, 0.1));
     }
+    if handle_settings.initial {
+        // the initial curve's control tangents, in their own colour, joined by great arcs
+        let cyan = Color::srgb(0.2, 0.85, 0.95);
+        for w in arrows.initial.windows(2) {
+            gizmos.short_arc_3d_between(Vec3::ZERO, to_view(w[0].dir), to_view(w[1].dir), cyan);
+        }
+        for a in &arrows.initial {
+            dot(&mut gizmos, a.dir, 0.03, cyan);
+        }
+    }
+    for h in selection.iter().skip(1) {
+        if let Some(a) = arrows.find(h) {
+            dot(&mut gizmos, a.dir, 0.038, Color::srgb(0.75, 0.8, 1.0));
+        }
+    }
     for h in [selection.hover, selection.primary()].into_iter().flatten() {
         if let Some(a) = arrows.find(h) {
             dot(&mut gizmos, a.dir, 0.045, Color::WHITE);

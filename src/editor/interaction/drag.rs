@@ -3,13 +3,17 @@
 //! alone starts a drag, steers it (one `SetDirection`-style edit of the
 //! drag's undo group per step, so the drag is one undo step), ends it on
 //! release, and cancels it on Esc (`CancelGroup` restores the direction and
-//! forgets the step).
+//! forgets the step). With several handles selected, dragging one of them
+//! turns them all by the same rotation: each step sends the rotation since
+//! the last one as one `RotateMany` of the surface tangents (and a rotate of
+//! each initial-curve tangent), all in the drag's undo group. Shift-click
+//! adds a handle to the selection or takes it out, and starts no drag.
 
 use super::handles::{HandleId, Handles};
 use super::selection::Selection;
 use crate::ecs::{Edit, EditMessage};
 use bevy::prelude::*;
-use streamline_kernel::DVec3;
+use streamline_kernel::{DQuat, DVec3};
 
 /// How a drag turns its handle.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -44,21 +48,68 @@ pub struct ActiveDrag {
     pub sent: bool,
     /// Trackball or sphere.
     pub kind: DragKind,
+    /// The rotation applied so far to a group of selected handles (from
+    /// `start_dir` to `last`).
+    pub turned: DQuat,
 }
 
 impl ActiveDrag {
     /// Points the dragged handle at `dir`: one edit of the drag's undo group,
     /// unless it barely moved.
-    fn steer(&mut self, dir: DVec3, edits: &mut MessageWriter<EditMessage>) {
+    fn steer(
+        &mut self,
+        dir: DVec3,
+        selection: &Selection,
+        handles: &Handles,
+        edits: &mut MessageWriter<EditMessage>,
+    ) {
         if (dir - self.last).length() < 1e-7 {
             return;
         }
         self.last = dir;
+        let group = Some(self.group);
+        if selection.len() < 2 || !selection.contains(self.handle) {
+            self.sent = true;
+            edits.write(EditMessage {
+                edit: self.handle.set_direction(dir),
+                group,
+            });
+            return;
+        }
+        // the group: the rotation from the start to `dir`, less what was sent
+        let total = DQuat::from_rotation_arc(self.start_dir, dir);
+        let (axis, radians) = (total * self.turned.inverse()).to_axis_angle();
+        if !(radians.abs() > 1e-12 && axis.is_finite()) {
+            return;
+        }
+        self.turned = total;
         self.sent = true;
-        edits.write(EditMessage {
-            edit: self.handle.set_direction(dir),
-            group: Some(self.group),
-        });
+        // only handles that exist (a refused RotateMany would turn none)
+        let members: Vec<HandleId> = selection
+            .iter()
+            .filter(|&h| handles.find(h).is_some())
+            .collect();
+        let surface: Vec<(usize, usize)> = members
+            .iter()
+            .filter(|h| h.is_surface())
+            .map(|h| h.cell())
+            .collect();
+        if !surface.is_empty() {
+            edits.write(EditMessage {
+                edit: Edit::RotateMany {
+                    handles: surface,
+                    axis,
+                    radians,
+                },
+                group,
+            });
+        }
+        for h in members.iter().filter(|h| !h.is_surface()) {
+            edits.write(EditMessage {
+                edit: h.rotate(axis, radians),
+                group,
+            });
+        }
     }
 }
 
@@ -108,15 +159,27 @@ pub(super) fn run(
     mut edits: MessageWriter<EditMessage>,
 ) {
     let _meter = meter.start();
+    let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
     for p in presses.read() {
         if drag.0.is_some() {
             continue;
         }
         let Some(h) = p.handle else {
-            selection.clear();
+            // with Shift, empty space starts a box that adds to the selection
+            if !shift {
+                selection.clear();
+            }
             continue;
         };
-        selection.select(h);
+        if shift {
+            selection.toggle(h);
+            continue;
+        }
+        if selection.contains(h) {
+            selection.make_primary(h);
+        } else {
+            selection.select(h);
+        }
         if let (Some(kind), Some(a)) = (p.drag, handles.find(h)) {
             drag.0 = Some(ActiveDrag {
                 handle: h,
@@ -125,11 +188,12 @@ pub(super) fn run(
                 last: a.dir,
                 sent: false,
                 kind,
+                turned: DQuat::IDENTITY,
             });
         }
     }
     if let (Some(d), Some(DragTo(dir))) = (drag.0.as_mut(), targets.read().last()) {
-        d.steer(*dir, &mut edits);
+        d.steer(*dir, &selection, &handles, &mut edits);
     }
     if keys.just_pressed(KeyCode::Escape) {
         match drag.0.take() {

@@ -1,11 +1,13 @@
-//! Handles: what the pointer turns. A handle has a kind (today one: a
-//! tangent of the surface's net at a subdivision level), a place (its
+//! Handles: what the pointer turns. A handle has a kind (a tangent of the
+//! surface's net at a subdivision level, or a control tangent of the initial
+//! curve), a place (its
 //! streamline point, its unit direction on the Gaussian sphere, the length it
 //! is drawn with) and whether it can be picked. Where a handle is on the
 //! screen and on the sphere view, and which one lies under the pointer, is
 //! answered here for every kind, so the views never need to know how many
 //! kinds there are.
 
+use crate::ecs::authoring::AuthorEdit;
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::{Edit, Model, SurfaceChanges};
 use bevy::prelude::*;
@@ -22,6 +24,11 @@ pub enum HandleKind {
         /// The level.
         level: u32,
     },
+    /// A control tangent of the initial curve (its index in the id's `col`,
+    /// `row` 0): drawn along the initial curve at its Greville abscissa,
+    /// turned like a surface tangent; its edits re-place the streamlines
+    /// without re-blending a tangent (Eq. 1, `docs/math.md §9`).
+    InitialTangent,
 }
 
 /// One handle: its kind and its cell `(row, col)` in that kind's grid.
@@ -45,15 +52,38 @@ impl HandleId {
         }
     }
 
+    /// The initial curve's control tangent `index`.
+    pub fn initial(index: usize) -> Self {
+        HandleId {
+            kind: HandleKind::InitialTangent,
+            row: 0,
+            col: index,
+        }
+    }
+
+    /// Whether it is a tangent of the surface's net (not of the initial curve).
+    pub fn is_surface(self) -> bool {
+        matches!(self.kind, HandleKind::SurfaceTangent { .. })
+    }
+
+    /// How the status line and the panels name it: `(row, col)`, or `initial k`.
+    pub fn name(self) -> String {
+        match self.kind {
+            HandleKind::SurfaceTangent { .. } => format!("({}, {})", self.row, self.col),
+            HandleKind::InitialTangent => format!("initial tangent {}", self.col),
+        }
+    }
+
     /// Its cell `(row, col)`.
     pub fn cell(self) -> (usize, usize) {
         (self.row, self.col)
     }
 
-    /// Its subdivision level.
+    /// Its subdivision level (the initial curve has one: 0).
     pub fn level(self) -> u32 {
         match self.kind {
             HandleKind::SurfaceTangent { level } => level,
+            HandleKind::InitialTangent => 0,
         }
     }
 
@@ -66,6 +96,27 @@ impl HandleId {
                 col: self.col,
                 dir,
             },
+            HandleKind::InitialTangent => Edit::Author(AuthorEdit::SetInitialDirection {
+                index: self.col,
+                dir,
+            }),
+        }
+    }
+
+    /// The edit that turns this handle about `axis` (unit) by `radians`.
+    pub fn rotate(self, axis: DVec3, radians: f64) -> Edit {
+        match self.kind {
+            HandleKind::SurfaceTangent { .. } => Edit::Rotate {
+                row: self.row,
+                col: self.col,
+                axis,
+                radians,
+            },
+            HandleKind::InitialTangent => Edit::Author(AuthorEdit::RotateInitial {
+                index: self.col,
+                axis,
+                radians,
+            }),
         }
     }
 }
@@ -118,6 +169,8 @@ pub struct HandleSettings {
     pub every_other: bool,
     /// Number labels on the control arrows.
     pub labels: bool,
+    /// Show (and pick) the initial curve's control tangents.
+    pub initial: bool,
 }
 
 impl Default for HandleSettings {
@@ -127,6 +180,7 @@ impl Default for HandleSettings {
             refined: true,
             every_other: false,
             labels: true,
+            initial: true,
         }
     }
 }
@@ -153,12 +207,17 @@ pub struct Handles {
     /// the control tangents, on the other half; shown dimmed, never picked.
     /// Each has the id of the control tangent it reflects.
     pub mirrored: Vec<Handle>,
+    /// The initial curve's control tangents, along the initial curve.
+    pub initial: Vec<Handle>,
 }
 
 impl Handles {
     /// The handle `id`, if it is one of the edit depth's.
     pub fn find(&self, id: HandleId) -> Option<&Handle> {
-        self.editable.iter().find(|a| a.id == id)
+        match id.kind {
+            HandleKind::SurfaceTangent { .. } => self.editable.iter().find(|a| a.id == id),
+            HandleKind::InitialTangent => self.initial.iter().find(|a| a.id == id),
+        }
     }
 
     /// The handle of the edit depth at `(row, col)`.
@@ -186,9 +245,11 @@ impl Handles {
         settings: &'a HandleSettings,
     ) -> impl Iterator<Item = &'a Handle> {
         let refined_hidden = self.edit_depth > 0 && !settings.refined;
+        let initial: &[Handle] = if settings.initial { &self.initial } else { &[] };
         self.editable
             .iter()
             .filter(move |a| !refined_hidden && settings.shows(a))
+            .chain(initial)
     }
 
     /// The pickable handle whose arrow passes nearest `cursor` on the screen,
@@ -302,6 +363,28 @@ fn level_handles(
     (out, copies)
 }
 
+/// The initial curve's control tangents, each at the curve's point at its
+/// Greville abscissa `ξ_i = (u_{i+1} + … + u_{i+k−1}) / (k − 1)` of the QI
+/// knot vector (where the QI curve's tangent is nearest `t_i`), drawn `length` long.
+fn initial_handles(model: &Model, length: f64) -> Vec<Handle> {
+    let curve = &model.scene.design.initial;
+    let qi = curve.qi();
+    let (k, u) = (qi.order(), qi.knots());
+    qi.tangents()
+        .iter()
+        .enumerate()
+        .map(|(i, &dir)| {
+            let xi = u[i + 1..i + k].iter().sum::<f64>() / (k - 1) as f64;
+            Handle {
+                id: HandleId::initial(i),
+                base: curve.point(xi * curve.length()),
+                dir,
+                length,
+            }
+        })
+        .collect()
+}
+
 /// Places the handles again when their level or the surface changed (the
 /// surface moves their base points: fine tuning, the initial curve).
 pub(super) fn rebuild(
@@ -367,11 +450,17 @@ pub(super) fn rebuild(
             None => return,
         }
     };
+    // the initial curve's arrows: a good part of its spacing between
+    // tangents, so they stand out of the column of control arrows there
+    let curve = &model.scene.design.initial;
+    let spacing = curve.length() / (curve.qi().tangents().len().max(2) - 1) as f64;
+    let initial = initial_handles(&model, (0.6 * spacing).min(2.0 * cap).max(1e-6));
     *handles = Handles {
         controls,
         editable,
         edit_depth: edit,
         mirrored,
+        initial,
     };
 }
 

@@ -1,5 +1,5 @@
-//! The selection: the handles chosen (one today; kept as a list so a
-//! selection of several can grow from it) and the one under the pointer.
+//! The selection: the handles chosen (a list, the first primary: Shift-click
+//! and a Shift box add to it) and the one under the pointer.
 
 use super::handles::{HandleId, HandleKind, Handles};
 use bevy::prelude::*;
@@ -41,6 +41,47 @@ impl Selection {
         }
     }
 
+    /// How many are selected.
+    pub fn len(&self) -> usize {
+        self.selected.len()
+    }
+
+    /// Whether nothing is selected.
+    pub fn is_empty(&self) -> bool {
+        self.selected.is_empty()
+    }
+
+    /// Adds `id` to the selection, or takes it out when it is in it
+    /// (Shift-click).
+    pub fn toggle(&mut self, id: HandleId) {
+        match self.selected.iter().position(|&h| h == id) {
+            Some(i) => {
+                self.selected.remove(i);
+            }
+            None => self.selected.push(id),
+        }
+    }
+
+    /// Adds handles not yet selected (a Shift box), keeping the primary.
+    pub fn extend(&mut self, ids: impl IntoIterator<Item = HandleId>) {
+        for id in ids {
+            if !self.selected.contains(&id) {
+                self.selected.push(id);
+            }
+        }
+    }
+
+    /// Makes the selected `id` the primary one, keeping the others (the
+    /// handle a group drag starts from).
+    pub fn make_primary(&mut self, id: HandleId) {
+        if let Some(i) = self.selected.iter().position(|&h| h == id)
+            && i > 0
+        {
+            let h = self.selected.remove(i);
+            self.selected.insert(0, h);
+        }
+    }
+
     /// Selects nothing.
     pub fn clear(&mut self) {
         self.selected.clear();
@@ -57,6 +98,7 @@ impl Selection {
                 Some(_) => Some(h),
                 None => match h.kind {
                     HandleKind::SurfaceTangent { .. } => handles.at(h.cell()).map(|a| a.id),
+                    HandleKind::InitialTangent => None,
                 },
             })
             .collect();

@@ -8,8 +8,11 @@
 
 mod analysis;
 mod cad_export;
+mod curvature;
 mod display;
 mod file;
+mod group;
+mod initial;
 mod lengths;
 mod mesh;
 mod selection;
@@ -47,11 +50,15 @@ pub enum PanelName {
     Mesh,
     /// Sizes and the cost of the last edit.
     Stats,
+    /// The initial curve: order, length, origin, anchor column, its tangents.
+    InitialCurve,
+    /// The selected streamline's curvature and logarithmic curvature graph.
+    Curvature,
 }
 
 impl PanelName {
     /// All sections in panel order.
-    pub const ALL: [PanelName; 9] = [
+    pub const ALL: [PanelName; 11] = [
         PanelName::File,
         PanelName::Subdivision,
         PanelName::Structure,
@@ -61,6 +68,8 @@ impl PanelName {
         PanelName::Analysis,
         PanelName::Mesh,
         PanelName::Stats,
+        PanelName::InitialCurve,
+        PanelName::Curvature,
     ];
 
     /// The section's title and command-line name.
@@ -75,6 +84,8 @@ impl PanelName {
             PanelName::Analysis => "analysis",
             PanelName::Mesh => "mesh",
             PanelName::Stats => "stats",
+            PanelName::InitialCurve => "initial",
+            PanelName::Curvature => "curvature",
         }
     }
 
@@ -97,6 +108,12 @@ impl PanelName {
                 "Open a triangle mesh (OBJ) and make a Loop surface pass through its vertices"
             }
             PanelName::Stats => "Sizes, and what the last edit cost stage by stage",
+            PanelName::InitialCurve => {
+                "The initial curve: its order, length, origin, the anchor column, its control tangents"
+            }
+            PanelName::Curvature => {
+                "The selected streamline's curvature over arc length and its logarithmic curvature graph"
+            }
         }
     }
 
@@ -111,6 +128,8 @@ impl PanelName {
             PanelName::Analysis => "Analysis",
             PanelName::Mesh => "Loop mesh",
             PanelName::Stats => "Stats",
+            PanelName::InitialCurve => "Initial curve",
+            PanelName::Curvature => "Curvature",
         }
     }
 
@@ -167,7 +186,7 @@ pub struct ToolbarSection<'w> {
 
 /// The sections' own parameters.
 #[derive(SystemParam)]
-pub struct Sections<'w> {
+pub struct Sections<'w, 's> {
     bar: ToolbarSection<'w>,
     file: file::FileSection<'w>,
     cad: cad_export::CadExportSection<'w>,
@@ -175,6 +194,7 @@ pub struct Sections<'w> {
     analysis: analysis::AnalysisSection<'w>,
     mesh: mesh::MeshSection<'w>,
     stats: stats::StatsSection<'w>,
+    curvature: curvature::CurvatureSection<'w, 's>,
 }
 
 /// The control net as the scene was opened (the Selection panel's reset).
@@ -342,9 +362,8 @@ impl Throttled {
             // the same words for the whole drag (its figures are in the
             // Selection section), and the way out
             Some(d) => format!(
-                "turning ({}, {}) {}: release to keep it, Esc to cancel",
-                d.handle.row,
-                d.handle.col,
+                "turning {} {}: release to keep it, Esc to cancel",
+                d.handle.name(),
                 match d.kind {
                     DragKind::Trackball { .. } => "on the trackball",
                     DragKind::Sphere => "on the sphere",
@@ -402,7 +421,7 @@ fn panel(
                         PanelName::Subdivision => subdivision::show(ui, &mut p),
                         PanelName::Structure => structure::show(ui, &mut p),
                         PanelName::Selection => {
-                            selection::show(ui, &mut p);
+                            group::show(ui, &mut p);
                             lengths::show(ui, &mut p);
                         }
                         PanelName::Display => display::show(ui, &mut sections.display),
@@ -410,6 +429,8 @@ fn panel(
                         PanelName::Analysis => analysis::show(ui, &mut sections.analysis),
                         PanelName::Mesh => mesh::show(ui, &mut sections.mesh),
                         PanelName::Stats => stats::show(ui, &text.stats),
+                        PanelName::InitialCurve => initial::show(ui, &mut p),
+                        PanelName::Curvature => curvature::show(ui, &mut p, &sections.curvature),
                     });
                     shown.header_response.on_hover_text(name.tooltip());
                 }

@@ -80,6 +80,11 @@ pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, 
             "Streamlines integrated again (Eq. 65)",
         );
         row(
+            "placed again",
+            l.streamlines_replaced.to_string(),
+            "Streamlines moved rigidly to a changed initial curve or anchor (Eq. 1), no tangent re-blended",
+        );
+        row(
             "mesh rows",
             l.mesh_rows.to_string(),
             "Rows of the mesh rewritten",
