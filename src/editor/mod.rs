@@ -11,6 +11,7 @@ mod arrows;
 pub mod autosave;
 mod camera;
 mod coords;
+mod deviation;
 pub mod files;
 mod frame_timing;
 pub mod interaction;
