@@ -1,10 +1,12 @@
 //! CAD exchange (docs/math.md §10, docs/cad.md): STEP and IGES files of the shipped
-//! scenes read back by OpenCascade (tests/python/check_cad.py, in the test
+//! scenes, a Cylinder template and a mirrored design read back by OpenCascade (tests/python/check_cad.py, in the test
 //! virtual environment that `scripts/setup.sh --tests` makes), and `.glb`
 //! files read back by the `gltf` crate against the OBJ of the same build.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use streamline_kernel::authoring::Template;
+use streamline_kernel::levels::surface::SurfaceScheme;
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 use streamline_studio::scene::export::{ExportOptions, Format, export, export_scene};
 use streamline_studio::scene::{Scene, builtin, cad};
@@ -50,15 +52,83 @@ fn write_points(path: &Path, scene: &Scene, depth: u32) {
     std::fs::write(path, text).unwrap();
 }
 
-/// The scenes the reader checks: both cars and a cylinder-like one (qi-side,
-/// until the Cylinder template exists).
-const SCENES: [&str; 3] = ["car1", "car2", "qi-side"];
+/// The scenes the reader checks, with their export depths: both cars at
+/// their display depth (4); qi-side at 5, whose 34 points a streamline at
+/// depth 4 differ from depth 5's surface by more than the default tolerance
+/// (the fit refuses it and says so); a Cylinder template (120° of radius
+/// 0.5); and car1 mirrored (docs/math.md §9), fitted as one surface over both
+/// halves, at depth 5 (at 4 the seam's rows differ from depth 5's by more
+/// than the tolerance: refused).
+fn scenes() -> Vec<(&'static str, Scene, u32)> {
+    let mut out: Vec<(&'static str, Scene, u32)> = ["car1", "car2", "qi-side"]
+        .into_iter()
+        .map(|n| {
+            (
+                n,
+                builtin::scene(n).unwrap(),
+                if n == "qi-side" { 5 } else { 4 },
+            )
+        })
+        .collect();
+    let cylinder = Scene::new_design(
+        5,
+        6,
+        2.0,
+        Template::Cylinder {
+            radius: 0.5,
+            degrees: 120.0,
+        },
+        SurfaceScheme::default(),
+    )
+    .unwrap();
+    out.push(("cylinder", cylinder, 4));
+    out.push(("car1-mirrored", mirrored("car1"), 5));
+    out
+}
 
-/// The export depth of each: the scene's display depth (4), and 5 for
-/// qi-side, whose 34 points a streamline at depth 4 differ from depth 5's
-/// surface by more than the default tolerance (the fit refuses it and says so).
-fn export_depth(name: &str) -> u32 {
-    if name == "qi-side" { 5 } else { 4 }
+/// A shipped scene with the mirror on, as the editor's mirror toggle makes
+/// it (row 0 moved into the plane, then doubled).
+fn mirrored(name: &str) -> Scene {
+    let mut scene = builtin::scene(name).unwrap();
+    scene.design = scene.design.with_seam_in_plane().unwrap();
+    scene.mirror = true;
+    scene
+}
+
+#[test]
+fn a_mirrored_scene_is_fitted_over_both_halves() {
+    let half = builtin::scene("car1").unwrap();
+    let both = mirrored("car1");
+    let (h, b) = (
+        cad::samples(&half, 5).unwrap().points,
+        cad::samples(&both, 5).unwrap().points,
+    );
+    assert_eq!(b.cols(), h.cols());
+    assert_eq!(b.rows(), 2 * h.rows() - 1, "the doubled grid");
+    // independently of the kernel's mirror: the points lie on both sides of
+    // the plane, and every point's reflection is a point of the grid
+    let plane = both.design.mirror_plane();
+    let side = |sign: f64| {
+        b.data()
+            .iter()
+            .map(|&p| sign * plane.distance(p))
+            .fold(0.0, f64::max)
+    };
+    assert!(
+        side(1.0) > 0.1 && side(-1.0) > 0.1,
+        "{} {}",
+        side(1.0),
+        side(-1.0)
+    );
+    for r in 0..b.rows() {
+        for c in 0..b.cols() {
+            let p = plane.reflect_point(b.get(r, c));
+            let q = b.get(b.rows() - 1 - r, c);
+            assert!((p - q).length() < 1e-9, "({r}, {c}): {p} vs {q}");
+        }
+    }
+    let fit = cad::fit_scene(&both, 5, &Default::default()).unwrap();
+    assert!(fit.fit.report.deviation.max <= fit.fit.report.tolerance);
 }
 
 #[test]
@@ -66,9 +136,7 @@ fn opencascade_reads_every_step_and_iges_file_we_write() {
     let py = venv_python();
     let dir = scratch("occ");
     let mut manifest = Vec::new();
-    for name in SCENES {
-        let scene = builtin::scene(name).unwrap();
-        let depth = export_depth(name);
+    for (name, scene, depth) in scenes() {
         let mesh = mesh_of(&scene, depth);
         let mut pts = serde_json::Map::new();
         for (label, d) in [("export depth", depth), ("one finer", depth + 1)] {
@@ -139,8 +207,7 @@ fn obj_positions(text: &str) -> Vec<[f64; 3]> {
 #[test]
 fn a_glb_holds_the_same_vertices_as_the_obj_of_the_same_build() {
     let dir = scratch("glb");
-    for name in SCENES {
-        let scene = builtin::scene(name).unwrap();
+    for (name, scene, _) in scenes() {
         let mesh = mesh_of(&scene, scene.display_depth);
         let (glb, obj) = (
             dir.join(format!("{name}.glb")),

@@ -105,6 +105,18 @@ fn screenshots_show_the_surface_panels_and_curvature() {
         black > 0.02 && white > 0.02,
         "black {black:.3}, white {white:.3}"
     );
+    // deviation map: car1 fits within the tolerance, so the surface is green
+    let (w, h, px) = shot(&dir, "deviation", &["car1", "--analysis", "deviation"]);
+    let green = share(w, h, &px, |[r, g, b]| {
+        g as i32 > r as i32 + 60 && g as i32 > b as i32 + 50
+    });
+    let red = share(w, h, &px, |[r, g, b]| {
+        r as i32 > g as i32 + 80 && r as i32 > b as i32 + 80
+    });
+    assert!(
+        green > 0.05 && red < 0.001,
+        "green {green:.3}, red {red:.4}"
+    );
     // fine tuning: the panel's sliders and labels, and the plot of α in yellow
     // (the panel is 300 px wide at 800×600: count only inside it)
     let (w, h, px) = shot(&dir, "tuning", &["car1-tuned", "--panel", "tuning"]);

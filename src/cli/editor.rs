@@ -108,7 +108,7 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
         None => None,
         Some(m) => Some(SurfaceMode::parse(m).ok_or_else(|| {
             CliError::Usage(format!(
-                "--analysis '{m}': choose shaded, gaussian, mean or zebra"
+                "--analysis '{m}': choose shaded, gaussian, mean, zebra or deviation"
             ))
         })?),
     };

@@ -1,13 +1,16 @@
 //! Curvature displays: the curvature comb along streamlines, Gaussian and mean
-//! curvature colour maps with a legend, and zebra stripes. The numbers come from
+//! curvature colour maps with a legend, zebra stripes, and the deviation map
+//! ([`super::deviation`]). The numbers come from
 //! the kernel ([`streamline_kernel::analysis`]); the GPU only looks a value up
 //! in a texture through the vertex's `u` coordinate, so stripes and colour bands
 //! stay crisp inside large triangles.
 
 use super::coords::to_view;
+use super::deviation::{BANDS, DeviationField, band_u};
 use super::interaction::{EditorSet, MainCamera, OrbitCamera, SceneBounds};
 use super::surface::{ShadedMaterial, SurfaceEntity};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
+use crate::ecs::exchange::ExportSettings;
 use crate::ecs::{Model, SurfaceChanges, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
@@ -28,15 +31,19 @@ pub enum SurfaceMode {
     Mean,
     /// Reflection lines of horizontal light stripes.
     Zebra,
+    /// Distance to the fitted B-spline surface (docs/cad.md): green within
+    /// the export tolerance, yellow up to twice it, red beyond.
+    Deviation,
 }
 
 impl SurfaceMode {
     /// All modes, for the panel.
-    pub const ALL: [SurfaceMode; 4] = [
+    pub const ALL: [SurfaceMode; 5] = [
         SurfaceMode::Shaded,
         SurfaceMode::Gaussian,
         SurfaceMode::Mean,
         SurfaceMode::Zebra,
+        SurfaceMode::Deviation,
     ];
 
     /// Its name in the panel and on the command line.
@@ -46,6 +53,7 @@ impl SurfaceMode {
             SurfaceMode::Gaussian => "gaussian",
             SurfaceMode::Mean => "mean",
             SurfaceMode::Zebra => "zebra",
+            SurfaceMode::Deviation => "deviation",
         }
     }
 
@@ -109,6 +117,7 @@ pub struct CurvatureField {
 struct AnalysisMaterials {
     colormap: Handle<StandardMaterial>,
     zebra: Handle<StandardMaterial>,
+    bands: Handle<StandardMaterial>,
 }
 
 pub struct AnalysisPlugin;
@@ -117,6 +126,7 @@ impl Plugin for AnalysisPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<AnalysisSettings>()
             .init_resource::<CurvatureField>()
+            .init_resource::<DeviationField>()
             .add_systems(Startup, setup)
             .add_systems(Update, (apply_mode, draw_combs).in_set(EditorSet::Present));
     }
@@ -188,6 +198,12 @@ fn setup(
             .collect(),
         true,
     );
+    let mut bands = texture(BANDS.to_vec(), false);
+    if let ImageSampler::Descriptor(d) = &mut bands.sampler {
+        // hard band edges
+        d.mag_filter = ImageFilterMode::Nearest;
+        d.min_filter = ImageFilterMode::Nearest;
+    }
     let material = |tex: Handle<Image>| StandardMaterial {
         base_color_texture: Some(tex),
         unlit: true,
@@ -198,6 +214,7 @@ fn setup(
     commands.insert_resource(AnalysisMaterials {
         colormap: materials.add(material(images.add(ramp))),
         zebra: materials.add(material(images.add(stripes))),
+        bands: materials.add(material(images.add(bands))),
     });
 }
 
@@ -210,6 +227,12 @@ fn apply_mode(
     shaded: Res<ShadedMaterial>,
     mats: Res<AnalysisMaterials>,
     mut field: ResMut<CurvatureField>,
+    (mut deviation, model, export, mouse): (
+        ResMut<DeviationField>,
+        Res<Model>,
+        Res<ExportSettings>,
+        Res<ButtonInput<MouseButton>>,
+    ),
     mut meshes: ResMut<Assets<Mesh>>,
     surface: Single<(&Mesh3d, &mut MeshMaterial3d<StandardMaterial>), With<SurfaceEntity>>,
     camera: Query<&OrbitCamera, With<MainCamera>>,
@@ -219,12 +242,14 @@ fn apply_mode(
     let surface_changed = changes.take().any();
     if surface_changed {
         field.stale = true;
+        deviation.stale = true;
     }
     let (mesh, mut material) = surface.into_inner();
     let want = match settings.mode {
         SurfaceMode::Shaded => &shaded.0,
         SurfaceMode::Gaussian | SurfaceMode::Mean => &mats.colormap,
         SurfaceMode::Zebra => &mats.zebra,
+        SurfaceMode::Deviation => &mats.bands,
     };
     if material.0 != *want {
         material.0 = want.clone();
@@ -236,7 +261,15 @@ fn apply_mode(
     let zebra = settings.mode == SurfaceMode::Zebra;
     // zebra stripes are reflections: they move with the eye
     let key = (settings.clone(), zebra.then_some(eye));
-    let unchanged = !surface_changed && last.as_ref() == Some(&key);
+    // a fit slower than a frame waits for the drag to end (docs/cad.md)
+    let deferred = settings.mode == SurfaceMode::Deviation
+        && deviation.stale
+        && !deviation.live()
+        && mouse.get_pressed().next().is_some();
+    let unchanged = !surface_changed && !deviation.stale && last.as_ref() == Some(&key);
+    if deferred {
+        return;
+    }
     *last = Some(key);
     if settings.mode == SurfaceMode::Shaded || unchanged {
         return;
@@ -273,6 +306,17 @@ fn apply_mode(
             uv
         }
         SurfaceMode::Zebra => zebra_uv(&data, &settings, eye),
+        SurfaceMode::Deviation => {
+            if deviation.stale || (deviation.values.is_none() && deviation.error.is_none()) {
+                deviation.refit(&model.scene, &export.fit);
+            }
+            let Some(v) = deviation.values.as_ref() else {
+                return;
+            };
+            v.iter()
+                .map(|&d| [band_u(d, deviation.tolerance), 0.5])
+                .collect()
+        }
         SurfaceMode::Shaded => return,
     };
     if let Some(mut m) = meshes.get_mut(&mesh.0)

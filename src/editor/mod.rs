@@ -12,6 +12,7 @@ pub mod autosave;
 mod box_select;
 mod camera;
 mod coords;
+mod deviation;
 pub mod files;
 mod frame_timing;
 pub mod interaction;

@@ -1,7 +1,8 @@
 //! The scene's surface as a B-spline surface (docs/math.md §10):
 //! the points of the scene at a depth, as the editor shows them (details,
-//! fine tuning, interpolated tangents included), with the parameters the
-//! kernel's fit gives them, and the fit checked one depth finer.
+//! fine tuning, interpolated tangents included, both halves of a mirrored
+//! design as one surface, docs/math.md §9), with the parameters the kernel's
+//! fit gives them, and the fit checked one depth finer.
 
 use std::time::Instant;
 use streamline_kernel::grid::Grid;
@@ -10,9 +11,10 @@ use streamline_kernel::nurbs::{Fit, FitError, FitOptions, Samples, fit};
 
 use super::model::Scene;
 
-/// The scene's streamline points at `depth` with their fit parameters.
+/// The scene's streamline points at `depth` with their fit parameters; a
+/// mirrored scene's are the doubled design's (one surface over both halves).
 pub fn samples(scene: &Scene, depth: u32) -> Result<Samples, FitError> {
-    let design = scene.effective_design();
+    let design = scene.shown_design()?;
     let levels = reference_levels(&design, &scene.details, depth)?;
     let level = levels.last().expect("level 0 at least");
     let (rows, cols) = (level.tangents.rows(), level.tangents.cols() + 1);

@@ -1,7 +1,8 @@
 //! Analysis: curvature comb, Gaussian and mean curvature maps (with legend and
-//! range), zebra stripes.
+//! range), zebra stripes, the deviation map (with its fit's figures).
 
 use crate::editor::analysis::{AnalysisSettings, CurvatureField, SurfaceMode, diverging};
+use crate::editor::deviation::{BANDS, DeviationField, FRAME_BUDGET_S};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::egui;
@@ -11,22 +12,29 @@ use bevy_egui::egui;
 pub struct AnalysisSection<'w> {
     pub settings: ResMut<'w, AnalysisSettings>,
     pub field: Res<'w, CurvatureField>,
+    pub deviation: Res<'w, DeviationField>,
 }
 
 pub fn show(ui: &mut egui::Ui, p: &mut AnalysisSection) {
     // the widgets edit a copy; the settings are written only when it differs
     let mut a = p.settings.clone();
-    widgets(ui, &mut a, &p.field);
+    widgets(ui, &mut a, &p.field, &p.deviation);
     p.settings.set_if_neq(a);
 }
 
-fn widgets(ui: &mut egui::Ui, a: &mut AnalysisSettings, field: &CurvatureField) {
+fn widgets(
+    ui: &mut egui::Ui,
+    a: &mut AnalysisSettings,
+    field: &CurvatureField,
+    deviation: &DeviationField,
+) {
     ui.horizontal_wrapped(|ui| {
         for (m, tip) in [
             (SurfaceMode::Shaded, "Lit surface"),
             (SurfaceMode::Gaussian, "Gaussian curvature K = κ₁κ₂ as colours: blue < 0 (saddle), white 0, red > 0 (dome)"),
             (SurfaceMode::Mean, "Mean curvature H = (κ₁+κ₂)/2 as colours, signed about the surface normal"),
             (SurfaceMode::Zebra, "Reflection lines of horizontal light stripes: smooth stripes mean a fair surface"),
+            (SurfaceMode::Deviation, "Distance to the B-spline surface that STEP and IGES export (tolerance from File > CAD export): green within it, yellow up to twice it, red beyond"),
         ] {
             ui.radio_value(&mut a.mode, m, m.name()).on_hover_text(tip);
         }
@@ -60,6 +68,7 @@ fn widgets(ui: &mut egui::Ui, a: &mut AnalysisSettings, field: &CurvatureField) 
             ui.add(egui::Slider::new(&mut a.stripes, 4.0..=64.0).text("stripes"))
                 .on_hover_text("Number of light stripes over the half circle of directions");
         }
+        SurfaceMode::Deviation => deviation_legend(ui, deviation),
         SurfaceMode::Shaded => {}
     }
     ui.separator();
@@ -135,4 +144,51 @@ fn short(v: f64) -> String {
     } else {
         format!("{v:.2e}")
     }
+}
+
+/// The deviation map's bands and its fit's figures.
+fn deviation_legend(ui: &mut egui::Ui, d: &DeviationField) {
+    if let Some(e) = &d.error {
+        ui.colored_label(egui::Color32::from_rgb(210, 60, 50), format!("no fit: {e}"));
+        return;
+    }
+    for (c, text) in [
+        (
+            BANDS[0],
+            format!("≤ {} (the tolerance)", short(d.tolerance)),
+        ),
+        (BANDS[1], format!("≤ {}", short(2.0 * d.tolerance))),
+        (BANDS[2], format!("> {}", short(2.0 * d.tolerance))),
+    ] {
+        ui.horizontal(|ui| {
+            let (rect, _) = ui.allocate_exact_size(egui::vec2(14.0, 14.0), egui::Sense::hover());
+            ui.painter()
+                .rect_filled(rect, 2.0, egui::Color32::from_rgb(c[0], c[1], c[2]));
+            ui.label(text);
+        });
+    }
+    ui.label(format!(
+        "largest {}, mean {} (checked one depth finer)",
+        short(d.max),
+        short(d.mean)
+    ));
+    ui.label(format!(
+        "poles {} × {}, degree from File > CAD export",
+        d.poles.0, d.poles.1
+    ));
+    let when = if d.live() {
+        format!(
+            "refits on each edit ({:.1} ms, within the {:.1} ms frame)",
+            d.seconds * 1e3,
+            FRAME_BUDGET_S * 1e3
+        )
+    } else {
+        format!(
+            "refits when the drag ends ({:.1} ms, over the {:.1} ms frame)",
+            d.seconds * 1e3,
+            FRAME_BUDGET_S * 1e3
+        )
+    };
+    ui.label(egui::RichText::new(when).weak())
+        .on_hover_text("The fit at the display depth, timed; under a frame it follows the mouse");
 }
