@@ -13,6 +13,7 @@ import sys
 
 from OCP.BRep import BRep_Tool
 from OCP.BRepCheck import BRepCheck_Analyzer
+from OCP.Extrema import Extrema_ExtAlgo_Tree
 from OCP.GeomAPI import GeomAPI_ProjectPointOnSurf
 from OCP.Geom import Geom_BSplineSurface
 from OCP.IFSelect import IFSelect_RetDone
@@ -70,7 +71,9 @@ def check(entry):
         d_max = 0.0
         proj = GeomAPI_ProjectPointOnSurf()
         u0, u1, v0, v1 = bs.Bounds()
-        proj.Init(surf, u0, u1, v0, v1)
+        # the tree algorithm: the same global search for the nearest point,
+        # with the surface's subdivision built once for all the points
+        proj.Init(surf, u0, u1, v0, v1, Extrema_ExtAlgo_Tree)
         for (x, y, z) in points(pts_file):
             proj.Perform(gp_Pnt(x, y, z))
             assert proj.NbPoints() > 0, f"{path}: OpenCascade found no projection of ({x}, {y}, {z})"
