@@ -69,15 +69,26 @@ def check(entry):
     worst = {}
     for name, pts_file in entry["points"].items():
         d_max = 0.0
-        proj = GeomAPI_ProjectPointOnSurf()
         u0, u1, v0, v1 = bs.Bounds()
-        # the tree algorithm: the same global search for the nearest point,
-        # with the surface's subdivision built once for all the points
-        proj.Init(surf, u0, u1, v0, v1, Extrema_ExtAlgo_Tree)
+        # Two of OpenCascade's projections: the tree algorithm (its
+        # subdivision of the surface built once, fast) first; its nearest
+        # point is a point of the face, so its distance is never below the
+        # true one, and a point within the tolerance by it is within it. A
+        # point over the tolerance is projected again by the default (global)
+        # algorithm, whose distance is the one that counts.
+        fast = GeomAPI_ProjectPointOnSurf()
+        fast.Init(surf, u0, u1, v0, v1, Extrema_ExtAlgo_Tree)
+        full = GeomAPI_ProjectPointOnSurf()
+        full.Init(surf, u0, u1, v0, v1)
         for (x, y, z) in points(pts_file):
-            proj.Perform(gp_Pnt(x, y, z))
-            assert proj.NbPoints() > 0, f"{path}: OpenCascade found no projection of ({x}, {y}, {z})"
-            d_max = max(d_max, proj.LowerDistance())
+            p = gp_Pnt(x, y, z)
+            fast.Perform(p)
+            d = fast.LowerDistance() if fast.NbPoints() > 0 else float("inf")
+            if d > entry["tolerance"]:
+                full.Perform(p)
+                assert full.NbPoints() > 0, f"{path}: OpenCascade found no projection of ({x}, {y}, {z})"
+                d = full.LowerDistance()
+            d_max = max(d_max, d)
         worst[name] = d_max
         assert d_max <= entry["tolerance"], f"{path}: a {name} point is {d_max:.3e} from the face, over the tolerance {entry['tolerance']:.3e}"
     return {"file": path, **got, "valid": valid, "max_distance": worst, "tolerance": entry["tolerance"]}
