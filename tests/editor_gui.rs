@@ -485,3 +485,48 @@ fn new_design_dialog_and_right_click_insert() {
     assert!(old[1] < new[2] && new[2] < old[2], "{old:?} → {new:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A glTF export from the editor carries the colours of the analysis map
+/// shown (`COLOR_0`, linear RGBA, one per vertex): the Gaussian map of the
+/// car has red domes and blue saddles; the shaded surface exports none.
+#[test]
+fn a_glb_exported_with_a_map_shown_has_its_colours() {
+    let _gui = gui_lock();
+    let dir = temp_dir("glb-colours");
+    std::fs::write(
+        dir.join("export.ron"),
+        "(steps: [\n    Export(\"car.glb\"),\n])\n",
+    )
+    .unwrap();
+    let script = dir.join("export.ron");
+    let script = script.to_str().unwrap();
+    for (analysis, coloured) in [("gaussian", true), ("shaded", false)] {
+        let glb = dir.join("car.glb");
+        let _ = std::fs::remove_file(&glb);
+        shot(
+            &dir,
+            analysis,
+            &["car1", "--analysis", analysis, "--script", script],
+        );
+        let doc = gltf::Gltf::open(&glb).expect("the export wrote a .glb");
+        let blob = doc.blob.as_deref();
+        let prim = doc.meshes().next().unwrap().primitives().next().unwrap();
+        let reader = prim.reader(|_| blob);
+        let n = reader.read_positions().unwrap().count();
+        match reader.read_colors(0) {
+            Some(c) => {
+                assert!(coloured, "{analysis}: no colours expected");
+                let c: Vec<[f32; 4]> = c.into_rgba_f32().collect();
+                assert_eq!(c.len(), n, "one colour per vertex");
+                let red = c.iter().filter(|p| p[0] > p[2] + 0.2).count();
+                let blue = c.iter().filter(|p| p[2] > p[0] + 0.2).count();
+                assert!(
+                    red > n / 1000 && blue > n / 1000,
+                    "{analysis}: {red} red and {blue} blue of {n} vertices"
+                );
+            }
+            None => assert!(!coloured, "{analysis}: COLOR_0 missing"),
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -43,10 +43,10 @@ pub struct ScreenshotArgs {
     /// Window size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x800")]
     size: String,
-    /// Open only this panel section: file, subdivision, selection, initial, curvature, display, tuning, analysis, mesh, stats.
+    /// Open only this panel section: file, subdivision, structure, selection, display, tuning, analysis, mesh, stats, initial, curvature.
     #[arg(long)]
     panel: Option<String>,
-    /// Surface display: shaded, gaussian, mean, zebra.
+    /// Surface display: shaded, gaussian, mean, zebra, deviation (from the fitted B-spline surface).
     #[arg(long)]
     analysis: Option<String>,
     /// Draw curvature combs.

@@ -28,12 +28,17 @@ pub(crate) fn write_files(
                 Err(e) => log.entries.push(Err(e.to_string())),
             },
             Edit::Export(path) => {
+                let mesh = surface.mesh();
+                // the colours of the map shown, if they are this mesh's
+                let colors = (settings.colors.as_ref())
+                    .filter(|c| c.len() == mesh.positions.len())
+                    .cloned();
                 let opts = ExportOptions {
                     fit: settings.fit,
-                    colors: settings.colors.clone(),
+                    colors,
                 };
                 let depth = model.scene.display_depth;
-                match export_scene(&model.scene, &surface.mesh(), depth, path, &opts) {
+                match export_scene(&model.scene, &mesh, depth, path, &opts) {
                     Ok(out) => {
                         let what = match &out.fit {
                             Some(f) => {

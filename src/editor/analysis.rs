@@ -188,13 +188,7 @@ fn setup(
     );
     let stripes = texture(
         (0..64)
-            .map(|i| {
-                if i < 32 {
-                    [20, 20, 24]
-                } else {
-                    [245, 245, 245]
-                }
-            })
+            .map(|i| if i < 32 { STRIPES[0] } else { STRIPES[1] })
             .collect(),
         true,
     );
@@ -227,10 +221,10 @@ fn apply_mode(
     shaded: Res<ShadedMaterial>,
     mats: Res<AnalysisMaterials>,
     mut field: ResMut<CurvatureField>,
-    (mut deviation, model, export, mouse): (
+    (mut deviation, model, mut export, mouse): (
         ResMut<DeviationField>,
         Res<Model>,
-        Res<ExportSettings>,
+        ResMut<ExportSettings>,
         Res<ButtonInput<MouseButton>>,
     ),
     mut meshes: ResMut<Assets<Mesh>>,
@@ -271,6 +265,9 @@ fn apply_mode(
         return;
     }
     *last = Some(key);
+    if settings.mode == SurfaceMode::Shaded && export.colors.is_some() {
+        export.colors = None; // a shaded surface exports no colours
+    }
     if settings.mode == SurfaceMode::Shaded || unchanged {
         return;
     }
@@ -319,12 +316,47 @@ fn apply_mode(
         }
         SurfaceMode::Shaded => return,
     };
+    // the colours the map shows, for a glTF export's COLOR_0 (docs/cad.md)
+    export.colors = Some(
+        uv.iter()
+            .map(|t| vertex_color(settings.mode, t[0]))
+            .collect(),
+    );
     if let Some(mut m) = meshes.get_mut(&mesh.0)
         && m.count_vertices() == uv.len()
     {
         m.insert_attribute(Mesh::ATTRIBUTE_UV_0, uv);
     }
 }
+
+/// The colour a map's texture shows at `u` (the texel the sampler picks,
+/// nearest), as linear RGBA: what glTF's `COLOR_0` holds.
+fn vertex_color(mode: SurfaceMode, u: f32) -> [f32; 4] {
+    let srgb = match mode {
+        SurfaceMode::Gaussian | SurfaceMode::Mean => diverging(u as f64),
+        SurfaceMode::Zebra => {
+            if u.rem_euclid(1.0) < 0.5 {
+                STRIPES[0]
+            } else {
+                STRIPES[1]
+            }
+        }
+        SurfaceMode::Deviation => BANDS[((u * 3.0) as usize).min(2)],
+        SurfaceMode::Shaded => [255, 255, 255],
+    };
+    let linear = |c: u8| {
+        let c = c as f32 / 255.0;
+        if c <= 0.04045 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    [linear(srgb[0]), linear(srgb[1]), linear(srgb[2]), 1.0]
+}
+
+/// The zebra texture's two colours (dark, light), half its width each.
+const STRIPES: [[u8; 3]; 2] = [[20, 20, 24], [245, 245, 245]];
 
 /// Zebra `u` coordinates for an eye point (kernel coordinates).
 fn zebra_uv(data: &SurfaceData, settings: &AnalysisSettings, eye: DVec3) -> Vec<[f32; 2]> {
