@@ -287,7 +287,12 @@ proptest! {
         picks in prop::collection::vec((0.0f64..1.0, 0.0f64..1.0), 24),
     ) {
         let depth = 4;
-        let f = fit_design(&d, depth, &FitOptions { degree: (3, 3), tolerance: Tolerance::Relative(3e-4) }).unwrap();
+        let f = fit_design(&d, depth, &FitOptions { degree: (3, 3), tolerance: Tolerance::Relative(3e-4) });
+        // a design whose depth-4 grid cannot reach the tolerance is refused
+        // (TooFewPoints, tested in `bad_options_are_refused_with_what_to_do`):
+        // nothing to check then, so the case is skipped, not passed
+        prop_assume!(f.is_ok());
+        let f = f.unwrap();
         let fine = Samples::build(&d, depth + 2).unwrap();
         let (rows, cols) = (fine.points.rows(), fine.points.cols());
         for (a, b) in picks {
