@@ -461,3 +461,29 @@ fn cli_interpolate_writes_the_control_mesh() {
     assert_eq!(code, 2, "{stderr}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `play w.ron` from the script's own folder: a bare file name's folder is
+/// the current one, so its Save and Export steps write beside it.
+#[test]
+fn cli_play_a_script_named_by_a_bare_file_name() {
+    let dir = std::env::temp_dir().join(format!("ss-play-bare-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("w.ron"),
+        "(steps: [\n    Load(\"builtin:minimal\"),\n    Save(\"out/w.ron\"),\n    Export(\"out/w.obj\"),\n])\n",
+    )
+    .unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_streamline-studio"))
+        .args(["play", "w.ron"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(dir.join("out/w.ron").is_file() && dir.join("out/w.obj").is_file());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -23,6 +23,8 @@ pub fn play(a: PlayArgs) -> Result<(), CliError> {
     let dir = a
         .script
         .parent()
+        // a bare file name's parent is the empty path: the current folder
+        .filter(|p| !p.as_os_str().is_empty())
         .map(PathBuf::from)
         .unwrap_or_else(|| PathBuf::from("."));
     let report = playback::play(&script, &dir, scene);
