@@ -27,17 +27,25 @@ const SETUP: &str =
     "run `bash scripts/setup.sh --tests` (installs g++ and Debian's libosd-dev, OpenSubdiv 3.5)";
 
 /// The oracle, compiled once per source change into the test's target dir.
+/// The tests run in parallel: the first to get here compiles it (into a
+/// temporary name, renamed when done), the others wait for it.
 fn oracle() -> PathBuf {
+    static ORACLE: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    ORACLE.get_or_init(compile_oracle).clone()
+}
+
+fn compile_oracle() -> PathBuf {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let src = root.join("tests/oracle/osd_loop.cpp");
     let bin = Path::new(env!("CARGO_TARGET_TMPDIR")).join("osd_loop");
     let stamp = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
     if stamp(&bin).is_none() || stamp(&bin) < stamp(&src) {
+        let tmp = bin.with_extension(format!("tmp{}", std::process::id()));
         let out = Command::new("g++")
             .args(["-O2", "-std=c++14"])
             .arg(&src)
             .arg("-o")
-            .arg(&bin)
+            .arg(&tmp)
             .arg("-losdCPU")
             .output()
             .unwrap_or_else(|e| panic!("cannot run g++ ({e}): {SETUP}"));
@@ -47,6 +55,7 @@ fn oracle() -> PathBuf {
             src.display(),
             String::from_utf8_lossy(&out.stderr)
         );
+        std::fs::rename(&tmp, &bin).unwrap_or_else(|e| panic!("{}: {e}", bin.display()));
     }
     bin
 }
