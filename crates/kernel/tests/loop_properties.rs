@@ -5,6 +5,8 @@
 //! rule, the fast one in at most half the iterations, and the control mesh's
 //! limit points — by a separate helper — match the given vertices.
 
+mod common;
+
 use glam::DVec3;
 use proptest::prelude::*;
 use streamline_kernel::loop_subdiv::mesh_interpolation::{Method, Options, interpolate};
@@ -13,29 +15,13 @@ use streamline_kernel::loop_subdiv::subdivide::{
 };
 use streamline_kernel::loop_subdiv::trimesh::{Topology, TriMesh};
 
-/// A plain `v`/`f` OBJ reader for the test data (independent of the app's tobj path).
+/// A test mesh of `tests/data/meshes`, by the shared plain OBJ reader.
 fn read_obj(name: &str) -> (TriMesh, Topology) {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../tests/data/meshes")
-        .join(name);
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut p = Vec::new();
-    let mut f = Vec::new();
-    for l in text.lines() {
-        let w: Vec<&str> = l.split_whitespace().collect();
-        match w.first() {
-            Some(&"v") => p.push(DVec3::new(
-                w[1].parse().unwrap(),
-                w[2].parse().unwrap(),
-                w[3].parse().unwrap(),
-            )),
-            Some(&"f") => f.push(
-                [0, 1, 2].map(|k| w[k + 1].split('/').next().unwrap().parse::<u32>().unwrap() - 1),
-            ),
-            _ => {}
-        }
-    }
-    TriMesh::new(p, f).unwrap()
+    common::read_obj(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../tests/data/meshes")
+            .join(name),
+    )
 }
 
 /// The position vertex 0 reaches after `levels` steps of actual Loop

@@ -15,6 +15,8 @@
 //!
 //! The test fails (never skips) when g++ or OpenSubdiv is missing.
 
+mod common;
+
 use glam::DVec3;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -60,26 +62,7 @@ fn compile_oracle() -> PathBuf {
     bin
 }
 
-fn read_obj(path: &Path) -> (TriMesh, Topology) {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut p = Vec::new();
-    let mut f = Vec::new();
-    for l in text.lines() {
-        let w: Vec<&str> = l.split_whitespace().collect();
-        match w.first() {
-            Some(&"v") => p.push(DVec3::new(
-                w[1].parse().unwrap(),
-                w[2].parse().unwrap(),
-                w[3].parse().unwrap(),
-            )),
-            Some(&"f") => f.push(
-                [0, 1, 2].map(|k| w[k + 1].split('/').next().unwrap().parse::<u32>().unwrap() - 1),
-            ),
-            _ => {}
-        }
-    }
-    TriMesh::new(p, f).unwrap()
-}
+use common::read_obj;
 
 /// Writes an OBJ with every coordinate round-tripping exactly.
 fn write_obj(path: &Path, p: &[DVec3], faces: &[[u32; 3]]) {

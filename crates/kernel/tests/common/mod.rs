@@ -185,3 +185,31 @@ pub fn bspline_basis(knots: &[f64], j: usize, k: usize, u: f64, last: bool) -> f
     }
     v
 }
+
+/// A plain `v`/`f` OBJ reader for the test meshes (independent of the
+/// app's tobj path): positions and triangles, with the mesh's topology.
+pub fn read_obj(
+    path: &std::path::Path,
+) -> (
+    streamline_kernel::loop_subdiv::trimesh::TriMesh,
+    streamline_kernel::loop_subdiv::trimesh::Topology,
+) {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut p = Vec::new();
+    let mut f = Vec::new();
+    for l in text.lines() {
+        let w: Vec<&str> = l.split_whitespace().collect();
+        match w.first() {
+            Some(&"v") => p.push(DVec3::new(
+                w[1].parse().unwrap(),
+                w[2].parse().unwrap(),
+                w[3].parse().unwrap(),
+            )),
+            Some(&"f") => f.push(
+                [0, 1, 2].map(|k| w[k + 1].split('/').next().unwrap().parse::<u32>().unwrap() - 1),
+            ),
+            _ => {}
+        }
+    }
+    streamline_kernel::loop_subdiv::trimesh::TriMesh::new(p, f).unwrap()
+}
