@@ -3,6 +3,8 @@
 //! virtual environment that `scripts/setup.sh --tests` makes), and `.glb`
 //! files read back by the `gltf` crate against the OBJ of the same build.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use streamline_kernel::authoring::Template;
@@ -19,21 +21,8 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-/// The test venv's python, or a failure that says how to make it.
 fn venv_python() -> PathBuf {
-    let venv = std::env::var_os("STREAMLINE_VENV")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| {
-            PathBuf::from(std::env::var_os("HOME").expect("HOME is set"))
-                .join(".cache/streamline-venv")
-        });
-    let py = venv.join("bin/python");
-    assert!(
-        py.exists(),
-        "the test virtual environment with OpenCascade is missing ({}); run `bash scripts/setup.sh --tests` (it installs cadquery-ocp-novtk into it)",
-        py.display()
-    );
-    py
+    common::venv_python("OpenCascade (cadquery-ocp-novtk)")
 }
 
 fn mesh_of(scene: &Scene, depth: u32) -> SurfaceMesh {

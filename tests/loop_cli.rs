@@ -10,6 +10,8 @@
 //!   faces, a vertex joining two fans) are refused with their place, under
 //!   every rule.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -26,19 +28,7 @@ fn run(args: &[&str]) -> (i32, String, String) {
 }
 
 fn venv_python() -> PathBuf {
-    let venv = std::env::var_os("STREAMLINE_VENV")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| {
-            PathBuf::from(std::env::var_os("HOME").expect("HOME is set"))
-                .join(".cache/streamline-venv")
-        });
-    let py = venv.join("bin/python");
-    assert!(
-        py.exists(),
-        "{} is missing: run `bash scripts/setup.sh --tests` (it makes the test venv with Pixar's usd-core)",
-        py.display()
-    );
-    py
+    common::venv_python("Pixar's usd-core")
 }
 
 /// Reads the mesh with `pxr` and prints it as JSON.

@@ -29,3 +29,23 @@ pub fn max_diff(a: &Grid<DVec3>, b: &Grid<DVec3>) -> f64 {
         .map(|(x, y)| (*x - *y).length())
         .fold(0.0, f64::max)
 }
+
+/// The test virtual environment's python (`scripts/venv.sh`:
+/// `$STREAMLINE_VENV`, default `~/.cache/streamline-venv`), or a failure
+/// that says how to make it; `holds` names the reader the test needs.
+pub fn venv_python(holds: &str) -> std::path::PathBuf {
+    use std::path::PathBuf;
+    let venv = std::env::var_os("STREAMLINE_VENV")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| {
+            PathBuf::from(std::env::var_os("HOME").expect("HOME is set"))
+                .join(".cache/streamline-venv")
+        });
+    let py = venv.join("bin/python");
+    assert!(
+        py.exists(),
+        "the test virtual environment with {holds} is missing ({}); run `bash scripts/setup.sh --tests` (it makes it)",
+        py.display()
+    );
+    py
+}
