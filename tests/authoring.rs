@@ -26,20 +26,20 @@ fn author(app: &mut bevy::prelude::App, e: AuthorEdit) -> Result<String, String>
 fn bits(s: &Scene) -> (String, Vec<u64>) {
     let d = &s.design;
     let mut v: Vec<u64> = d
-        .net
+        .net()
         .data()
         .iter()
         .flat_map(|t| t.to_array().map(f64::to_bits))
         .collect();
-    v.extend(d.params.s.data().iter().map(|x| x.to_bits()));
+    v.extend(d.params().s.data().iter().map(|x| x.to_bits()));
     v.extend(
-        d.params
+        d.params()
             .t
             .iter()
-            .chain(&d.params.sigma)
+            .chain(&d.params().sigma)
             .map(|x| x.to_bits()),
     );
-    v.push(d.anchor as u64);
+    v.push(d.anchor() as u64);
     (s.to_ron(), v)
 }
 
@@ -82,7 +82,7 @@ proptest! {
             let lv = new.level(3).unwrap();
             for r in [0, after.rows() / 2, after.rows() - 1] {
                 let t = lv.params.t[r];
-                let moved = new.initial.point(t) - old.initial.point(t);
+                let moved = new.initial().point(t) - old.initial().point(t);
                 let got = after.get(r, 0) - before.get(r, 0);
                 prop_assert!((moved - got).length() < 1e-12, "row {r}: moved {got:?}, the curve {moved:?}");
             }
@@ -157,7 +157,7 @@ fn structure_edits_are_one_undo_step_and_drop_details() {
         let msg = author(&mut app, e.clone()).unwrap();
         let s = scene(&app);
         assert_eq!(
-            (s.design.net.rows(), s.design.net.cols()),
+            (s.design.net().rows(), s.design.net().cols()),
             (rows, cols),
             "{e:?}"
         );
@@ -207,7 +207,7 @@ fn new_design_replaces_the_scene_unsaved() {
         m.unsaved && m.path.is_none(),
         "a new design is unsaved and has no file"
     );
-    assert_eq!(m.scene.design.net.rows(), 3);
+    assert_eq!(m.scene.design.net().rows(), 3);
     assert_eq!(app.world().resource::<ecs::History>().undo_len(), 0);
     let p = points(&app);
     let [lo, hi] = streamline_kernel::streamline::surface_mesh::bounds(p.data().iter().copied());
@@ -225,7 +225,7 @@ fn mirror_toggle_restores_exactly_and_rotate_many_is_one_step() {
     let on = points(&app);
     assert_eq!(on.rows(), 2 * plain.rows() - 1, "both halves");
     let plane = scene(&app).design.mirror_plane();
-    for &v in scene(&app).design.net.row(0) {
+    for &v in scene(&app).design.net().row(0) {
         assert!(
             v.dot(plane.normal).abs() < 1e-14,
             "seam tangent in the plane"
@@ -248,7 +248,7 @@ fn mirror_toggle_restores_exactly_and_rotate_many_is_one_step() {
         },
     )
     .unwrap();
-    let v = scene(&app).design.net.get(0, 3);
+    let v = scene(&app).design.net().get(0, 3);
     assert!(
         v.dot(plane.normal).abs() < 1e-14,
         "the edited seam tangent stays in the plane: {v:?}"

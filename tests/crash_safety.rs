@@ -117,11 +117,13 @@ fn two_large_scenes() -> (Scene, Scene) {
     let a = Scene::from_design("A", presets::wavy(120, 120), 0);
     let mut b = a.clone();
     b.name = "B".into();
-    b.design.net.set(
-        60,
-        60,
-        streamline_kernel::DVec3::new(0.3, 0.9, 0.2).normalize(),
-    );
+    b.design
+        .set_tangent(
+            60,
+            60,
+            streamline_kernel::DVec3::new(0.3, 0.9, 0.2).normalize(),
+        )
+        .unwrap();
     (a, b)
 }
 

@@ -44,7 +44,7 @@ fn design(rows: usize, cols: usize, scheme: SurfaceScheme, order: BlendOrder, se
         cols / 3,
         scheme,
         order,
-        presets::car1().initial.clone(),
+        presets::car1().initial().clone(),
     )
     .unwrap()
 }
@@ -56,7 +56,7 @@ fn reference_points(scene: &Scene) -> Grid<DVec3> {
     let mut data = Vec::new();
     let mut buf = Vec::new();
     for r in 0..l.tangents.rows() {
-        place_row(&scene.design.initial, &l.tangents, &l.params, r, &mut buf);
+        place_row(scene.design.initial(), &l.tangents, &l.params, r, &mut buf);
         data.extend_from_slice(&buf);
     }
     Grid::new(l.tangents.rows(), l.tangents.cols() + 1, data).unwrap()
@@ -118,8 +118,8 @@ proptest! {
         for o in &ops {
             let (rows, cols) = {
                 let sc = scene(&app);
-                let c = sc.design.scheme.curve();
-                let (mut r, mut k) = (sc.design.net.rows(), sc.design.net.cols());
+                let c = sc.design.scheme().curve();
+                let (mut r, mut k) = (sc.design.net().rows(), sc.design.net().cols());
                 for _ in 0..sc.edit_depth { r = c.refined_len(r); k = c.refined_len(k); }
                 (r, k)
             };
@@ -501,7 +501,7 @@ fn bad_edits_are_refused() {
 #[test]
 fn replacing_the_streamlines_equals_a_fresh_build() {
     let mut app = car_app(0, 3);
-    let c = scene(&app).design.initial.clone();
+    let c = scene(&app).design.initial().clone();
     let moved = streamline_kernel::streamline::initial_curve::InitialCurve::new(
         c.qi().tangents(),
         c.qi().order(),
@@ -513,7 +513,7 @@ fn replacing_the_streamlines_equals_a_fresh_build() {
         let w = app.world_mut();
         let mut m = w.resource_mut::<ecs::Model>();
         m.scene.initial = streamline_studio::scene::format::InitialSpec::from_kernel(&moved);
-        m.scene.design.initial = moved;
+        m.scene.design.set_initial(moved);
         w.resource_mut::<ecs::Dirty>().replace_streamlines();
         w.resource_mut::<Stats>().last = Default::default();
     }

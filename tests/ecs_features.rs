@@ -81,8 +81,8 @@ fn interpolated_control_tangents_are_reached_at_the_limit() {
     for scheme in [SurfaceScheme::CatmullClark, SurfaceScheme::DooSabin] {
         for order in [BlendOrder::SFirst, BlendOrder::TFirst] {
             let mut d = presets::car1();
-            d.scheme = scheme;
-            d.order = order;
+            d.set_scheme(scheme).unwrap();
+            d.set_order(order);
             let mut s = Scene::from_design("car", d, 2);
             s.interpolate_tangents = true;
             let mut app = ecs::headless_app(s.clone());
@@ -93,7 +93,7 @@ fn interpolated_control_tangents_are_reached_at_the_limit() {
                 .find(|(l, _)| l.0 == 0)
                 .map(|(_, d)| d.0.tangents.clone())
                 .unwrap();
-            let design = &s.design.net;
+            let design = &s.design.net();
             let mut moved = 0.0f64;
             for r in 0..design.rows() {
                 for c in 0..design.cols() {

@@ -81,17 +81,17 @@ fn esc(app: &mut App) {
 #[test]
 fn an_initial_tangent_is_a_handle_whose_drag_moves_the_streamlines_rigidly() {
     let mut app = app();
-    let n = scene(&app).design.initial.qi().tangents().len();
+    let n = scene(&app).design.initial().qi().tangents().len();
     let handles = app.world().resource::<Handles>();
     assert_eq!(handles.initial.len(), n, "one handle per initial tangent");
     // each drawn at its curve point, pointing the tangent's way
     for (i, a) in handles.initial.iter().enumerate() {
         assert_eq!(a.id, HandleId::initial(i));
-        assert_eq!(a.dir, scene(&app).design.initial.qi().tangents()[i]);
+        assert_eq!(a.dir, scene(&app).design.initial().qi().tangents()[i]);
         assert!(a.base.is_finite() && a.length > 0.0);
     }
-    let net_before = scene(&app).design.net.clone();
-    let initial_before = scene(&app).design.initial.qi().tangents().to_vec();
+    let net_before = scene(&app).design.net().clone();
+    let initial_before = scene(&app).design.initial().qi().tangents().to_vec();
     let h = HandleId::initial(1);
     press(&mut app, Some(h), Some(DragKind::Sphere));
     assert_eq!(app.world().resource::<Selection>().primary(), Some(h));
@@ -103,7 +103,7 @@ fn an_initial_tangent_is_a_handle_whose_drag_moves_the_streamlines_rigidly() {
     ];
     for t in targets {
         steer(&mut app, t);
-        let got = scene(&app).design.initial.qi().tangents()[1];
+        let got = scene(&app).design.initial().qi().tangents()[1];
         assert!((got - t).length() < 1e-12, "{got} != {t}");
         let stats = &app.world().resource::<Stats>().last;
         assert_eq!(
@@ -116,13 +116,13 @@ fn an_initial_tangent_is_a_handle_whose_drag_moves_the_streamlines_rigidly() {
         assert!((a.dir - t).length() < 1e-12);
     }
     assert!(
-        scene(&app).design.net == net_before,
+        *scene(&app).design.net() == net_before,
         "no surface tangent moved"
     );
     assert_eq!(undo_steps(&app), 1, "a drag is one undo step");
     esc(&mut app);
     assert_eq!(
-        scene(&app).design.initial.qi().tangents(),
+        scene(&app).design.initial().qi().tangents(),
         &initial_before[..],
         "Esc restores the curve exactly"
     );
@@ -138,7 +138,7 @@ fn an_initial_tangent_is_a_handle_whose_drag_moves_the_streamlines_rigidly() {
         ));
     frame(&mut app);
     assert_eq!(
-        scene(&app).design.initial.qi().tangents(),
+        scene(&app).design.initial().qi().tangents(),
         &initial_before[..]
     );
 }
@@ -151,8 +151,8 @@ fn shift_click_selects_several_and_a_drag_turns_them_all_by_one_rotation() {
         .iter()
         .map(|&(r, c)| HandleId::tangent(0, r, c))
         .collect();
-    let net_before = scene(&app).design.net.clone();
-    let init_before = scene(&app).design.initial.qi().tangents().to_vec();
+    let net_before = scene(&app).design.net().clone();
+    let init_before = scene(&app).design.initial().qi().tangents().to_vec();
     // plain click the first, Shift-click the others and an initial tangent
     press(&mut app, Some(ids[0]), None);
     release(&mut app);
@@ -193,7 +193,7 @@ fn shift_click_selects_several_and_a_drag_turns_them_all_by_one_rotation() {
     }
     // the rotation that took the dragged tangent to its place, applied to all
     let q = DQuat::from_rotation_arc(start, steps[1]);
-    let net = &scene(&app).design.net;
+    let net = scene(&app).design.net();
     for &(r, c) in &cells {
         let want = q * net_before.get(r, c);
         assert!(
@@ -202,7 +202,7 @@ fn shift_click_selects_several_and_a_drag_turns_them_all_by_one_rotation() {
             net.get(r, c)
         );
     }
-    let got = scene(&app).design.initial.qi().tangents()[2];
+    let got = scene(&app).design.initial().qi().tangents()[2];
     assert!(
         (got - q * init_before[2]).length() < 1e-9,
         "the initial tangent turns too"
@@ -217,9 +217,12 @@ fn shift_click_selects_several_and_a_drag_turns_them_all_by_one_rotation() {
     assert_eq!(undo_steps(&app), 1, "a group drag is one undo step");
     esc(&mut app);
     assert!(
-        scene(&app).design.net == net_before,
+        *scene(&app).design.net() == net_before,
         "Esc restores every tangent"
     );
-    assert_eq!(scene(&app).design.initial.qi().tangents(), &init_before[..]);
+    assert_eq!(
+        scene(&app).design.initial().qi().tangents(),
+        &init_before[..]
+    );
     assert_eq!(undo_steps(&app), 0);
 }

@@ -38,7 +38,7 @@ fn frame(app: &mut App) {
 }
 
 fn net(app: &App, (r, c): (usize, usize)) -> DVec3 {
-    app.world().resource::<Model>().scene.design.net.get(r, c)
+    app.world().resource::<Model>().scene.design.net().get(r, c)
 }
 
 fn undo_steps(app: &App) -> usize {

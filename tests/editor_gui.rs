@@ -186,7 +186,7 @@ fn pointer_drag_turns_an_arrow_and_esc_cancels() {
     let dir = temp_dir("drag");
     let start = streamline_studio::scene::builtin::default_scene()
         .design
-        .net
+        .net()
         .get(0, 8)
         .to_array();
     let moved = drag(&dir, "arrow");
@@ -309,7 +309,7 @@ fn file_dialogs_open_and_save_as() {
     );
     let r: Report = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     let car2 = streamline_studio::scene::io::load(&open).unwrap();
-    assert_eq!(r.cols, car2.design.net.cols(), "car2 was opened: {r:?}");
+    assert_eq!(r.cols, car2.design.net().cols(), "car2 was opened: {r:?}");
     assert!(r.last_edit.contains("save"), "{r:?}");
     let saved = streamline_studio::scene::io::load(&save).expect("saved and valid");
     assert_eq!(saved.to_file(), car2.to_file());
@@ -452,11 +452,11 @@ fn new_design_dialog_and_right_click_insert() {
     assert!(made.last_edit.contains("save"), "{made:?}");
     let s = streamline_studio::scene::io::load(&file).expect("the new design was saved");
     assert_eq!(
-        (s.design.net.rows(), s.design.net.cols()),
+        (s.design.net().rows(), s.design.net().cols()),
         (4, 7),
         "{made:?}"
     );
-    assert_eq!(s.design.initial.length(), 3.0, "the typed width");
+    assert_eq!(s.design.initial().length(), 3.0, "the typed width");
     assert_eq!(
         s.design.streamline_length(0),
         Some(4.0),
@@ -474,10 +474,10 @@ fn new_design_dialog_and_right_click_insert() {
     assert_eq!(inserted.undo, 1, "an insert is one undo step: {inserted:?}");
     assert!(inserted.last_edit.contains("save"), "{inserted:?}");
     let t = streamline_studio::scene::io::load(&file).expect("saved after the insert");
-    assert_eq!((t.design.net.rows(), t.design.net.cols()), (5, 7));
+    assert_eq!((t.design.net().rows(), t.design.net().cols()), (5, 7));
     assert_eq!(inserted.selection, Some((2, 3)), "the new row is selected");
     // the new row got index 2, between the old rows 1 and 2; the others kept theirs
-    let (old, new) = (&s.design.params.t, &t.design.params.t);
+    let (old, new) = (&s.design.params().t, &t.design.params().t);
     assert_eq!(
         [new[0], new[1], new[3], new[4]],
         [old[0], old[1], old[2], old[3]]

@@ -60,13 +60,13 @@ fn pointer_drag_turns_an_initial_tangent_and_leaves_the_net() {
     let scene = streamline_studio::scene::builtin::default_scene();
     let net: Vec<[f64; 3]> = scene
         .design
-        .net
+        .net()
         .data()
         .iter()
         .map(|v| v.to_array())
         .collect();
     let k = 1;
-    let start = scene.design.initial.qi().tangents()[k].to_array();
+    let start = scene.design.initial().qi().tangents()[k].to_array();
     for mode in ["arrow"] {
         let moved = drag(&dir, k, mode);
         let turn = dist(moved.initial[k], start);
@@ -77,7 +77,7 @@ fn pointer_drag_turns_an_initial_tangent_and_leaves_the_net() {
         for (i, (&got, want)) in moved
             .initial
             .iter()
-            .zip(scene.design.initial.qi().tangents())
+            .zip(scene.design.initial().qi().tangents())
             .enumerate()
         {
             if i != k {

@@ -98,7 +98,7 @@ fn random_scene() -> impl Strategy<Value = Scene> {
                     cols - 1,
                     scheme,
                     order,
-                    streamline_kernel::levels::presets::car1().initial.clone(),
+                    streamline_kernel::levels::presets::car1().initial().clone(),
                 )
                 .ok()?;
                 let mut scene = Scene::from_design("random", design, display);
@@ -311,7 +311,7 @@ fn version_1_opens_and_saves_as_version_2() {
         );
         let back = io::load(&path).unwrap();
         assert_eq!(back.to_file(), v1.to_file(), "{name}: v1 → v2 → read");
-        assert_eq!(back.design.net, v1.design.net, "{name}: the same net");
+        assert_eq!(back.design.net(), v1.design.net(), "{name}: the same net");
     }
     // a mirrored version-2 scene round-trips, and its doubled design is built
     let mut s = builtin::scene("car1").unwrap();
@@ -321,7 +321,7 @@ fn version_1_opens_and_saves_as_version_2() {
     let back = io::load(&path).unwrap();
     assert!(back.mirror);
     let m = back.mirrored_design().unwrap().unwrap();
-    assert_eq!(m.net.rows(), 2 * s.design.net.rows() - 1);
+    assert_eq!(m.net().rows(), 2 * s.design.net().rows() - 1);
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -365,7 +365,7 @@ fn new_design_from_templates() {
         SurfaceScheme::default(),
     )
     .unwrap();
-    assert_eq!((s.design.net.rows(), s.design.net.cols()), (5, 7));
+    assert_eq!((s.design.net().rows(), s.design.net().cols()), (5, 7));
     assert_eq!(
         (s.display_depth, s.edit_depth),
         (4, 0),

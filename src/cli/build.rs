@@ -115,10 +115,10 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
             .shown_design()
             .map_err(|e| CliError::Usage(format!("mirror: {e}")))?;
         design
-            .scheme
+            .scheme()
             .check_depth(
-                design.net.rows(),
-                design.net.cols(),
+                design.net().rows(),
+                design.net().cols(),
                 d.max(scene.edit_depth),
             )
             .map_err(|e| CliError::Usage(format!("--depth {d}: {e}")))?;
@@ -174,8 +174,8 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
     let report = BuildReport {
         scene: model.scene.name.clone(),
         depth: model.scene.display_depth,
-        scheme: model.scene.design.scheme.name(),
-        blend_order: model.scene.design.order.name(),
+        scheme: model.scene.design.scheme().name(),
+        blend_order: model.scene.design.order().name(),
         levels: stats.levels.clone(),
         streamlines: surface.points.rows(),
         points_per_streamline: surface.points.cols(),

@@ -37,8 +37,9 @@ fn finite(what: &str, points: &[DVec3]) {
     }
 }
 
-/// Asserts every tangent is finite and of unit length.
-fn unit(what: &str, tangents: &[DVec3]) {
+/// Asserts every tangent is finite and of unit length (the oracle every
+/// target applies to the tangents it gets back).
+pub fn unit(what: &str, tangents: &[DVec3]) {
     finite(what, tangents);
     if let Some(t) = tangents.iter().find(|t| (t.length() - 1.0).abs() > 1e-9) {
         panic!(
@@ -70,11 +71,11 @@ pub fn scene(data: &[u8]) {
 /// tangents), fine-tuned if it says so, and checks every point and normal.
 pub fn build_scene(scene: &Scene) {
     let design = scene.effective_design();
-    unit("interpolated net", design.net.data());
+    unit("interpolated net", design.net().data());
     let mut depth = scene.display_depth;
-    let c = design.scheme.curve();
+    let c = design.scheme().curve();
     let size = |d: u32| {
-        let (mut r, mut k) = (design.net.rows(), design.net.cols());
+        let (mut r, mut k) = (design.net().rows(), design.net().cols());
         for _ in 0..d {
             r = c.refined_len(r);
             k = c.refined_len(k);
@@ -110,7 +111,7 @@ fn tune(design: &Design, level: &streamline_kernel::Level, tuning: &SurfaceTunin
             level.tangents.row(r),
             level.params.s.row(r),
             level.params.sigma[r],
-            design.initial.point(tr),
+            design.initial().point(tr),
             &f,
             tuning.constraint,
             &mut out,

@@ -123,8 +123,8 @@ fn k(e: streamline_kernel::KernelError) -> String {
 pub(crate) fn check_scene(scene: &Scene) -> Result<(), String> {
     let depth = scene.max_depth();
     let check = |d: &Design| -> Result<(), String> {
-        d.scheme
-            .check_depth(d.net.rows(), d.net.cols(), depth)
+        d.scheme()
+            .check_depth(d.net().rows(), d.net().cols(), depth)
             .map_err(k)?;
         check_params(d, depth).map_err(k)
     };
@@ -186,8 +186,8 @@ pub(crate) fn apply(scene: &mut Scene, e: &AuthorEdit) -> Result<(String, Effect
             (
                 format!(
                     "{label}: the net is {} × {}{dropped}",
-                    s.design.net.rows(),
-                    s.design.net.cols()
+                    s.design.net().rows(),
+                    s.design.net().cols()
                 ),
                 Effect::Full,
             )
@@ -198,7 +198,7 @@ pub(crate) fn apply(scene: &mut Scene, e: &AuthorEdit) -> Result<(String, Effect
         | AuthorEdit::SetInitialOrigin(_)
         | AuthorEdit::SetInitialOrder(_) => {
             s.design = initial_edit(d, e)?;
-            s.initial = InitialSpec::from_kernel(&s.design.initial);
+            s.initial = InitialSpec::from_kernel(s.design.initial());
             if s.mirror {
                 // the mirror plane follows the curve: the seam is projected again
                 s.design = s.design.with_seam_in_plane().map_err(k)?;
@@ -278,7 +278,7 @@ fn initial_edit(d: &Design, e: &AuthorEdit) -> Result<Design, String> {
             if !radians.is_finite() {
                 return Err("the rotation angle is not finite; give a number of degrees".into());
             }
-            let ts = d.initial.qi().tangents();
+            let ts = d.initial().qi().tangents();
             let cur = *ts.get(index).ok_or_else(|| {
                 format!(
                     "initial curve tangent {index} is out of range (there are {}); use 0 to {}",
@@ -307,7 +307,7 @@ pub(crate) fn sigma_of_levels(
 ) -> Vec<Vec<f64>> {
     let mut ls: Vec<_> = levels.iter_mut().map(|(_, l, d)| (l.0, d)).collect();
     ls.sort_by_key(|(l, _)| *l);
-    let c = design.scheme.curve();
+    let c = design.scheme().curve();
     let mut out: Vec<Vec<f64>> = Vec::with_capacity(ls.len());
     for (l, data) in &mut ls {
         let sigma = match out.last() {
@@ -316,7 +316,7 @@ pub(crate) fn sigma_of_levels(
                 c.refine_scalars(prev, &mut next);
                 next
             }
-            _ => design.params.sigma.clone(),
+            _ => design.params().sigma.clone(),
         };
         if data.0.params.sigma != sigma {
             data.0.params.sigma.clone_from(&sigma);

@@ -38,7 +38,7 @@ fn refresh(model: &Model, level: &LevelState, row: usize, from: usize, t: &mut S
     let p = &level.params;
     t.sigma = p.sigma[row];
     if t.t.to_bits() != p.t[row].to_bits() {
-        t.origin = model.scene.design.initial.point(p.t[row]);
+        t.origin = model.scene.design.initial().point(p.t[row]);
         t.t = p.t[row];
     }
     t.changed_from = t.changed_from.min(from);
@@ -95,7 +95,7 @@ pub(crate) fn reblend(
         for row in 0..display.shape().0 {
             new_lines.push((
                 Streamline { row },
-                streamline_of(&design.initial, display, row),
+                streamline_of(design.initial(), display, row),
                 StreamlineAlpha::default(),
                 StreamlinePoints::default(),
             ));
@@ -124,7 +124,7 @@ pub(crate) fn reblend(
             if let Some(&s) = sigma.get(display).and_then(|s| s.get(line.row)) {
                 t.sigma = s;
             }
-            t.origin = model.scene.design.initial.point(t.t);
+            t.origin = model.scene.design.initial().point(t.t);
             t.changed_from = 0;
             n += 1;
         }

@@ -68,7 +68,7 @@ pub(crate) fn apply_edits(
         // both halves come from the doubled net (docs/math.md §9): the cells
         // the frame's edits marked are dirty in both copies (once a frame:
         // the windows are in half rows until here)
-        let m = ctx.model.scene.design.net.rows();
+        let m = ctx.model.scene.design.net().rows();
         ctx.dirty.mirror_rows(m);
     }
     if any {
@@ -121,7 +121,7 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
         Edit::SetScheme(s) => {
             let s = s.validate().map_err(|e| e.to_string())?;
             let mut d = ctx.model.scene.design.clone();
-            d.scheme = s;
+            d.set_scheme(s).map_err(|e| e.to_string())?;
             check_design(&d, ctx.model.scene.max_depth(), ctx.model.scene.mirror)?;
             ctx.model.scene.design = d;
             let dropped = prune_details(&mut ctx.model.scene);
@@ -129,7 +129,7 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             Ok(format!("scheme {}{dropped}", s.name()))
         }
         Edit::SetBlendOrder(o) => {
-            ctx.model.scene.design.order = *o;
+            ctx.model.scene.design.set_order(*o);
             full(ctx);
             Ok(format!("blend order {}", o.name()))
         }
@@ -196,7 +196,7 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             Ok(
                 if *on
                     && !streamline_kernel::levels::tangent_interpolation::applies(
-                        ctx.model.scene.design.scheme,
+                        ctx.model.scene.design.scheme(),
                     )
                 {
                     "interpolate control tangents on (Kobbelt interpolates them already)".into()
@@ -281,7 +281,7 @@ fn author(ctx: &mut EditCtx, a: &super::authoring::AuthorEdit) -> Result<String,
         Effect::Full => full(ctx),
         Effect::Place => ctx.dirty.replace_streamlines(),
         Effect::Row(row) => {
-            for col in 0..ctx.model.scene.design.net.cols() {
+            for col in 0..ctx.model.scene.design.net().cols() {
                 ctx.dirty.cell(0, row, col);
             }
         }
@@ -292,14 +292,14 @@ fn author(ctx: &mut EditCtx, a: &super::authoring::AuthorEdit) -> Result<String,
 /// `d` can be built to `depth`; mirrored, its doubled design too
 /// (`docs/math.md §9`: the levels are the doubled net's).
 fn check_design(d: &Design, depth: u32, mirror: bool) -> Result<(), String> {
-    d.scheme
-        .check_depth(d.net.rows(), d.net.cols(), depth)
+    d.scheme()
+        .check_depth(d.net().rows(), d.net().cols(), depth)
         .map_err(|e| e.to_string())?;
     check_params(d, depth).map_err(|e| e.to_string())?;
     if mirror {
         let m = d.mirrored().map_err(|e| e.to_string())?;
-        m.scheme
-            .check_depth(m.net.rows(), m.net.cols(), depth)
+        m.scheme()
+            .check_depth(m.net().rows(), m.net().cols(), depth)
             .and_then(|_| check_params(&m, depth))
             .map_err(|e| format!("the mirrored surface: {e}"))?;
     }
@@ -314,10 +314,10 @@ fn full(ctx: &mut EditCtx) {
 /// Drops details that no longer fit their level (after a scheme change).
 fn prune_details(scene: &mut Scene) -> String {
     let d = &scene.design;
-    let c = d.scheme.curve();
+    let c = d.scheme().curve();
     let before = scene.details.len();
     let shape = |level: u32| {
-        let (mut r, mut k) = (d.net.rows(), d.net.cols());
+        let (mut r, mut k) = (d.net().rows(), d.net().cols());
         for _ in 0..level {
             r = c.refined_len(r);
             k = c.refined_len(k);
@@ -358,7 +358,7 @@ fn check_cell(rows: usize, cols: usize, row: usize, col: usize, level: u32) -> R
 fn current_direction(ctx: &EditCtx, row: usize, col: usize) -> Result<DVec3, String> {
     let level = ctx.model.scene.edit_depth;
     if level == 0 {
-        let net = &ctx.model.scene.design.net;
+        let net = ctx.model.scene.design.net();
         check_cell(net.rows(), net.cols(), row, col, 0)?;
         return Ok(net.get(row, col));
     }
@@ -382,7 +382,7 @@ fn set_direction(ctx: &mut EditCtx, row: usize, col: usize, dir: DVec3) -> Resul
         return Err(super::authoring::mirror_depth_msg());
     }
     if level == 0 {
-        let net = &ctx.model.scene.design.net;
+        let net = ctx.model.scene.design.net();
         check_cell(net.rows(), net.cols(), row, col, 0)?;
         // mirrored: a seam (row 0) tangent stays in the mirror plane
         let dir = if ctx.model.scene.mirror && row == 0 {
@@ -392,7 +392,11 @@ fn set_direction(ctx: &mut EditCtx, row: usize, col: usize, dir: DVec3) -> Resul
             dir
         };
         if net.get(row, col) != dir {
-            ctx.model.scene.design.net.set(row, col, dir);
+            ctx.model
+                .scene
+                .design
+                .set_tangent(row, col, dir)
+                .map_err(|e| e.to_string())?;
             ctx.dirty.cell(0, row, col);
         }
         return Ok(format!(
@@ -416,26 +420,25 @@ fn set_length(ctx: &mut EditCtx, row: usize, col: usize, k: f64) -> Result<Strin
             "length coefficient {k} must be a positive finite number (1 keeps the length)"
         ));
     }
-    let net = &ctx.model.scene.design.net;
+    let net = ctx.model.scene.design.net();
     check_cell(net.rows(), net.cols(), row, col, 0)?;
     let mut d = ctx.model.scene.design.clone();
-    let old = d.params.s.row(row).to_vec();
-    {
-        let s = d.params.s.row_mut(row);
-        for i in 1..s.len() {
-            let f = if i == col || i == col + 1 { k } else { 1.0 };
-            s[i] = s[i - 1] + (old[i] - old[i - 1]) * f;
-        }
+    let old = d.params().s.row(row).to_vec();
+    let mut s = old.clone();
+    for i in 1..s.len() {
+        let f = if i == col || i == col + 1 { k } else { 1.0 };
+        s[i] = s[i - 1] + (old[i] - old[i - 1]) * f;
     }
-    d.params.sigma[row] = d.params.s.get(row, d.anchor);
-    if d.params.s.row(row).iter().any(|v| !v.is_finite()) {
+    if s.iter().any(|v| !v.is_finite()) {
         return Err(format!(
             "length coefficient {k} makes s overflow; use a smaller one"
         ));
     }
+    d.set_s_row(row, &s)
+        .map_err(|e| format!("length coefficient {k} at ({row}, {col}) refused: {e}"))?;
     check_design(&d, ctx.model.scene.max_depth(), ctx.model.scene.mirror)
         .map_err(|e| format!("length coefficient {k} at ({row}, {col}) refused: {e}"))?;
-    for (c, (a, b)) in old.iter().zip(d.params.s.row(row)).enumerate() {
+    for (c, (a, b)) in old.iter().zip(d.params().s.row(row)).enumerate() {
         if a != b {
             ctx.dirty.cell(0, row, c);
         }
@@ -456,12 +459,12 @@ fn replace(ctx: &mut EditCtx, scene: Scene) {
 fn restore(ctx: &mut EditCtx, target: Scene) {
     let cur = &ctx.model.scene;
     let (a, b) = (&cur.design, &target.design);
-    let same = a.net.rows() == b.net.rows()
-        && a.net.cols() == b.net.cols()
-        && a.scheme == b.scheme
-        && a.order == b.order
-        && a.anchor == b.anchor
-        && a.params.t == b.params.t
+    let same = a.net().rows() == b.net().rows()
+        && a.net().cols() == b.net().cols()
+        && a.scheme() == b.scheme()
+        && a.order() == b.order()
+        && a.anchor() == b.anchor()
+        && a.params().t == b.params().t
         && cur.interpolate_tangents == target.interpolate_tangents
         && !cur.mirror
         && !target.mirror
@@ -473,10 +476,10 @@ fn restore(ctx: &mut EditCtx, target: Scene) {
         full(ctx);
         return;
     }
-    for row in 0..a.net.rows() {
-        for col in 0..a.net.cols() {
-            if a.net.get(row, col) != b.net.get(row, col)
-                || a.params.s.get(row, col) != b.params.s.get(row, col)
+    for row in 0..a.net().rows() {
+        for col in 0..a.net().cols() {
+            if a.net().get(row, col) != b.net().get(row, col)
+                || a.params().s.get(row, col) != b.params().s.get(row, col)
             {
                 ctx.dirty.cell(0, row, col);
             }

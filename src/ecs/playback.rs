@@ -394,12 +394,12 @@ fn check(
             cmp(
                 "scheme",
                 scheme.map(|x| format!("{x:?}")),
-                format!("{:?}", SchemeSpec::from_kernel(s.design.scheme)),
+                format!("{:?}", SchemeSpec::from_kernel(s.design.scheme())),
             );
             cmp(
                 "blend order",
                 blend_order.map(|x| format!("{x:?}")),
-                format!("{:?}", OrderSpec::from_kernel(s.design.order)),
+                format!("{:?}", OrderSpec::from_kernel(s.design.order())),
             );
             cmp(
                 "streamlines",
@@ -434,12 +434,12 @@ fn check(
             cmp(
                 "control rows",
                 rows.map(|x| x.to_string()),
-                s.design.net.rows().to_string(),
+                s.design.net().rows().to_string(),
             );
             cmp(
                 "control columns",
                 cols.map(|x| x.to_string()),
-                s.design.net.cols().to_string(),
+                s.design.net().cols().to_string(),
             );
             cmp(
                 "mirror",
@@ -449,12 +449,12 @@ fn check(
             cmp(
                 "anchor",
                 anchor.map(|x| x.to_string()),
-                s.design.anchor.to_string(),
+                s.design.anchor().to_string(),
             );
             cmp(
                 "initial curve order",
                 initial_order.map(|x| x.to_string()),
-                s.design.initial.qi().order().to_string(),
+                s.design.initial().qi().order().to_string(),
             );
             if bad.is_empty() {
                 Ok(String::new())
@@ -522,7 +522,7 @@ fn check(
         } => {
             let d = &model.scene.design;
             let got = d.streamline_length(*row).ok_or_else(|| {
-                format!("no control row {row}: the net has {} rows", d.net.rows())
+                format!("no control row {row}: the net has {} rows", d.net().rows())
             })?;
             let e = (got - length.0).abs();
             if e <= tolerance.0 {

@@ -94,7 +94,7 @@ fn draw(
         }
     }
     if settings.initial {
-        let curve = &model.scene.design.initial;
+        let curve = model.scene.design.initial();
         let line: Vec<Vec3> = curve.polyline(96).into_iter().map(to_view).collect();
         initial.linestrip(line, CYAN.with_alpha(0.6));
         for a in &arrows.initial {

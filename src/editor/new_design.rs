@@ -348,7 +348,7 @@ mod tests {
                 };
                 let s = crate::scene::Scene::new_design(rows, cols, length, template, scheme)
                     .unwrap_or_else(|e| panic!("{f:?}: {e}"));
-                assert_eq!((s.design.net.rows(), s.design.net.cols()), (2, 64));
+                assert_eq!((s.design.net().rows(), s.design.net().cols()), (2, 64));
             }
         }
     }

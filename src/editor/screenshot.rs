@@ -326,7 +326,7 @@ fn drive(
         && p.frame > at + 2
     {
         if let Some(path) = &req.report {
-            let net = &model.scene.design.net;
+            let net = model.scene.design.net();
             write_report(
                 path,
                 &Report {
@@ -340,7 +340,7 @@ fn drive(
                     initial: model
                         .scene
                         .design
-                        .initial
+                        .initial()
                         .qi()
                         .tangents()
                         .iter()

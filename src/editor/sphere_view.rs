@@ -297,7 +297,7 @@ fn draw(
         to_view(DVec3::Y) * 1.15,
         Color::srgb(0.2, 0.85, 0.3),
     );
-    let net = &model.scene.design.net;
+    let net = model.scene.design.net();
     let blue = Color::srgb(0.3, 0.5, 1.0);
     for r in 0..net.rows() {
         for c in 0..net.cols() {

@@ -162,7 +162,7 @@ pub fn apply(
     edits: &mut MessageWriter<EditMessage>,
     selection: &mut Selection,
 ) {
-    let net = &model.scene.design.net;
+    let net = model.scene.design.net();
     let (edit, next) = action.edit(cell, (net.rows(), net.cols()));
     edits.write(EditMessage::from(Edit::Author(edit)));
     selection.select(HandleId::tangent(0, next.0, next.1));
@@ -287,7 +287,7 @@ fn menu(
         return Ok(());
     };
     // the net changed shape under it (an undo, a load): close
-    let net = &model.scene.design.net;
+    let net = model.scene.design.net();
     if cell.0 >= net.rows() || cell.1 >= net.cols() || handles.edit_depth != 0 {
         menu.open = None;
         return Ok(());

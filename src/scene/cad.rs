@@ -22,7 +22,7 @@ pub fn samples(scene: &Scene, depth: u32) -> Result<Samples, FitError> {
     let mut row = Vec::with_capacity(cols);
     for r in 0..rows {
         place_row_tuned(
-            &design.initial,
+            design.initial(),
             &level.tangents,
             &level.params,
             r,

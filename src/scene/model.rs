@@ -174,7 +174,7 @@ impl InitialSpec {
 impl Scene {
     /// A scene around a design, with default depths and view.
     pub fn from_design(name: &str, design: Design, display_depth: u32) -> Self {
-        let initial = InitialSpec::from_kernel(&design.initial);
+        let initial = InitialSpec::from_kernel(design.initial());
         Scene {
             name: name.to_string(),
             design,
@@ -241,7 +241,7 @@ impl Scene {
     /// the scheme approximates: Catmull–Clark or Doo–Sabin).
     pub fn interpolates_tangents(&self) -> bool {
         self.interpolate_tangents
-            && streamline_kernel::levels::tangent_interpolation::applies(self.design.scheme)
+            && streamline_kernel::levels::tangent_interpolation::applies(self.design.scheme())
     }
 
     /// The design the levels are built from: the designer's, or with
@@ -250,14 +250,16 @@ impl Scene {
     pub fn effective_design(&self) -> Design {
         let mut d = self.design.clone();
         if self.interpolates_tangents() {
-            d.net = streamline_kernel::levels::tangent_interpolation::interpolate_net(
-                d.scheme,
-                d.order,
-                &self.design.net,
+            let net = streamline_kernel::levels::tangent_interpolation::interpolate_net(
+                d.scheme(),
+                d.order(),
+                self.design.net(),
                 1e-12,
                 2000,
             )
             .net;
+            d.set_net(&net)
+                .expect("the interpolated net has the design's shape, and unit tangents");
         }
         d
     }
@@ -280,7 +282,10 @@ impl Scene {
         let d = &self.design;
         let at = |key: &str, e: String| SceneError::locate(file, text, key, e);
         let depth = self.max_depth();
-        if let Err(e) = d.scheme.check_depth(d.net.rows(), d.net.cols(), depth) {
+        if let Err(e) = d
+            .scheme()
+            .check_depth(d.net().rows(), d.net().cols(), depth)
+        {
             let key = if self.display_depth >= self.edit_depth {
                 "display_depth"
             } else {
@@ -291,14 +296,14 @@ impl Scene {
         check_params(d, depth).map_err(|e| at("s", e.to_string()))?;
         if let Some(m) = self.mirrored_design() {
             let m = m.map_err(|e| at("mirror", e.to_string()))?;
-            m.scheme
-                .check_depth(m.net.rows(), m.net.cols(), depth)
+            m.scheme()
+                .check_depth(m.net().rows(), m.net().cols(), depth)
                 .map_err(|e| at("mirror", format!("the mirrored surface: {e}")))?;
             check_params(&m, depth)
                 .map_err(|e| at("mirror", format!("the mirrored surface: {e}")))?;
         }
-        let mut shape = (d.net.rows(), d.net.cols());
-        let c = d.scheme.curve();
+        let mut shape = (d.net().rows(), d.net().cols());
+        let c = d.scheme().curve();
         let mut shapes = vec![shape];
         for _ in 0..depth.max(self.details.keys().map(|k| k.0).max().unwrap_or(0)) {
             shape = (c.refined_len(shape.0), c.refined_len(shape.1));
@@ -456,17 +461,17 @@ impl Scene {
         SceneFile {
             version: Version(VERSION),
             name: self.name.clone(),
-            tangents: (0..d.net.rows())
-                .map(|r| d.net.row(r).iter().map(|&v| Dir::from_vec(v)).collect())
+            tangents: (0..d.net().rows())
+                .map(|r| d.net().row(r).iter().map(|&v| Dir::from_vec(v)).collect())
                 .collect(),
-            s: (0..d.params.s.rows())
-                .map(|r| SRow(d.params.s.row(r).to_vec()))
+            s: (0..d.params().s.rows())
+                .map(|r| SRow(d.params().s.row(r).to_vec()))
                 .collect(),
-            t: d.params.t.iter().map(|&t| Finite(t)).collect(),
-            anchor: d.anchor,
+            t: d.params().t.iter().map(|&t| Finite(t)).collect(),
+            anchor: d.anchor(),
             initial: self.initial.clone(),
-            scheme: SchemeSpec::from_kernel(d.scheme),
-            blend_order: OrderSpec::from_kernel(d.order),
+            scheme: SchemeSpec::from_kernel(d.scheme()),
+            blend_order: OrderSpec::from_kernel(d.order()),
             display_depth: self.display_depth,
             edit_depth: self.edit_depth,
             details: self

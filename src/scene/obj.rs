@@ -352,6 +352,7 @@ fn locate_mesh_error(
         | NonManifoldVertex { vertex }
         | UnreferencedVertex { vertex } => vline(*vertex),
         Empty | TooLarge { .. } => None,
+        _ => None,
     };
     match line {
         Some(l) => SceneError::at(path, l, 1, e.to_string()),

@@ -20,8 +20,10 @@ impl fmt::Display for Place {
     }
 }
 
-/// Everything that can be wrong with input to the kernel.
+/// Everything that can be wrong with input to the kernel. New kinds may be
+/// added; match with a `_` arm.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum KernelError {
     /// A tangent of length zero has no direction.
     ZeroTangent { at: Place },
@@ -37,7 +39,13 @@ pub enum KernelError {
     },
     /// QI curve order outside `2 ..= number of tangents`.
     OrderOutOfRange { order: usize, tangents: usize },
-    /// The refined net would exceed [`crate::limits::MAX_TANGENTS_PER_LEVEL`].
+    /// A net (before any refinement) already has more than
+    /// [`crate::limits::MAX_TANGENTS_PER_LEVEL`] tangents.
+    TooManyTangents { tangents: usize, cap: usize },
+    /// A depth past [`crate::limits::MAX_DEPTH`].
+    DepthPastMax { depth: u32, max: u32 },
+    /// Refining to `depth` would make a level of more than
+    /// [`crate::limits::MAX_TANGENTS_PER_LEVEL`] tangents.
     DepthTooLarge {
         depth: u32,
         tangents: usize,
@@ -118,23 +126,14 @@ impl fmt::Display for KernelError {
                 "QI curve order {order} is not allowed with {tangents} tangents; use an order from 2 to {} (3, 4 or 5 are usual)",
                 (*tangents).min(crate::limits::MAX_QI_ORDER)
             ),
-            DepthTooLarge {
-                depth,
-                tangents,
-                cap,
-            } if *depth == 0 => write!(
+            TooManyTangents { tangents, cap } => write!(
                 f,
                 "{tangents} tangents are asked for, over the cap of {cap} (what the {} MB memory cap affords); use fewer",
                 crate::limits::MEMORY_CAP_BYTES >> 20
             ),
-            DepthTooLarge {
-                depth,
-                tangents,
-                cap,
-            } if *tangents == usize::MAX => write!(
+            DepthPastMax { depth, max } => write!(
                 f,
-                "depth {depth} is past the deepest level allowed ({}); choose a smaller depth",
-                crate::limits::MAX_DEPTH
+                "depth {depth} is past the deepest level allowed ({max}); choose a smaller depth"
             ),
             DepthTooLarge {
                 depth,

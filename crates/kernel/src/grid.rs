@@ -56,7 +56,7 @@ impl<T: Copy> Grid<T> {
 
     /// Gives the grid the shape `rows × cols`, reusing its allocation; entries
     /// are left as they were (new ones are `fill`) for the caller to overwrite.
-    pub fn reshape(&mut self, rows: usize, cols: usize, fill: T) {
+    pub(crate) fn reshape(&mut self, rows: usize, cols: usize, fill: T) {
         self.rows = rows;
         self.cols = cols;
         self.data.resize(rows * cols, fill);
@@ -114,11 +114,6 @@ impl<T: Copy> Grid<T> {
     /// All entries, mutable.
     pub fn data_mut(&mut self) -> &mut [T] {
         &mut self.data
-    }
-
-    /// Nested rows.
-    pub fn to_rows(&self) -> Vec<Vec<T>> {
-        (0..self.rows).map(|r| self.row(r).to_vec()).collect()
     }
 
     /// The transposed grid.

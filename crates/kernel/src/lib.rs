@@ -17,6 +17,12 @@
 //! normalised at the kernel's boundary ([`Tangent::new`], [`sphere::tangent::normalize_all`]);
 //! degenerate geometry is a documented branch, never a NaN; invalid input is a
 //! [`KernelError`] that names the place and the fix. This crate never imports Bevy.
+//!
+//! The public API is what the application, its command line and its fuzz
+//! targets use, plus the documented rules a geometer looks up (the Loop masks,
+//! the caps in [`limits`]); the rest is crate-internal. [`Design`] keeps its
+//! invariants: its fields are read through getters and changed through setters
+//! that check (`docs/kernel-map.md`, "The public API").
 
 pub mod aesthetic;
 pub mod analysis;

@@ -44,7 +44,7 @@ pub fn mesh_bytes(vertices: usize, triangles: usize) -> u64 {
 pub const MAX_COORDINATE: f64 = 1e9;
 
 /// Whether `x` is finite and within ±[`MAX_COORDINATE`].
-pub fn in_range(x: f64) -> bool {
+pub(crate) fn in_range(x: f64) -> bool {
     x.is_finite() && x.abs() <= MAX_COORDINATE
 }
 

@@ -33,7 +33,7 @@ thread_local! {
 static DISABLED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
 /// Whether [`join`] uses the helper thread (on by default).
-pub fn enabled() -> bool {
+pub(crate) fn enabled() -> bool {
     !DISABLED.load(Ordering::Relaxed)
 }
 

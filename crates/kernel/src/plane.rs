@@ -32,7 +32,7 @@ impl MirrorPlane {
 
     /// The reflection of a direction (the linear part of `R`).
     #[inline]
-    pub fn reflect_dir(&self, v: DVec3) -> DVec3 {
+    pub(crate) fn reflect_dir(&self, v: DVec3) -> DVec3 {
         v - self.normal * (2.0 * v.dot(self.normal))
     }
 

@@ -77,24 +77,24 @@ fn design() -> impl Strategy<Value = Design> {
 fn same_bits(a: &Design, b: &Design) -> bool {
     let bits = |d: &Design| {
         (
-            d.net
+            d.net()
                 .data()
                 .iter()
                 .map(|v| v.to_array().map(f64::to_bits))
                 .collect::<Vec<_>>(),
-            d.params
+            d.params()
                 .s
                 .data()
                 .iter()
                 .map(|v| v.to_bits())
                 .collect::<Vec<_>>(),
-            d.params.t.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
-            d.params
+            d.params().t.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+            d.params()
                 .sigma
                 .iter()
                 .map(|v| v.to_bits())
                 .collect::<Vec<_>>(),
-            (d.net.rows(), d.net.cols(), d.anchor),
+            (d.net().rows(), d.net().cols(), d.anchor()),
         )
     };
     bits(a) == bits(b)
@@ -128,15 +128,15 @@ proptest! {
         prop_assume!(rows.min(cols) >= scheme.curve().min_len() || depth == 0);
         let d = Design::from_template(rows, cols, len, Template::Cylinder { radius: r, degrees }, scheme, BlendOrder::SFirst).unwrap();
         let phi = degrees.to_radians();
-        prop_assert!((d.initial.length() - r * phi).abs() < 1e-14 * r * phi, "length r·φ");
+        prop_assert!((d.initial().length() - r * phi).abs() < 1e-14 * r * phi, "length r·φ");
         // the initial curve is the closed-form arc, to the quadrature's error
         for j in 0..=20 {
             let t = r * phi * j as f64 / 20.0;
             let exact = DVec3::new(0.0, r * (t / r).sin(), r * (1.0 - (t / r).cos()));
-            let e = (d.initial.point(t) - exact).length();
+            let e = (d.initial().point(t) - exact).length();
             prop_assert!(e < 1e-12 * r, "arc point at t={t}: error {e:e} (r={r}, φ={degrees}°)");
         }
-        prop_assert!(d.initial.quadrature_error_estimate() < 1e-13 * r, "quadrature {:e}", d.initial.quadrature_error_estimate());
+        prop_assert!(d.initial().quadrature_error_estimate() < 1e-13 * r, "quadrature {:e}", d.initial().quadrature_error_estimate());
         let p = points(&d, depth);
         let worst = p.data().iter().map(|v| ((v.y * v.y + (v.z - r) * (v.z - r)).sqrt() - r).abs()).fold(0.0, f64::max);
         prop_assert!(worst < 1e-6 * r, "off the cylinder by {worst:e} (r={r})");
@@ -217,12 +217,18 @@ fn template_bad_values_are_errors_with_the_fix() {
 
 /// Row `2i − 1` (4-point) or the leg midpoint (approximating schemes) of one
 /// across-rows step of the whole net, computed by the plain column refinement.
-fn reference_row(d: &Design, i: usize) -> (Vec<DVec3>, Vec<f64>, f64) {
-    let c = d.scheme.curve();
-    let fine = refine_cols(c, &d.net);
-    let fine_s = refine_cols(c, &d.params.s);
-    let mut t = Vec::new();
-    c.refine_scalars(&d.params.t, &mut t);
+fn reference_row(
+    c: CurveScheme,
+    net: &Grid<DVec3>,
+    s: &Grid<f64>,
+    t: &[f64],
+    i: usize,
+) -> (Vec<DVec3>, Vec<f64>, f64) {
+    let fine = refine_cols(c, net);
+    let fine_s = refine_cols(c, s);
+    let mut t_fine = Vec::new();
+    c.refine_scalars(t, &mut t_fine);
+    let t = t_fine;
     match c {
         CurveScheme::FourPoint { .. } => (
             fine.row(2 * i - 1).to_vec(),
@@ -261,25 +267,25 @@ proptest! {
         let e = match d.inserted(axis, at) { Ok(e) => e, Err(KernelError::ParamsNotIncreasing { .. }) => return Ok(()), Err(x) => panic!("{x}") };
         // a column insert is a row insert of the transposed net
         let (tr, tn) = if col {
-            let dt = Design { net: d.net.transpose(), params: streamline_kernel::levels::params::ParamGrid { s: d.params.s.transpose(), t: vec![0.0; d.net.cols()], sigma: vec![0.0; d.net.cols()] }, ..d.clone() };
-            let (row, s, _) = reference_row(&dt, at);
+            let t = vec![0.0; d.net().cols()];
+            let (row, s, _) = reference_row(d.scheme().curve(), &d.net().transpose(), &d.params().s.transpose(), &t, at);
             (row, s)
         } else {
-            let (row, s, t) = reference_row(&d, at);
-            prop_assert!((e.params.t[at] - t).abs() <= 1e-12 * (1.0 + t.abs()), "t {} vs {t}", e.params.t[at]);
+            let (row, s, t) = reference_row(d.scheme().curve(), d.net(), &d.params().s, &d.params().t, at);
+            prop_assert!((e.params().t[at] - t).abs() <= 1e-12 * (1.0 + t.abs()), "t {} vs {t}", e.params().t[at]);
             (row, s)
         };
         for k in 0..tr.len() {
-            let (got, gs) = if col { (e.net.get(k, at), e.params.s.get(k, at)) } else { (e.net.get(at, k), e.params.s.get(at, k)) };
+            let (got, gs) = if col { (e.net().get(k, at), e.params().s.get(k, at)) } else { (e.net().get(at, k), e.params().s.get(at, k)) };
             prop_assert!((got - tr[k]).length() < 1e-13, "tangent {k}: {got:?} vs step {:?}", tr[k]);
             prop_assert!((gs - tn[k]).abs() < 1e-12 * (1.0 + gs.abs()), "s {k}: {gs} vs {}", tn[k]);
         }
         prop_assert_eq!(e.count(axis), n + 1);
-        let s_anchor: Vec<f64> = (0..e.net.rows()).map(|r| e.params.s.get(r, e.anchor)).collect();
-        prop_assert_eq!(&e.params.sigma, &s_anchor, "σ is s of the anchor column");
+        let s_anchor: Vec<f64> = (0..e.net().rows()).map(|r| e.params().s.get(r, e.anchor())).collect();
+        prop_assert_eq!(&e.params().sigma, &s_anchor, "σ is s of the anchor column");
         // the anchor stays on the same column
         if col {
-            prop_assert_eq!(e.anchor, d.anchor + usize::from(d.anchor >= at));
+            prop_assert_eq!(e.anchor(), d.anchor() + usize::from(d.anchor() >= at));
         }
         // deleting the new line gives back the design bit for bit
         let back = e.deleted(axis, at).unwrap();
@@ -292,7 +298,7 @@ proptest! {
         let n = d.count(axis);
         let at = if front { 0 } else { n };
         let e = d.inserted(axis, at).unwrap();
-        let get = |g: &Design, line: usize, k: usize| if col { (g.net.get(k, line), g.params.s.get(k, line)) } else { (g.net.get(line, k), g.params.s.get(line, k)) };
+        let get = |g: &Design, line: usize, k: usize| if col { (g.net().get(k, line), g.params().s.get(k, line)) } else { (g.net().get(line, k), g.params().s.get(line, k)) };
         let (near, far) = if front { (0, 1) } else { (n - 1, n - 2) };
         let new = if front { 0 } else { n };
         let shift = usize::from(front);
@@ -323,8 +329,8 @@ proptest! {
             prop_assert!(old == a, "existing lines keep their bits");
         }
         if !col {
-            let (ta, tb) = (d.params.t[near], d.params.t[far]);
-            prop_assert!((e.params.t[new] - (2.0 * ta - tb)).abs() < 1e-12 * (1.0 + ta.abs() + tb.abs()));
+            let (ta, tb) = (d.params().t[near], d.params().t[far]);
+            prop_assert!((e.params().t[new] - (2.0 * ta - tb)).abs() < 1e-12 * (1.0 + ta.abs() + tb.abs()));
         }
         prop_assert!(same_bits(&e.deleted(axis, at).unwrap(), &d));
     }
@@ -377,15 +383,19 @@ fn structure_bad_values_are_errors() {
 fn delete_anchor_column_passes_the_anchor_on() {
     let d = presets::car1().with_anchor(8).unwrap();
     let e = d.deleted(Axis::Column, 8).unwrap();
-    assert_eq!(e.anchor, 7, "the last column's anchor goes to the new last");
+    assert_eq!(
+        e.anchor(),
+        7,
+        "the last column's anchor goes to the new last"
+    );
     let d = presets::car1().with_anchor(4).unwrap();
     assert_eq!(
-        d.deleted(Axis::Column, 4).unwrap().anchor,
+        d.deleted(Axis::Column, 4).unwrap().anchor(),
         4,
         "the next column takes its place"
     );
-    assert_eq!(d.deleted(Axis::Column, 2).unwrap().anchor, 3);
-    assert_eq!(d.deleted(Axis::Column, 6).unwrap().anchor, 4);
+    assert_eq!(d.deleted(Axis::Column, 2).unwrap().anchor(), 3);
+    assert_eq!(d.deleted(Axis::Column, 6).unwrap().anchor(), 4);
 }
 
 // A surface-to-surface distance, computed independently of the kernel's
@@ -532,7 +542,7 @@ proptest! {
     fn initial_curve_edit_moves_every_streamline_rigidly(d in design(), which in 0usize..4, dir in unit(), k in 0usize..3, x in -2.0f64..2.0, depth in 0u32..3) {
         let e = match which {
             0 => d.with_initial_direction(k, (DVec3::Y + dir * 0.8).normalize()),
-            1 => d.with_initial_length(d.initial.length() * (0.3 + x.abs())),
+            1 => d.with_initial_length(d.initial().length() * (0.3 + x.abs())),
             2 => d.with_initial_origin(dir * x),
             _ => d.with_initial_order(2 + k % 2),
         };
@@ -543,7 +553,7 @@ proptest! {
         rigid_rows(&pa, &pb, 1e-12).map_err(TestCaseError::fail)?;
         for r in 0..pa.rows() {
             let t = la.params.t[r];
-            let want = e.initial.point(t) - d.initial.point(t);
+            let want = e.initial().point(t) - d.initial().point(t);
             let got = pb.get(r, 0) - pa.get(r, 0);
             prop_assert!((want - got).length() < 1e-12, "row {r} moves by {got:?}, the curve by {want:?}");
         }
@@ -551,7 +561,7 @@ proptest! {
 
     #[test]
     fn anchor_edit_moves_every_streamline_rigidly(d in design(), col in 0usize..8, depth in 0u32..3) {
-        let e = d.with_anchor(col % d.net.cols()).unwrap();
+        let e = d.with_anchor(col % d.net().cols()).unwrap();
         let (la, lb) = (d.level(depth).unwrap(), e.level(depth).unwrap());
         prop_assert!(la.tangents == lb.tangents && la.params.s == lb.params.s, "same tangents and s");
         rigid_rows(&d.streamlines(&la), &e.streamlines(&lb), 1e-12).map_err(TestCaseError::fail)?;
@@ -559,27 +569,27 @@ proptest! {
 
     #[test]
     fn streamline_length_is_exact(d in design(), row in 0usize..7, len in 0.01f64..30.0) {
-        let row = row % d.net.rows();
+        let row = row % d.net().rows();
         let e = match d.with_streamline_length(row, len) { Ok(e) => e, Err(KernelError::ParamsNotIncreasing { .. }) => return Ok(()), Err(x) => panic!("{x}") };
         let pts = e.streamlines(&e.base());
         let got = polyline_length(pts.row(row));
         prop_assert!((got - len).abs() < 1e-12 * len, "streamline {row} is {got} long, asked {len}");
-        for r in 0..d.net.rows() {
+        for r in 0..d.net().rows() {
             if r != row {
-                prop_assert!(e.params.s.row(r) == d.params.s.row(r), "other rows keep their s");
+                prop_assert!(e.params().s.row(r) == d.params().s.row(r), "other rows keep their s");
             }
         }
         // same shape: the polyline is the old one scaled about its anchor point
         let old = d.streamlines(&d.base());
         let f = len / d.streamline_length(row).unwrap();
         let (a0, a1) = (old.row(row)[0], pts.row(row)[0]);
-        let o = d.initial.point(d.params.t[row]);
+        let o = d.initial().point(d.params().t[row]);
         for k in 0..pts.cols() {
             let want = o + (old.get(row, k) - o) * f;
             prop_assert!((pts.get(row, k) - want).length() < 1e-9 * (1.0 + f), "point {k}: {:?} vs {want:?} ({a0:?} {a1:?})", pts.get(row, k));
         }
         // an interpolatory scheme keeps the control row at every depth: same length there
-        if let (true, Ok(l)) = (d.scheme.is_interpolatory(), e.level(2)) {
+        if let (true, Ok(l)) = (d.scheme().is_interpolatory(), e.level(2)) {
             let fine = polyline_length(e.streamlines(&l).row(row * 4));
             prop_assert!((fine - len).abs() < 1e-12 * len, "depth 2: {fine} vs {len}");
         }
@@ -657,7 +667,7 @@ proptest! {
     fn mirror_mesh_equals_its_reflection(d in design(), depth in 0u32..4) {
         let m = d.mirrored().unwrap();
         let plane = d.mirror_plane();
-        prop_assert!((plane.normal - d.initial.tangent(d.params.t[0])).length() < 1e-15);
+        prop_assert!((plane.normal - d.initial().tangent(d.params().t[0])).length() < 1e-15);
         let p = points(&m, depth);
         let [lo, hi] = bounds(p.data().iter().copied());
         let tol = 1e-11 * (1.0 + (hi - lo).length());
@@ -669,12 +679,12 @@ proptest! {
             }
         }
         // the half's rows are the design's rows (row m − 1 + r)
-        let rows = d.net.rows();
+        let rows = d.net().rows();
         for r in 1..rows {
-            prop_assert!(m.net.row(rows - 1 + r) == d.net.row(r));
+            prop_assert!(m.net().row(rows - 1 + r) == d.net().row(r));
         }
         // Kobbelt keeps the seam row: it lies in the plane at every depth
-        if d.scheme.is_interpolatory() {
+        if d.scheme().is_interpolatory() {
             let seam = (n - 1) / 2;
             for k in 0..p.cols() {
                 prop_assert!(plane.distance(p.get(seam, k)).abs() < tol, "seam point {k} off the plane by {:e}", plane.distance(p.get(seam, k)));
@@ -691,7 +701,7 @@ proptest! {
         prop_assert!(same_bits(&a, &b), "mirroring the projected half differs from mirroring the half");
         prop_assert!(same_bits(&d.mirrored().unwrap(), &a), "mirroring is a pure function");
         let seam = on.mirror_plane();
-        for &v in on.net.row(0) {
+        for &v in on.net().row(0) {
             prop_assert!(v.dot(seam.normal).abs() < 1e-14, "seam tangent off the plane: {:e}", v.dot(seam.normal));
         }
     }
@@ -771,12 +781,12 @@ fn mirror_initial_curve_is_reflected_below_t0() {
     let plane = d.mirror_plane();
     for j in 1..=10 {
         let t = 0.2 * j as f64;
-        let a = m.initial.point(-t);
-        let b = plane.reflect_point(d.initial.point(t));
+        let a = m.initial().point(-t);
+        let b = plane.reflect_point(d.initial().point(t));
         assert!((a - b).length() < 1e-14, "C(−{t}) = R C({t})");
-        assert_eq!(m.initial.point(t), d.initial.point(t));
+        assert_eq!(m.initial().point(t), d.initial().point(t));
     }
     // C¹ across t₀ = 0: the one-sided tangents agree
-    let (l, r) = (m.initial.tangent(-1e-9), m.initial.tangent(0.0));
+    let (l, r) = (m.initial().tangent(-1e-9), m.initial().tangent(0.0));
     assert!((l - r).length() < 1e-8, "{l:?} vs {r:?}");
 }

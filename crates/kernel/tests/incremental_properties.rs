@@ -52,7 +52,7 @@ fn design(scheme: SurfaceScheme, order: BlendOrder, rows: usize, cols: usize) ->
     )
     .unwrap();
     let t = (0..rows).map(|r| r as f64 * 0.3).collect();
-    Design::new(&net, s, t, cols / 2, scheme, order, base.initial.clone()).unwrap()
+    Design::new(&net, s, t, cols / 2, scheme, order, base.initial().clone()).unwrap()
 }
 
 fn edit_strategy(rows: usize, cols: usize, depth: u32) -> impl Strategy<Value = Edit> {
@@ -104,7 +104,7 @@ fn check_sequence(
                 seeds[level as usize] = Some(DirtyWindow::cell(r, c));
             }
             Edit::Length { r, c, k } => {
-                let s = d.params.s.row_mut(r);
+                let mut s = d.params().s.row(r).to_vec();
                 let (a, b) = (s[c] - s[c - 1], s.get(c + 1).map(|x| x - s[c]));
                 let shift_c = (k - 1.0) * a;
                 let shift_next = shift_c + b.map_or(0.0, |b| (k - 1.0) * b);
@@ -112,12 +112,15 @@ fn check_sequence(
                 for x in &mut s[c + 1..] {
                     *x += shift_next;
                 }
-                d.params.sigma[r] = d.params.s.get(r, d.anchor);
+                if d.set_s_row(r, &s).is_err() {
+                    refused += 1;
+                    continue;
+                }
                 seeds[0] = Some(DirtyWindow {
                     rows: streamline_kernel::levels::dirty_window::Span::single(r),
                     cols: streamline_kernel::levels::dirty_window::Span::new(
                         c,
-                        d.params.s.cols() - 1,
+                        d.params().s.cols() - 1,
                     ),
                 });
             }

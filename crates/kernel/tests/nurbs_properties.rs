@@ -238,11 +238,11 @@ fn perturbed() -> impl Strategy<Value = (Design, &'static str)> {
                 1 => (presets::car2(), "car2"),
                 _ => (presets::qi_demo(1), "qi-side"),
             };
-            let (rows, cols) = (d.net.rows(), d.net.cols());
+            let (rows, cols) = (d.net().rows(), d.net().cols());
             for r in 0..rows {
                 for c in 0..cols {
                     let (axis, angle) = turns[(r * cols + c) % turns.len()];
-                    let t = DQuat::from_axis_angle(axis, angle) * d.net.get(r, c);
+                    let t = DQuat::from_axis_angle(axis, angle) * d.net().get(r, c);
                     d.set_tangent(r, c, t).unwrap();
                 }
             }

@@ -424,7 +424,7 @@ pub fn incremental() -> Vec<Workload> {
                 let scene = Scene::from_design(net, design.clone(), depth);
                 let mut app = ecs::headless_app(scene);
                 let mut sign = 1.0;
-                let order = design.order;
+                let order = design.order();
                 out.push(Workload {
                     name: format!("ecs/{net}/d{depth}/{what}"),
                     run: Box::new(move || {

@@ -329,7 +329,7 @@ fn level_handles(
     let mut pts = Vec::new();
     let mut out = Vec::with_capacity(rows * cols);
     let mut copies = Vec::with_capacity(reflected * cols);
-    let net = &model.scene.design.net;
+    let net = model.scene.design.net();
     for r in 0..rows {
         place_row_tuned(initial, &l.tangents, &l.params, r, tuning, &mut pts);
         for c in 0..cols {
@@ -367,7 +367,7 @@ fn level_handles(
 /// Greville abscissa `ξ_i = (u_{i+1} + … + u_{i+k−1}) / (k − 1)` of the QI
 /// knot vector (where the QI curve's tangent is nearest `t_i`), drawn `length` long.
 fn initial_handles(model: &Model, length: f64) -> Vec<Handle> {
-    let curve = &model.scene.design.initial;
+    let curve = model.scene.design.initial();
     let qi = curve.qi();
     let (k, u) = (qi.order(), qi.knots());
     qi.tangents()
@@ -419,9 +419,9 @@ pub(super) fn rebuild(
     };
     let initial = shown
         .as_ref()
-        .map_or(&model.scene.design.initial, |d| &d.initial);
+        .map_or(model.scene.design.initial(), |d| d.initial());
     let reflected = match &shown {
-        Some(_) => model.scene.design.net.rows().saturating_sub(1),
+        Some(_) => model.scene.design.net().rows().saturating_sub(1),
         None => 0,
     };
     let (mut controls, mut mirrored) = level_handles(&model, &base.0, 0.7, initial, reflected);
@@ -452,7 +452,7 @@ pub(super) fn rebuild(
     };
     // the initial curve's arrows: a good part of its spacing between
     // tangents, so they stand out of the column of control arrows there
-    let curve = &model.scene.design.initial;
+    let curve = model.scene.design.initial();
     let spacing = curve.length() / (curve.qi().tangents().len().max(2) - 1) as f64;
     let initial = initial_handles(&model, (0.6 * spacing).min(2.0 * cap).max(1e-6));
     *handles = Handles {

@@ -17,10 +17,10 @@ const MAX_ORDER: usize = 8;
 
 pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
     let design = &p.model.scene.design;
-    let curve = &design.initial;
+    let curve = design.initial();
     let n = curve.qi().tangents().len();
     let (cur_order, cur_length, cur_origin) = (curve.qi().order(), curve.length(), curve.origin());
-    let (cur_anchor, cols) = (design.anchor, design.net.cols());
+    let (cur_anchor, cols) = (design.anchor(), design.net().cols());
     let tangents = curve.qi().tangents().to_vec();
 
     let mut order = cur_order;

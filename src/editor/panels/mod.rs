@@ -306,7 +306,7 @@ fn track_opened(
             })
         });
     if o.net.is_none() || opened {
-        o.net = Some(model.scene.design.net.clone());
+        o.net = Some(model.scene.design.net().clone());
     }
     o.seen = log.frame;
 }

@@ -25,7 +25,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
 
 fn body(ui: &mut egui::Ui, p: &mut PanelCtx, fields: &mut IndexFields) {
     let (rows, cols) = {
-        let net = &p.model.scene.design.net;
+        let net = p.model.scene.design.net();
         (net.rows(), net.cols())
     };
     ui.label(format!("Control net: {rows} rows × {cols} columns"))

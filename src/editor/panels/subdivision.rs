@@ -10,7 +10,7 @@ use streamline_kernel::{BlendOrder, SurfaceScheme};
 const MAX_DEPTH: u32 = 7;
 
 pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
-    let (cur_scheme, cur_order) = (p.model.scene.design.scheme, p.model.scene.design.order);
+    let (cur_scheme, cur_order) = (p.model.scene.design.scheme(), p.model.scene.design.order());
     let mut scheme = cur_scheme;
     let omega = match scheme {
         SurfaceScheme::Kobbelt { omega } => omega,
@@ -72,7 +72,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
     }
     let mut interp = p.model.scene.interpolate_tangents;
     let approximating =
-        streamline_kernel::levels::tangent_interpolation::applies(p.model.scene.design.scheme);
+        streamline_kernel::levels::tangent_interpolation::applies(p.model.scene.design.scheme());
     if ui
         .add_enabled(
             approximating,

@@ -27,7 +27,7 @@ pub use template::Template;
 pub const MAX_NET_SIDE: usize = 64;
 
 /// Checks an authored net's size: `2 ..= MAX_NET_SIDE` a side.
-pub fn check_net_size(rows: usize, cols: usize) -> Result<(), crate::KernelError> {
+pub(crate) fn check_net_size(rows: usize, cols: usize) -> Result<(), crate::KernelError> {
     if rows > MAX_NET_SIDE || cols > MAX_NET_SIDE {
         return Err(crate::KernelError::NetTooLarge {
             rows,

@@ -99,7 +99,7 @@ fn greville_count(degrees: f64) -> usize {
 
 /// `φ·ξ_i` for the `n` Greville abscissae of the QI curve's own knot vector
 /// (order [`TEMPLATE_ORDER`]).
-pub fn greville_angles(n: usize, phi: f64) -> Result<Vec<f64>, KernelError> {
+pub(crate) fn greville_angles(n: usize, phi: f64) -> Result<Vec<f64>, KernelError> {
     let k = TEMPLATE_ORDER;
     let q = QiCurve::new(&vec![DVec3::Y; n], k)?;
     let u = q.knots();

@@ -137,8 +137,9 @@ impl QiCurve {
         }
     }
 
+    #[cfg(test)]
     /// `B̃_{i,k}(u)` for `i = 1..=n` (Eq. 24), written into `out` (length `n`).
-    pub fn cumulative_basis(&self, u: f64, out: &mut [f64]) {
+    pub(crate) fn cumulative_basis(&self, u: f64, out: &mut [f64]) {
         let u = u.clamp(0.0, 1.0);
         let n = self.tangents.len() - 1;
         let k = self.order;
@@ -192,8 +193,7 @@ impl QiCurve {
             });
         }
         if m > crate::limits::MAX_TANGENTS_PER_LEVEL {
-            return Err(KernelError::DepthTooLarge {
-                depth: 0,
+            return Err(KernelError::TooManyTangents {
                 tangents: m,
                 cap: crate::limits::MAX_TANGENTS_PER_LEVEL,
             });

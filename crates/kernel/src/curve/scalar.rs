@@ -21,7 +21,7 @@ pub fn at(scheme: CurveScheme, p: &[f64], k: usize) -> f64 {
 
 /// `w = ω/16` of the planar 4-point rule (Eq. 60).
 #[inline(always)]
-pub fn insert_weight(scheme: CurveScheme) -> f64 {
+pub(crate) fn insert_weight(scheme: CurveScheme) -> f64 {
     match scheme {
         CurveScheme::FourPoint { omega } => omega / 16.0,
         _ => 1.0 / 16.0,

@@ -72,8 +72,9 @@ impl CurveScheme {
         }
     }
 
+    #[cfg(test)]
     /// Number of tangents after `depth` steps from `n`, or `None` on overflow.
-    pub fn len_at_depth(self, mut n: usize, depth: u32) -> Option<usize> {
+    pub(crate) fn len_at_depth(self, mut n: usize, depth: u32) -> Option<usize> {
         for _ in 0..depth {
             if n < self.min_len() {
                 return None;
@@ -82,14 +83,6 @@ impl CurveScheme {
             n = self.refined_len(n / 2);
         }
         Some(n)
-    }
-
-    /// How many coarse cells on each side an output depends on (docs/architecture.md, incremental rebuild).
-    pub fn stencil_radius(self) -> usize {
-        match self {
-            CurveScheme::FourPoint { .. } => 2,
-            _ => 1,
-        }
     }
 
     /// Checks that `n` tangents can be refined `depth` times within the size cap.
@@ -102,17 +95,14 @@ impl CurveScheme {
             });
         }
         let cap = MAX_TANGENTS_PER_LEVEL;
-        let too_big = |tangents| KernelError::DepthTooLarge {
-            depth,
-            tangents,
-            cap,
-        };
         if depth > MAX_DEPTH {
-            return Err(too_big(usize::MAX));
+            return Err(KernelError::DepthPastMax {
+                depth,
+                max: MAX_DEPTH,
+            });
         }
         if n.saturating_mul(rows) > cap {
-            return Err(KernelError::DepthTooLarge {
-                depth: 0,
+            return Err(KernelError::TooManyTangents {
                 tangents: n.saturating_mul(rows),
                 cap,
             });
@@ -129,7 +119,11 @@ impl CurveScheme {
             m = self.refined_len(m);
             let total = m.saturating_mul(rows);
             if total > cap {
-                return Err(too_big(total));
+                return Err(KernelError::DepthTooLarge {
+                    depth,
+                    tangents: total,
+                    cap,
+                });
             }
         }
         Ok(())
@@ -139,7 +133,7 @@ impl CurveScheme {
     /// `input.len() ≥ self.min_len()` and the inputs are unit (not re-checked).
     /// Every output is computed with the operations of [`Prepared::tangent`]
     /// (bit-for-bit equal), sharing each leg's work between its outputs.
-    pub fn refine_tangents(self, input: &[DVec3], out: &mut Vec<DVec3>) {
+    pub(crate) fn refine_tangents(self, input: &[DVec3], out: &mut Vec<DVec3>) {
         out.clear();
         let n = input.len();
         debug_assert!(n >= self.min_len());
@@ -170,7 +164,7 @@ impl CurveScheme {
 
     /// Where output `k` of one step on `n` inputs comes from.
     #[inline]
-    pub fn stencil(self, n: usize, k: usize) -> Stencil {
+    pub(crate) fn stencil(self, n: usize, k: usize) -> Stencil {
         match self {
             CurveScheme::Chaikin if k.is_multiple_of(2) => Stencil::Quarter(k / 2),
             CurveScheme::Chaikin => Stencil::ThreeQuarters(k / 2),
@@ -183,13 +177,6 @@ impl CurveScheme {
             CurveScheme::FourPoint { .. } if k == 2 * n - 3 => Stencil::End(n - 1, n - 2, n - 3),
             CurveScheme::FourPoint { .. } => Stencil::Insert((k - 1) / 2),
         }
-    }
-
-    /// Output `k` of one refinement step of unit tangents, bit-for-bit equal
-    /// to [`Self::refine_tangents`]'s, for the windowed rebuild.
-    #[inline]
-    pub fn tangent_at(self, t: &[DVec3], k: usize) -> DVec3 {
-        Prepared::new(self).tangent(self.stencil(t.len(), k), |j| t[j])
     }
 
     /// One refinement step of planar scalars (the parameter grids: docs/math.md §4), the
@@ -225,14 +212,14 @@ impl FourPointRule {
     /// The rule for `omega`, from a per-thread cache of the last ω used (building
     /// one costs four 24-term series; a surface step refines hundreds of rows).
     #[inline]
-    pub fn cached(omega: f64) -> Self {
+    pub(crate) fn cached(omega: f64) -> Self {
         Self::with_cached(omega, |rule| *rule)
     }
 
     /// Runs `f` on the cached rule for `omega` without copying it (the rule is
     /// 1.5 kB: the per-entry window path calls this for every output).
     #[inline]
-    pub fn with_cached<R>(omega: f64, f: impl FnOnce(&FourPointRule) -> R) -> R {
+    pub(crate) fn with_cached<R>(omega: f64, f: impl FnOnce(&FourPointRule) -> R) -> R {
         thread_local! {
             static LAST: std::cell::RefCell<Option<(u64, FourPointRule)>> = const { std::cell::RefCell::new(None) };
         }
@@ -300,7 +287,7 @@ impl FourPointRule {
 
 /// Which inputs one output of a step reads, and by which rule (docs/math.md §2).
 /// The same stencils drive tangents ([`Prepared::tangent`]) and scalars
-/// ([`crate::curve::scalar::apply`]), so the parameter grids follow the tangents.
+/// (`crate::curve::scalar::apply`), so the parameter grids follow the tangents.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Stencil {
     /// Input `i` itself (4-point, even outputs).
@@ -360,7 +347,7 @@ impl Prepared {
     }
 
     /// The 4-point rule, when the scheme is the 4-point scheme.
-    pub fn four_point(&self) -> Option<&FourPointRule> {
+    pub(crate) fn four_point(&self) -> Option<&FourPointRule> {
         matches!(self.scheme, CurveScheme::FourPoint { .. }).then_some(&self.four)
     }
 
@@ -461,7 +448,22 @@ mod tests {
         ));
         assert!(matches!(
             subdivide(CurveScheme::Chaikin, &t, 40),
-            Err(KernelError::DepthTooLarge { .. })
+            Err(KernelError::DepthPastMax { depth: 40, max: 16 })
+        ));
+        assert!(matches!(
+            CurveScheme::Chaikin.check_depth(t.len(), 16, 1000),
+            Err(KernelError::DepthTooLarge {
+                depth: 16,
+                cap: MAX_TANGENTS_PER_LEVEL,
+                ..
+            })
+        ));
+        assert!(matches!(
+            CurveScheme::Chaikin.check_depth(t.len(), 0, MAX_TANGENTS_PER_LEVEL),
+            Err(KernelError::TooManyTangents {
+                cap: MAX_TANGENTS_PER_LEVEL,
+                ..
+            })
         ));
         let mut z = t.clone();
         z[2] = DVec3::ZERO;

@@ -121,7 +121,7 @@ impl BSpline {
     }
 
     /// Replaces the control values (same count; finite, not re-checked).
-    pub fn set_values(&mut self, values: &[f64]) {
+    pub(crate) fn set_values(&mut self, values: &[f64]) {
         debug_assert_eq!(values.len(), self.values.len());
         self.values.copy_from_slice(values);
     }
@@ -140,7 +140,7 @@ impl BSpline {
     }
 
     /// The antiderivative `A(u) = ∫₀ᵘ α`, exactly, as a B-spline of degree `p+1`.
-    pub fn antiderivative(&self) -> BSpline {
+    pub(crate) fn antiderivative(&self) -> BSpline {
         let p = self.degree;
         let k = &self.knots;
         let mut knots = Vec::with_capacity(k.len() + 2);
@@ -165,7 +165,7 @@ impl BSpline {
     /// fine-tuning constraints): the antiderivative of basis `i` has values
     /// `wᵢ = (k_{i+p+1} − kᵢ)/(p+1)` from index `i+1` on, so
     /// `∫₀ᵘ Nᵢ = wᵢ · Σ_{j>i} N'_j(u)` with `N'` the degree `p+1` basis.
-    pub fn basis_integrals(&self, u: f64, out: &mut [f64]) {
+    pub(crate) fn basis_integrals(&self, u: f64, out: &mut [f64]) {
         let p = self.degree;
         let m = self.values.len();
         debug_assert_eq!(out.len(), m);
@@ -325,7 +325,7 @@ impl TensorBSpline {
 
     /// The function along one streamline at `v` ∈ [0, 1]: control values
     /// `dᵢ = Σ_j c_{j,i} M_j(v)`.
-    pub fn along_at(&self, v: f64) -> BSpline {
+    pub(crate) fn along_at(&self, v: f64) -> BSpline {
         let (mu, m) = self.across.basis(v);
         let q = self.across.degree;
         let cols = self.values.cols();
@@ -344,19 +344,6 @@ impl TensorBSpline {
     /// `α(u, v)`.
     pub fn eval(&self, u: f64, v: f64) -> f64 {
         self.along_at(v).eval(u)
-    }
-
-    /// Whether every control value is 1 (the function changes nothing).
-    pub fn is_identity(&self) -> bool {
-        self.values.data().iter().all(|&v| v == 1.0)
-    }
-
-    /// The range of `v` over which `M_row` is not zero (its support), for
-    /// deciding which streamlines an edit of that row reaches.
-    pub fn support_t(&self, row: usize) -> (f64, f64) {
-        let q = self.across.degree;
-        let k = &self.across.knots;
-        (k[row], k[row + q + 1])
     }
 }
 

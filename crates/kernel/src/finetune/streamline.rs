@@ -5,7 +5,7 @@
 //! (`a₀ = s₀`, `a_k = (s_{k−1} + s_k)/2`, `a_{n+1} = s_n`). So the fine-tuned
 //! streamline is again a polyline through `n+2` points,
 //! `P_{k+1} = P_k + t_k (A(a_{k+1}) − A(a_k))`, with `A = ∫ α` exact
-//! ([`BSpline::antiderivative`]); between its points `p'(s) = α(s) t_k`, exactly
+//! (`BSpline::antiderivative`); between its points `p'(s) = α(s) t_k`, exactly
 //! `α` times the original derivative. `α` is a function of
 //! `u = (s − s₀)/(s_n − s₀)`; beyond `[s₀, s_n]` (an anchor outside, as
 //! approximating schemes give) it keeps its end value.

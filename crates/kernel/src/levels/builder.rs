@@ -120,18 +120,18 @@ impl Builder {
     }
 
     /// The mesh of the last build; its positions are the streamline points,
-    /// row-major, [`Self::point_shape`] wide.
+    /// row-major, `Self::point_shape` wide.
     pub fn mesh(&self) -> &SurfaceMesh {
         &self.mesh
     }
 
     /// `(rows, points per row)` of the last build (`(0, 0)` before one).
-    pub fn point_shape(&self) -> (usize, usize) {
+    pub(crate) fn point_shape(&self) -> (usize, usize) {
         self.shape
     }
 
     /// The last build as a [`Built`] (copies the points out of the mesh).
-    pub fn into_built(mut self) -> Option<Built> {
+    pub(crate) fn into_built(mut self) -> Option<Built> {
         let (rows, width) = self.shape;
         if rows == 0 {
             return None;

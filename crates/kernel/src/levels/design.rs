@@ -12,20 +12,26 @@ use crate::streamline::surface_mesh::SurfaceMesh;
 use glam::DVec3;
 
 /// Everything that defines a streamline surface at level 0.
+///
+/// Its invariants hold from [`Design::new`] on: every tangent is unit, the
+/// parameter grid has the net's shape and increases along each row, the
+/// scheme is valid and the net within the size cap. The fields are read
+/// through getters and changed only through the setters here (and the
+/// authoring operations of [`crate::authoring`]), which check them again.
 #[derive(Debug, Clone)]
 pub struct Design {
     /// Unit control tangents, one row per streamline.
-    pub net: Grid<DVec3>,
+    pub(crate) net: Grid<DVec3>,
     /// Level-0 parameters.
-    pub params: ParamGrid,
+    pub(crate) params: ParamGrid,
     /// The tensor-product scheme.
-    pub scheme: SurfaceScheme,
+    pub(crate) scheme: SurfaceScheme,
     /// Which direction is blended first.
-    pub order: BlendOrder,
+    pub(crate) order: BlendOrder,
     /// The anchor column at level 0.
-    pub anchor: usize,
+    pub(crate) anchor: usize,
     /// The initial curve the streamlines start on.
-    pub initial: InitialCurve,
+    pub(crate) initial: InitialCurve,
 }
 
 /// One subdivision level: tangents and their parameters.
@@ -67,6 +73,100 @@ impl Design {
             anchor,
             initial,
         })
+    }
+
+    /// The unit control tangents, one row per streamline.
+    #[inline]
+    pub fn net(&self) -> &Grid<DVec3> {
+        &self.net
+    }
+
+    /// The level-0 parameters (`s` per tangent, `t` and `σ` per row).
+    #[inline]
+    pub fn params(&self) -> &ParamGrid {
+        &self.params
+    }
+
+    /// The tensor-product scheme.
+    #[inline]
+    pub fn scheme(&self) -> SurfaceScheme {
+        self.scheme
+    }
+
+    /// Which direction is blended first.
+    #[inline]
+    pub fn order(&self) -> BlendOrder {
+        self.order
+    }
+
+    /// The anchor column at level 0 (where `σ` is measured, Eqs. 1–2).
+    #[inline]
+    pub fn anchor(&self) -> usize {
+        self.anchor
+    }
+
+    /// The initial curve the streamlines start on.
+    #[inline]
+    pub fn initial(&self) -> &InitialCurve {
+        &self.initial
+    }
+
+    /// Replaces the scheme, validated, and checked against the net's size.
+    pub fn set_scheme(&mut self, scheme: SurfaceScheme) -> Result<(), KernelError> {
+        let scheme = scheme.validate()?;
+        scheme.check_depth(self.net.rows(), self.net.cols(), 0)?;
+        self.scheme = scheme;
+        Ok(())
+    }
+
+    /// Replaces the blend order.
+    pub fn set_order(&mut self, order: BlendOrder) {
+        self.order = order;
+    }
+
+    /// Replaces the initial curve (an [`InitialCurve`] is checked when it is made).
+    pub fn set_initial(&mut self, initial: InitialCurve) {
+        self.initial = initial;
+    }
+
+    /// Replaces every control tangent (normalised) with a net of the same
+    /// shape; the parameters stay. On an error the design is unchanged.
+    pub fn set_net(&mut self, net: &Grid<DVec3>) -> Result<(), KernelError> {
+        if (net.rows(), net.cols()) != (self.net.rows(), self.net.cols()) {
+            return Err(KernelError::LengthMismatch {
+                what: "control net",
+                got: net.rows() * net.cols(),
+                expected: self.net.rows() * self.net.cols(),
+            });
+        }
+        self.net = normalize_grid(net)?;
+        Ok(())
+    }
+
+    /// Replaces the level-0 parameters `s` of row `row` (one per tangent),
+    /// checked as [`Design::new`] checks them (finite, within range, strictly
+    /// increasing); the row's `σ` follows its anchor column (Eqs. 1–2). On an
+    /// error the design is unchanged.
+    pub fn set_s_row(&mut self, row: usize, s: &[f64]) -> Result<(), KernelError> {
+        let (rows, cols) = (self.net.rows(), self.net.cols());
+        if row >= rows {
+            return Err(KernelError::IndexOutOfRange {
+                what: "row",
+                index: row,
+                len: rows,
+            });
+        }
+        if s.len() != cols {
+            return Err(KernelError::LengthMismatch {
+                what: "arc-length parameters s of a row",
+                got: s.len(),
+                expected: cols,
+            });
+        }
+        let mut grid = self.params.s.clone();
+        grid.row_mut(row).copy_from_slice(s);
+        self.params = ParamGrid::new(grid, self.params.t.clone(), self.anchor)?;
+        Ok(())
     }
 
     /// Level 0.
@@ -120,7 +220,7 @@ impl Design {
     }
 
     /// Row `r`'s streamline into `out`.
-    pub fn streamline_into(&self, level: &Level, r: usize, out: &mut Vec<DVec3>) {
+    pub(crate) fn streamline_into(&self, level: &Level, r: usize, out: &mut Vec<DVec3>) {
         out.clear();
         out.resize(level.tangents.cols() + 1, DVec3::ZERO);
         self.place_row(level, r, out);

@@ -6,7 +6,7 @@
 //! ([`Span::refine`]). Every entry in the new window is recomputed with the
 //! same per-entry rule as the full step (the [`crate::curve::scheme::Stencil`] of the
 //! entry, applied by [`crate::curve::scheme::Prepared::tangent`] or
-//! [`crate::curve::scalar::apply`]), so a windowed update gives bit-for-bit the
+//! `crate::curve::scalar::apply`), so a windowed update gives bit-for-bit the
 //! numbers of a full rebuild.
 
 use crate::curve::scheme::CurveScheme;
@@ -159,7 +159,7 @@ impl DirtyWindow {
 /// calling thread; larger ones are split in two halves of rows run on two
 /// threads (the work per entry is the same either way, so results are
 /// bitwise equal). Scalar grids stay on one thread ([`Refine::PARALLEL_MIN_ENTRIES`]).
-pub const PARALLEL_MIN_ENTRIES: usize = 16_384;
+pub(crate) const PARALLEL_MIN_ENTRIES: usize = 16_384;
 
 /// Splits rows `rows` of `dst` (a `width`-wide grid) between the calling
 /// thread and, when `parallel`, one more: `run(chunk, first_row)` fills its
@@ -224,7 +224,7 @@ fn refine_along_cols<T: Refine + Send + Sync>(
 /// the dirty window of `prev`. Recomputes the affected entries of `half` and
 /// `next` in place and returns the dirty window of `next`. Large windows run on
 /// two threads ([`Refine::PARALLEL_MIN_ENTRIES`]).
-pub fn refine_grid_window<T: Refine + Send + Sync>(
+pub(crate) fn refine_grid_window<T: Refine + Send + Sync>(
     scheme: SurfaceScheme,
     order: BlendOrder,
     prev: &Grid<T>,
@@ -256,7 +256,7 @@ pub fn refine_grid_window<T: Refine + Send + Sync>(
 /// (Kobbelt) on two rows or more, where the first direction's row `r` *is*
 /// row `2r` of the next level (the 4-point rule's `Stencil::Copy`), so it is
 /// written there and read from there.
-pub fn in_place(scheme: SurfaceScheme, order: BlendOrder, rows: usize) -> bool {
+pub(crate) fn in_place(scheme: SurfaceScheme, order: BlendOrder, rows: usize) -> bool {
     order == BlendOrder::SFirst && scheme.is_interpolatory() && rows >= 2
 }
 
@@ -354,7 +354,7 @@ fn refine_in_place_s_first<T: Refine + Send + Sync>(
 
 /// The shape of `half` for one step of a `rows × cols` grid (`0 × 0` where
 /// the step needs none, [`in_place`]).
-pub fn half_shape(
+pub(crate) fn half_shape(
     scheme: SurfaceScheme,
     order: BlendOrder,
     rows: usize,
@@ -373,7 +373,7 @@ pub fn half_shape(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::levels::surface::refine_grid_gathered;
+    use crate::levels::oracle::refine_grid_gathered;
     use glam::DVec3;
 
     fn net(rows: usize, cols: usize) -> Grid<DVec3> {

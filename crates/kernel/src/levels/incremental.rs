@@ -2,7 +2,7 @@
 //! (docs/architecture.md, "Incremental rebuild, exactly"; docs/math.md §5 for the details).
 //!
 //! A [`LevelState`] holds one level: the intermediate grid of its first blend
-//! direction (none for s-first Kobbelt, [`crate::levels::dirty_window::in_place`]), the
+//! direction (none for s-first Kobbelt, `crate::levels::dirty_window::in_place`), the
 //! *base* (subdivided, before details; kept only where the level has details),
 //! the tangents (with the details of that level applied) and the parameters. [`LevelState::update`]
 //! recomputes only the entries that read a dirty entry of the previous level,
@@ -27,7 +27,7 @@ pub struct LevelState {
     /// Depth of this level (0 = the control net).
     pub level: u32,
     /// Intermediate grid of the first blend direction (empty at level 0 and
-    /// where the step writes the next level in place, [`crate::levels::dirty_window::in_place`]).
+    /// where the step writes the next level in place, `crate::levels::dirty_window::in_place`).
     pub half: Grid<DVec3>,
     /// The same for the `s` parameters.
     pub half_s: Grid<f64>,
@@ -134,7 +134,7 @@ impl LevelState {
     /// [`Self::update`], re-blending the parameters only when `params` is
     /// set: when no parameter of the previous level changed (an edit of
     /// directions alone), this level's parameters are still right.
-    pub fn update_with(
+    pub(crate) fn update_with(
         &mut self,
         design: &Design,
         details: &Details,
@@ -194,7 +194,7 @@ impl LevelState {
     }
 
     /// Re-applies the details of this level inside `win` (after a detail edit).
-    pub fn reapply_details(&mut self, details: &Details, win: DirtyWindow) -> DirtyWindow {
+    pub(crate) fn reapply_details(&mut self, details: &Details, win: DirtyWindow) -> DirtyWindow {
         let (rows, cols) = self.shape();
         let win = win.widen(0, rows, cols);
         self.keep_base(details);
@@ -202,14 +202,6 @@ impl LevelState {
             multires::apply_window(&self.base, &mut self.tangents, details, self.level, win);
         }
         win
-    }
-
-    /// This level as a plain [`Level`].
-    pub fn to_level(&self) -> Level {
-        Level {
-            tangents: self.tangents.clone(),
-            params: self.params.clone(),
-        }
     }
 }
 

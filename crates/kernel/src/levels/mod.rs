@@ -11,12 +11,16 @@
 //!   (docs/math.md §5; docs/architecture.md, "Incremental rebuild, exactly").
 //! - [`tangent_interpolation`]: progressive interpolation of the control
 //!   tangents by the approximating schemes (docs/math.md §7, on the sphere).
+//! - `oracle` (unit tests only): the plain computations the fast paths are
+//!   tested against.
 
 pub mod builder;
 pub mod design;
 pub mod dirty_window;
 pub mod incremental;
 pub mod multires;
+#[cfg(test)]
+mod oracle;
 pub mod params;
 pub mod presets;
 pub mod surface;

@@ -6,7 +6,7 @@
 //! `e₃ = base(r, c)`, `e₁` = the direction towards the row neighbours
 //! (`base(r, c+1) − base(r, c−1)`, one-sided at the ends) made orthogonal to
 //! `e₃`, `e₂ = e₃ × e₁`; where the row is flat the column neighbours are used,
-//! and where both are flat a fixed axis ([`fallback_axis`]). A later coarse
+//! and where both are flat a fixed axis (`fallback_axis`). A later coarse
 //! edit rotates the base and its neighbours, and with them the frame, so the
 //! detail is carried along; with the coarse net unchanged the frame is
 //! unchanged, so undoing a coarse edit gives back the same numbers exactly.
@@ -17,14 +17,14 @@ use glam::DVec3;
 use std::collections::BTreeMap;
 
 /// Below this length a reference direction is treated as flat.
-pub const FRAME_FLAT: f64 = 1e-9;
+pub(crate) const FRAME_FLAT: f64 = 1e-9;
 
 /// Details of all levels, keyed by `(level, row, col)`; values are unit
 /// vectors in the local frame (`z` = the base tangent).
 pub type Details = BTreeMap<(u32, usize, usize), DVec3>;
 
 /// The axis least aligned with `t`, used where the net is flat in both directions.
-pub fn fallback_axis(t: DVec3) -> DVec3 {
+pub(crate) fn fallback_axis(t: DVec3) -> DVec3 {
     let a = t.abs();
     if a.x <= a.y && a.x <= a.z {
         DVec3::X
@@ -69,7 +69,7 @@ pub fn from_local(base: &Grid<DVec3>, r: usize, c: usize, local: DVec3) -> DVec3
 
 /// Writes `tangents = base` with the details of `level` applied, inside `win`.
 /// Returns the number of details applied.
-pub fn apply_window(
+pub(crate) fn apply_window(
     base: &Grid<DVec3>,
     tangents: &mut Grid<DVec3>,
     details: &Details,
@@ -92,7 +92,7 @@ pub fn apply_window(
 }
 
 /// Whether any detail sits on `level`.
-pub fn has_level(details: &Details, level: u32) -> bool {
+pub(crate) fn has_level(details: &Details, level: u32) -> bool {
     details
         .range((level, 0, 0)..=(level, usize::MAX, usize::MAX))
         .next()

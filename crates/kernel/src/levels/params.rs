@@ -142,7 +142,7 @@ impl ParamGrid {
 
     /// [`Self::refine`] into buffers kept by the caller (`half` is the `s`
     /// grid of the first direction); `out` is overwritten.
-    pub fn refine_into(
+    pub(crate) fn refine_into(
         &self,
         scheme: SurfaceScheme,
         order: BlendOrder,

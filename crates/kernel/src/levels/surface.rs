@@ -73,10 +73,15 @@ impl SurfaceScheme {
         let (mut r, mut k) = (rows, cols);
         let base = rows.saturating_mul(cols);
         if base > crate::limits::MAX_TANGENTS_PER_LEVEL {
-            return Err(KernelError::DepthTooLarge {
-                depth: 0,
+            return Err(KernelError::TooManyTangents {
                 tangents: base,
                 cap: crate::limits::MAX_TANGENTS_PER_LEVEL,
+            });
+        }
+        if depth > crate::limits::MAX_DEPTH {
+            return Err(KernelError::DepthPastMax {
+                depth,
+                max: crate::limits::MAX_DEPTH,
             });
         }
         for _ in 0..depth {
@@ -92,7 +97,7 @@ impl SurfaceScheme {
             r = c.refined_len(r);
             k = c.refined_len(k);
             let total = r.saturating_mul(k);
-            if total > crate::limits::MAX_TANGENTS_PER_LEVEL || depth > crate::limits::MAX_DEPTH {
+            if total > crate::limits::MAX_TANGENTS_PER_LEVEL {
                 return Err(KernelError::DepthTooLarge {
                     depth,
                     tangents: total,
@@ -268,7 +273,7 @@ impl Refine for f64 {
     }
 
     /// Copies and inserts as whole-row loops (the stencil is the same for
-    /// every entry of the row), with the operations of [`crate::curve::scalar::apply`].
+    /// every entry of the row), with the operations of `crate::curve::scalar::apply`.
     fn apply_across<'a>(
         scheme: &CurveScheme,
         st: Stencil,
@@ -371,7 +376,7 @@ pub fn refine_cols<T: Refine>(scheme: CurveScheme, g: &Grid<T>) -> Grid<T> {
 }
 
 /// One tensor-product step in the given blend order: the whole grid as one
-/// window ([`crate::levels::dirty_window::refine_grid_window`]: rows and columns both
+/// window (`crate::levels::dirty_window::refine_grid_window`: rows and columns both
 /// passed row by row, large grids on two threads).
 pub fn refine_grid<T: Refine + Send + Sync>(
     scheme: SurfaceScheme,
@@ -389,7 +394,7 @@ pub fn refine_grid<T: Refine + Send + Sync>(
 /// [`refine_grid`] into buffers kept by the caller: `half` (the grid of the
 /// first direction; left empty where the step needs none,
 /// [`crate::levels::dirty_window::in_place`]) and `next` are reshaped and overwritten.
-pub fn refine_grid_into<T: Refine + Send + Sync>(
+pub(crate) fn refine_grid_into<T: Refine + Send + Sync>(
     scheme: SurfaceScheme,
     order: BlendOrder,
     g: &Grid<T>,
@@ -412,20 +417,6 @@ pub fn refine_grid_into<T: Refine + Send + Sync>(
         next,
         crate::levels::dirty_window::DirtyWindow::all(g.rows(), g.cols()),
     );
-}
-
-/// The same step computed the plain way, curve by curve (columns gathered
-/// into buffers): the independent reference the windowed path is tested against.
-pub fn refine_grid_gathered<T: Refine>(
-    scheme: SurfaceScheme,
-    order: BlendOrder,
-    g: &Grid<T>,
-) -> Grid<T> {
-    let c = scheme.curve();
-    match order {
-        BlendOrder::SFirst => refine_cols(c, &refine_rows(c, g)),
-        BlendOrder::TFirst => refine_rows(c, &refine_cols(c, g)),
-    }
 }
 
 /// Normalises every tangent of a net, reporting the first bad one by row and column.
@@ -476,7 +467,18 @@ mod tests {
         assert_eq!(cc, (15, 27));
         assert!(matches!(
             SurfaceScheme::default().check_depth(6, 9, 12),
-            Err(KernelError::DepthTooLarge { .. })
+            Err(KernelError::DepthTooLarge { depth: 12, .. })
+        ));
+        assert!(matches!(
+            SurfaceScheme::default().check_depth(6, 9, 17),
+            Err(KernelError::DepthPastMax { depth: 17, max: 16 })
+        ));
+        assert!(matches!(
+            SurfaceScheme::default().check_depth(4000, 1001, 0),
+            Err(KernelError::TooManyTangents {
+                tangents: 4_004_000,
+                ..
+            })
         ));
     }
 }

@@ -12,7 +12,7 @@
 //!   and then `(p, q) → (¼(p,q), ¾(p,q))` (Eq. 53), whose midpoint stays put on
 //!   the great circle.
 //!
-//! Iterating the local map ([`LIMIT_STEPS`] times, in the scene's blend order)
+//! Iterating the local map (`LIMIT_STEPS` times, in the scene's blend order)
 //! is exactly subdividing the whole net that many times and reading the tangent
 //! at that parameter, so it gives the limit to rounding. With the open-end
 //! rules of these schemes the limit surface does not reach the border
@@ -22,7 +22,7 @@
 //!
 //! **Iteration.** Like 002's `V ← V + (V⁰ − V∞)`, with rotations: each interior
 //! tangent is turned by the rotation that takes its current limit tangent to
-//! the designer's tangent ([`RELAXATION`] times its angle), until the largest
+//! the designer's tangent (`RELAXATION` times its angle), until the largest
 //! angle is below the tolerance.
 
 use crate::grid::Grid;
@@ -32,14 +32,14 @@ use glam::{DQuat, DVec3};
 
 /// Local subdivision steps taken for a limit tangent (the error shrinks by about
 /// 4 per step: 32 steps is far below rounding).
-pub const LIMIT_STEPS: usize = 32;
+pub(crate) const LIMIT_STEPS: usize = 32;
 
 /// Over-relaxation of each turn. In the planar analogue the limit operator's
 /// eigenvalues lie in `[1/9, 1]` (cubic ⊗ cubic; `[1/4, 1]` for Chaikin ⊗
 /// Chaikin), so plain steps shrink the slowest error by only `8/9`; turning by
 /// `w` times the angle, `w = 2/(1/9 + 1) ≈ 1.8`, balances both ends (any
 /// `0 < w < 2` converges). 1.6 is used, safe for both schemes.
-pub const RELAXATION: f64 = 1.6;
+pub(crate) const RELAXATION: f64 = 1.6;
 
 /// Whether `scheme` is approximating (and so has something to interpolate).
 pub fn applies(scheme: SurfaceScheme) -> bool {

@@ -30,7 +30,7 @@
 //!   extraordinary); the eigenvector is `(1/6, 2/3, 1/6)` (regular C) and
 //!   `(1/5, 3/5, 1/5)` (extraordinary C). Composing with one step of the
 //!   level-0 rules, whose edge points depend on the neighbours' types, gives
-//!   the mask for each of the 6 configurations ([`boundary_mask`]).
+//!   the mask for each of the 6 configurations (`boundary_mask`).
 //! - edge-only: the matrix rows `(½, ½, 0)`, `(⅛, ¾, ⅛)`, `(0, ½, ½)` at every
 //!   level, eigenvector `(1/6, 2/3, 1/6)`, already at level 0.
 //! - edge-and-corner: a corner's row is `(0, 1, 0)`, so its mask is `(0, 1, 0)`;
@@ -72,7 +72,8 @@ impl BoundaryRule {
     }
 
     /// The rule of [`BoundaryRule::name`] `s`.
-    pub fn from_name(s: &str) -> Option<BoundaryRule> {
+    #[cfg(test)]
+    pub(crate) fn from_name(s: &str) -> Option<BoundaryRule> {
         BoundaryRule::ALL.into_iter().find(|r| r.name() == s)
     }
 
@@ -143,7 +144,11 @@ fn edge_weights(me_regular: bool, other_regular: bool) -> (f64, f64) {
 
 /// The limit mask `(l, c, r)` of a boundary vertex on `(L, C, R)`: its type and
 /// its boundary neighbours' types (the six configurations of 002 Fig. 1 e–j).
-pub fn boundary_mask(center_regular: bool, left_regular: bool, right_regular: bool) -> [f64; 3] {
+pub fn boundary_mask(
+    center_regular: bool,
+    left_regular: bool,
+    right_regular: bool,
+) -> [f64; 3] {
     // level-1 mask of C over (L', C', R'), whose neighbours are regular
     let (side, mid) = if center_regular {
         (1.0 / 6.0, 4.0 / 6.0)
@@ -187,7 +192,12 @@ pub fn limit_points(
 
 /// The limit point of vertex `v`.
 #[inline]
-pub fn limit_point(positions: &[DVec3], topo: &Topology, rule: BoundaryRule, v: usize) -> DVec3 {
+pub fn limit_point(
+    positions: &[DVec3],
+    topo: &Topology,
+    rule: BoundaryRule,
+    v: usize,
+) -> DVec3 {
     let ring = topo.ring(v);
     if topo.boundary[v] {
         let (l, r) = (ring[0] as usize, ring[ring.len() - 1] as usize);

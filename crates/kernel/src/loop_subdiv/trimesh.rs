@@ -19,6 +19,7 @@ pub struct TriMesh {
 /// What is wrong with a mesh, with the ids of the elements involved (0-based
 /// here; the messages count from 1, as OBJ files do).
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum MeshError {
     /// The mesh has no faces.
     Empty,
@@ -132,7 +133,7 @@ struct EdgeAt {
 }
 
 /// The most vertices a mesh may have (and so a subdivision may produce).
-pub const MAX_VERTICES: usize = 20_000_000;
+pub(crate) const MAX_VERTICES: usize = 20_000_000;
 
 /// The topology of a valid mesh, built once (flat arrays: a million-vertex
 /// mesh builds in a fraction of a second).

@@ -69,7 +69,7 @@ impl Banded {
     }
 
     /// Solves `L Lᵀ x = r` in place for one vector of points.
-    pub fn solve_vec(&self, r: &mut [glam::DVec3]) {
+    pub(crate) fn solve_vec(&self, r: &mut [glam::DVec3]) {
         let b = self.width - 1;
         let n = self.n;
         debug_assert_eq!(r.len(), n);
@@ -93,7 +93,7 @@ impl Banded {
 
     /// Solves `L Lᵀ X = R` in place for `R` with `n` rows of `cols` entries
     /// (row-major), after [`Self::factor`].
-    pub fn solve_rows<T>(&self, r: &mut [T], cols: usize)
+    pub(crate) fn solve_rows<T>(&self, r: &mut [T], cols: usize)
     where
         T: Copy + std::ops::SubAssign + std::ops::Mul<f64, Output = T> + std::ops::DivAssign<f64>,
     {

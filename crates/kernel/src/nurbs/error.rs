@@ -23,6 +23,7 @@ impl fmt::Display for Direction {
 
 /// Everything that can stop a fit.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum FitError {
     /// A tolerance that is not a positive finite number.
     BadTolerance { value: f64 },

@@ -94,7 +94,7 @@ pub struct Fit {
 }
 
 /// Checks the options; returns the absolute tolerance for `data`.
-pub fn check_options(opts: &FitOptions, data: &Samples) -> Result<f64, FitError> {
+pub(crate) fn check_options(opts: &FitOptions, data: &Samples) -> Result<f64, FitError> {
     let (p, q) = opts.degree;
     for (direction, degree) in [(Direction::U, p), (Direction::V, q)] {
         if !(MIN_DEGREE..=MAX_DEGREE).contains(&degree) {

@@ -14,7 +14,7 @@ pub const MIN_DEGREE: usize = 2;
 
 /// Basis values at one parameter: the first nonzero function's index and
 /// the `p + 1` values `N_{first}, …, N_{first+p}` (padded with zeros).
-pub type Basis = (usize, [f64; MAX_DEGREE + 1]);
+pub(crate) type Basis = (usize, [f64; MAX_DEGREE + 1]);
 
 /// A clamped knot vector on `[0, 1]` with simple interior knots.
 #[derive(Debug, Clone, PartialEq)]
@@ -51,7 +51,8 @@ impl KnotVector {
     /// knot `j` (1 ≤ j < count − p) is `(1 − α) ū_{i−1} + α ū_i`, `i = ⌊j d⌋`,
     /// `α = j d − i`, so every span holds about `d` parameters.
     /// `count` is clamped to `p + 1 ..= params.len()`.
-    pub fn averaged(degree: usize, params: &[f64], count: usize) -> Self {
+    #[cfg(test)]
+    pub(crate) fn averaged(degree: usize, params: &[f64], count: usize) -> Self {
         let count = count.clamp(degree + 1, params.len().max(degree + 1));
         let spans = count - degree;
         let d = params.len() as f64 / spans as f64;
@@ -103,7 +104,7 @@ impl KnotVector {
     }
 
     /// The start and end of span `j`.
-    pub fn span_range(&self, j: usize) -> (f64, f64) {
+    pub(crate) fn span_range(&self, j: usize) -> (f64, f64) {
         (self.knots[self.degree + j], self.knots[self.degree + j + 1])
     }
 

@@ -62,7 +62,7 @@ impl EndFixedFit {
     /// Fits `cols` data series laid out as the rows of a `params.len() ×
     /// cols` row-major block `data` (series `c` is column `c`), writing a
     /// `count × cols` block of poles into `out`.
-    pub fn fit_columns(&self, data: &[DVec3], cols: usize, out: &mut Vec<DVec3>) {
+    pub(crate) fn fit_columns(&self, data: &[DVec3], cols: usize, out: &mut Vec<DVec3>) {
         let m = self.basis.len();
         debug_assert_eq!(data.len(), m * cols);
         let (p, n) = (self.degree, self.count);
@@ -98,7 +98,7 @@ impl EndFixedFit {
     }
 
     /// Fits one data row `q` (`params.len()` points) into `poles` (`count`).
-    pub fn fit_row(&self, q: &[DVec3], poles: &mut [DVec3]) {
+    pub(crate) fn fit_row(&self, q: &[DVec3], poles: &mut [DVec3]) {
         match self.degree {
             2 => self.fit_row_p::<2>(q, poles),
             3 => self.fit_row_p::<3>(q, poles),
@@ -137,7 +137,7 @@ impl EndFixedFit {
 
     /// The span of data parameter `k`.
     #[inline]
-    pub fn span_of(&self, k: usize) -> usize {
+    pub(crate) fn span_of(&self, k: usize) -> usize {
         self.basis[k].0
     }
 }

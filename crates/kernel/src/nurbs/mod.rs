@@ -1,8 +1,8 @@
 //! The streamline surface as a B-spline surface, for CAD exchange (docs/math.md §10,
 //! `docs/math.md §10`): clamped knot vectors and their basis ([`knots`]), a
 //! non-rational tensor-product surface ([`surface`]), the separable
-//! least-squares fit with adaptive knots ([`fit`]) and the deviation between
-//! the streamline surface and its fit ([`deviation`]).
+//! least-squares fit with adaptive knots (`fit`) and the deviation between
+//! the streamline surface and its fit (`deviation`).
 
 mod banded;
 pub mod deviation;

@@ -62,22 +62,6 @@ impl BSplineSurface {
         sum
     }
 
-    /// `F` on the grid `vs × us` (row `j`, column `i` is `F(us[i], vs[j])`).
-    pub fn eval_grid(&self, us: &[f64], vs: &[f64]) -> Grid<DVec3> {
-        let tu = BasisTable::new(&self.knots_u, us);
-        let mut out = Vec::with_capacity(us.len() * vs.len());
-        let mut curve = Vec::new();
-        for &v in vs {
-            self.curve_at_into(v, &mut curve);
-            out.extend(
-                tu.rows
-                    .iter()
-                    .map(|b| curve_point(&curve, b, self.knots_u.degree())),
-            );
-        }
-        Grid::new(vs.len(), us.len(), out).expect("sizes agree")
-    }
-
     /// The poles of the `u` curve `F(·, v)` into `out`.
     pub(crate) fn curve_at_into(&self, v: f64, out: &mut Vec<DVec3>) {
         let q = self.knots_v.degree();
@@ -88,15 +72,6 @@ impl BSplineSurface {
             for (o, pt) in out.iter_mut().zip(self.poles.row(fv + l)) {
                 *o += *pt * b;
             }
-        }
-    }
-
-    /// The same surface moved by `f` (an affine map: B-splines are affinely invariant).
-    pub fn map_poles(&self, f: impl FnMut(DVec3) -> DVec3) -> Self {
-        BSplineSurface {
-            knots_u: self.knots_u.clone(),
-            knots_v: self.knots_v.clone(),
-            poles: self.poles.map(f),
         }
     }
 }

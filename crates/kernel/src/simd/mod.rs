@@ -3,7 +3,7 @@
 //!
 //! AVX-512F (8 lanes) or AVX2 (4 lanes) on x86-64 CPUs that have them
 //! (checked at run time: the default target is SSE2 only); the kernels are
-//! written once ([`kernels`]) over the registers of [`lanes`]. Every lane does the scalar code's operations in the same
+//! written once (`kernels`) over the registers of `lanes`. Every lane does the scalar code's operations in the same
 //! order (no fused multiply-add: the compiler never contracts), so results
 //! are **bit for bit** the scalar results; lanes the vector code does not
 //! cover (an insert past the series' range `h > FixedBlend::H_MAX` or with an
@@ -11,9 +11,9 @@
 //! Elsewhere, and with [`set_limit`]`(Width::Scalar)`, everything is scalar.
 //!
 //! The insert is `mid(blend(a, b, (8+ω)/8), blend(c, d, −ω/8))` with the
-//! trig-free blend of [`crate::sphere::blend::FixedBlend`]: `cos(uθ)` and
+//! trig-free blend of `crate::sphere::blend::FixedBlend`: `cos(uθ)` and
 //! `sin(uθ)/sin θ` as series in `h = sin²(θ/2)`, with as many terms as the
-//! lane's `h` needs ([`crate::sphere::blend::TERM_THRESHOLDS`]).
+//! lane's `h` needs (`crate::sphere::blend::TERM_THRESHOLDS`).
 
 use crate::curve::scheme::FourPointRule;
 use crate::sphere::blend::FixedBlend;
@@ -69,7 +69,7 @@ pub enum Width {
 static LIMIT: AtomicU8 = AtomicU8::new(Width::Avx512 as u8);
 
 /// The widest path the CPU has.
-pub fn cpu_width() -> Width {
+pub(crate) fn cpu_width() -> Width {
     #[cfg(target_arch = "x86_64")]
     {
         if std::is_x86_feature_detected!("avx512f") {
@@ -100,13 +100,13 @@ pub fn set_limit(w: Width) {
 
 /// `out[k] = rule.interior(a[k], b[k], c[k], d[k])` for every `k` (the column
 /// pass: four input rows, one output row). All slices have `out`'s length.
-pub fn interior_across(rule: &FourPointRule, rows: [&[DVec3]; 4], out: &mut [DVec3]) {
+pub(crate) fn interior_across(rule: &FourPointRule, rows: [&[DVec3]; 4], out: &mut [DVec3]) {
     across_with(active(), Rule4::Interior(rule), rows, out);
 }
 
 /// `out[k] = rule.end(a[k], b[k], c[k])` for every `k` (the 3-point end rule
 /// of the column pass). All slices have `out`'s length.
-pub fn end_across(rule: &FourPointRule, [a, b, c]: [&[DVec3]; 3], out: &mut [DVec3]) {
+pub(crate) fn end_across(rule: &FourPointRule, [a, b, c]: [&[DVec3]; 3], out: &mut [DVec3]) {
     across_with(active(), Rule4::End(rule), [a, b, b, c], out);
 }
 
@@ -136,7 +136,13 @@ fn across_with(width: Width, rule: Rule4<'_>, [a, b, c, d]: [&[DVec3]; 4], out: 
 /// t[i+2])` for `i` in `lo ..= hi` (the row pass of the 4-point scheme: the
 /// copies and inserts along one row). Needs `1 ≤ lo`, `hi + 2 < t.len()` and
 /// `2 hi + 1 < out.len()`.
-pub fn interior_along(rule: &FourPointRule, t: &[DVec3], lo: usize, hi: usize, out: &mut [DVec3]) {
+pub(crate) fn interior_along(
+    rule: &FourPointRule,
+    t: &[DVec3],
+    lo: usize,
+    hi: usize,
+    out: &mut [DVec3],
+) {
     along_with(active(), rule, t, lo, hi, out);
 }
 
@@ -177,7 +183,14 @@ fn along_with(
 /// (docs/math.md §4): `∂/∂s × ∂/∂t` by central differences, one-sided at the ends;
 /// a degenerate point takes `last`, the normal before it (never NaN).
 #[inline]
-pub fn normal_at(above: &[DVec3], here: &[DVec3], below: &[DVec3], c: usize, last: DVec3) -> DVec3 {
+#[cfg(test)]
+pub(crate) fn normal_at(
+    above: &[DVec3],
+    here: &[DVec3],
+    below: &[DVec3],
+    c: usize,
+    last: DVec3,
+) -> DVec3 {
     unit_normal(above, here, below, c).unwrap_or(last)
 }
 
@@ -206,7 +219,7 @@ fn carried(out: &[DVec3], c: usize) -> DVec3 {
 /// [`normal_at`] for every point, `N` at a time on a vector path. The other
 /// columns of `out` are kept (a normal carried into a degenerate point at
 /// `c0` is read there).
-pub fn normals_rows(
+pub(crate) fn normals_rows(
     points: &[DVec3],
     cols: usize,
     lo: usize,

@@ -7,31 +7,32 @@
 //!
 //! All functions here take unit vectors (validated at the kernel's boundary by
 //! [`crate::Tangent`]) and return unit vectors; degenerate pairs are branches:
-//! - `a ≈ b` (`|a × b| ≤` [`DEGENERATE_SIN`], `a·b > 0`): normalised linear
+//! - `a ≈ b` (`|a × b| ≤` `DEGENERATE_SIN`, `a·b > 0`): normalised linear
 //!   interpolation, exact to O(θ²) ≈ 1e-28;
 //! - `a ≈ −b` (antipodal, axis undefined): rotation about the fixed axis
-//!   [`antipodal_axis`]`(a)` by `u·π`; each such event is counted
-//!   ([`antipodal_events`]) so the editor can warn.
+//!   `antipodal_axis(a)` by `u·π`; each such event is counted
+//!   ([`antipodal_events`]) so that a client can warn.
 
 use glam::DVec3;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Below this `|a × b|` the rotation axis is not trusted: the pair is treated
 /// as equal (if `a·b > 0`) or antipodal (if `a·b < 0`).
-pub const DEGENERATE_SIN: f64 = 1e-14;
+pub(crate) const DEGENERATE_SIN: f64 = 1e-14;
 
 /// `|a + b|²` below which the midpoint `(a+b)/|a+b|` (Eq. 32, corrected) is
 /// undefined and the antipodal branch takes over.
-pub const MID_MIN_NORM2: f64 = 1e-24;
+pub(crate) const MID_MIN_NORM2: f64 = 1e-24;
 
 /// `|a + b|²` below which [`quarters`] computes its two midpoints one by one
 /// instead of through the shared norm `√(2 + |a + b|)` (see there).
-pub const QUARTER_MIN_NORM2: f64 = 1e-4;
+pub(crate) const QUARTER_MIN_NORM2: f64 = 1e-4;
 
 static ANTIPODAL_EVENTS: AtomicUsize = AtomicUsize::new(0);
 
 /// How many antipodal pairs were blended since the program started (all threads).
-/// The editor compares this before and after an edit to warn the designer.
+/// A client compares it before and after an edit to tell the designer that the
+/// result depends on the documented fixed axis (the editor does not yet).
 pub fn antipodal_events() -> usize {
     ANTIPODAL_EVENTS.load(Ordering::Relaxed)
 }
@@ -39,7 +40,7 @@ pub fn antipodal_events() -> usize {
 /// The documented fixed axis used when `b = −a`: `a` crossed with the coordinate
 /// axis along which `a` has its smallest absolute component, normalised. It is
 /// perpendicular to `a` and depends on `a` alone.
-pub fn antipodal_axis(a: DVec3) -> DVec3 {
+pub(crate) fn antipodal_axis(a: DVec3) -> DVec3 {
     let abs = a.abs();
     let e = if abs.x <= abs.y && abs.x <= abs.z {
         DVec3::X
@@ -103,7 +104,7 @@ pub fn mid(a: DVec3, b: DVec3) -> DVec3 {
 /// [`three_quarters`] bit for bit.
 ///
 /// The identity `|a + m|² = 2 + l` carries the inputs' rounding (`|a|² = 1 ±
-/// 2⁻⁵²`) divided by `l`; below [`QUARTER_MIN_NORM2`] (θ > 179.4°) the two
+/// 2⁻⁵²`) divided by `l`; below `QUARTER_MIN_NORM2` (θ > 179.4°) the two
 /// midpoints are computed as they stand, and antipodal pairs take [`mid`]'s branch.
 #[inline]
 pub fn quarters(a: DVec3, b: DVec3) -> (DVec3, DVec3) {
@@ -158,7 +159,7 @@ pub fn three_quarters(a: DVec3, b: DVec3) -> DVec3 {
 /// [`FixedBlend::H_MAX`] (θ ≤ 53°), where at most [`FixedBlend::TERMS`] terms
 /// give full double precision; wider angles fall back to [`blend`].
 #[derive(Debug, Clone, Copy)]
-pub struct FixedBlend {
+pub(crate) struct FixedBlend {
     u: f64,
     cos_coef: [f64; FixedBlend::TERMS],
     sin_coef: [f64; FixedBlend::TERMS],
@@ -166,9 +167,9 @@ pub struct FixedBlend {
 
 impl FixedBlend {
     /// Number of series terms kept.
-    pub const TERMS: usize = 24;
+    pub(crate) const TERMS: usize = 24;
     /// Largest `h = sin²(θ/2)` handled by the series (θ ≈ 53°).
-    pub const H_MAX: f64 = 0.2;
+    pub(crate) const H_MAX: f64 = 0.2;
 
     /// Precomputes the series of `cos(uθ)` and `sin(uθ)/sin θ` in `h`.
     pub fn new(u: f64) -> Self {
@@ -187,11 +188,6 @@ impl FixedBlend {
             cos_coef,
             sin_coef,
         }
-    }
-
-    /// The blend parameter.
-    pub fn u(&self) -> f64 {
-        self.u
     }
 
     /// The series coefficients of `cos(uθ)` and `sin(uθ)/sin θ` in `h`.

@@ -10,6 +10,7 @@ pub struct Tangent(DVec3);
 
 /// Why a vector is not a direction.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum TangentFault {
     /// All components are zero.
     Zero,
@@ -56,7 +57,7 @@ impl From<Tangent> for DVec3 {
 }
 
 /// Normalises one vector, reporting a fault at `at`.
-pub fn normalize_at(v: DVec3, at: Place) -> Result<DVec3, KernelError> {
+pub(crate) fn normalize_at(v: DVec3, at: Place) -> Result<DVec3, KernelError> {
     Tangent::new(v)
         .map(Tangent::get)
         .map_err(|fault| match fault {

@@ -4,7 +4,7 @@
 //!
 //! `C(u) = C₀ + L ∫₀ᵘ t(v) dv` with `u = t / L` (the QI tangent is unit, so `u`
 //! is proportional to arc length). The integral is evaluated by composite
-//! 5-point Gauss–Legendre quadrature on [`InitialCurve::PANELS_PER_SPAN`] equal
+//! 5-point Gauss–Legendre quadrature on `InitialCurve::PANELS_PER_SPAN` equal
 //! panels per knot span (the integrand is smooth inside a span and only
 //! `C^{k−2}` across knots, so panels never straddle a knot). A table of the
 //! integral at panel ends is built once; a point costs one more 5-point rule.
@@ -50,7 +50,7 @@ pub struct InitialCurve {
 
 impl InitialCurve {
     /// Panels per knot span.
-    pub const PANELS_PER_SPAN: usize = 16;
+    pub(crate) const PANELS_PER_SPAN: usize = 16;
 
     /// A QI initial curve of `order` through `tangents`, of arc length `length`, starting at `origin`.
     pub fn new(
@@ -143,7 +143,7 @@ impl InitialCurve {
 
     /// The same curve, reflected in `plane` below `t0`: `R(C(2t₀ − t))` for
     /// `t < t₀` (the initial curve of a mirrored design, `docs/math.md §9`).
-    pub fn mirrored_about(&self, t0: f64, plane: MirrorPlane) -> Self {
+    pub(crate) fn mirrored_about(&self, t0: f64, plane: MirrorPlane) -> Self {
         InitialCurve {
             mirror: Some((t0, plane)),
             ..self.clone()

@@ -17,7 +17,8 @@ use glam::DVec3;
 /// Eq. 65 from `p₀ = 0`, appending `n+2` points to `out` (cleared first).
 /// `tangents.len() == s.len() ≥ 2`, tangents unit, `s` increasing (not re-checked).
 #[inline]
-pub fn integrate_into(tangents: &[DVec3], s: &[f64], out: &mut Vec<DVec3>) {
+#[cfg(test)]
+pub(crate) fn integrate_into(tangents: &[DVec3], s: &[f64], out: &mut Vec<DVec3>) {
     out.clear();
     out.resize(tangents.len() + 1, DVec3::ZERO);
     integrate_slice(tangents, s, out);
@@ -25,7 +26,8 @@ pub fn integrate_into(tangents: &[DVec3], s: &[f64], out: &mut Vec<DVec3>) {
 
 /// Eq. 65 from `p₀ = 0` into `out`, which holds exactly `n+2` points.
 #[inline]
-pub fn integrate_slice(tangents: &[DVec3], s: &[f64], out: &mut [DVec3]) {
+#[cfg(test)]
+pub(crate) fn integrate_slice(tangents: &[DVec3], s: &[f64], out: &mut [DVec3]) {
     // the sums start at +0 and never become −0, so adding a zero shift keeps their bits
     integrate_shifted(tangents, s, DVec3::ZERO, out);
 }
@@ -80,7 +82,7 @@ pub fn point_arclength(s: &[f64], k: usize) -> f64 {
     }
 }
 
-/// The point of the polyline `points` (from [`integrate_into`]) at arc length `sigma`.
+/// The point of the polyline `points` (from `integrate_into`) at arc length `sigma`.
 pub fn point_at(points: &[DVec3], tangents: &[DVec3], s: &[f64], sigma: f64) -> DVec3 {
     let n = s.len() - 1;
     if sigma <= s[0] {

@@ -36,18 +36,6 @@ impl SurfaceMesh {
         self.positions.extend_from_slice(points.data());
         normals_and_indices(points, &mut self.normals, &mut self.indices);
     }
-
-    /// Recomputes the normals of rows `lo ..= hi`; at least
-    /// [`PARALLEL_MIN_POINTS`] of them are split over two threads (same
-    /// operations per point, so the same bits).
-    pub fn update_normals_rows(&mut self, points: &Grid<DVec3>, lo: usize, hi: usize) {
-        normals_rows(points.data(), points.cols(), lo, hi, &mut self.normals);
-    }
-
-    /// Recomputes the normals of row `r` (after its points, or a neighbour's, changed).
-    pub fn update_normals_row(&mut self, points: &Grid<DVec3>, r: usize) {
-        self.update_normals_rows(points, r, r);
-    }
 }
 
 /// The normals and triangles of a whole point grid, into buffers kept by the
@@ -75,15 +63,21 @@ pub fn bounds(points: impl IntoIterator<Item = DVec3>) -> [DVec3; 2] {
 }
 
 /// Mesh updates of at least this many points run on two threads.
-pub const PARALLEL_MIN_POINTS: usize = 16_384;
+pub(crate) const PARALLEL_MIN_POINTS: usize = 16_384;
 
 /// The normals of rows `lo ..= hi` of the row-major point grid `points`
 /// (`cols` wide) into the same entries of `normals`; large ranges on two threads.
-pub fn normals_rows(points: &[DVec3], cols: usize, lo: usize, hi: usize, normals: &mut [DVec3]) {
+pub(crate) fn normals_rows(
+    points: &[DVec3],
+    cols: usize,
+    lo: usize,
+    hi: usize,
+    normals: &mut [DVec3],
+) {
     normals_window(points, cols, lo, hi, 0, normals);
 }
 
-/// [`normals_rows`] for columns `c0 ..` of those rows only (a streamline
+/// `normals_rows` for columns `c0 ..` of those rows only (a streamline
 /// summed again from a column on moves only its points after it).
 pub fn normals_window(
     points: &[DVec3],
@@ -111,7 +105,7 @@ pub fn normals_window(
 }
 
 /// Triangle indices of a `rows × cols` point grid.
-pub fn write_indices(rows: usize, cols: usize, out: &mut Vec<u32>) {
+pub(crate) fn write_indices(rows: usize, cols: usize, out: &mut Vec<u32>) {
     out.reserve(rows.saturating_sub(1) * cols.saturating_sub(1) * 6);
     for r in 0..rows.saturating_sub(1) {
         for c in 0..cols.saturating_sub(1) {
