@@ -144,11 +144,7 @@ fn edge_weights(me_regular: bool, other_regular: bool) -> (f64, f64) {
 
 /// The limit mask `(l, c, r)` of a boundary vertex on `(L, C, R)`: its type and
 /// its boundary neighbours' types (the six configurations of 002 Fig. 1 e–j).
-pub fn boundary_mask(
-    center_regular: bool,
-    left_regular: bool,
-    right_regular: bool,
-) -> [f64; 3] {
+pub fn boundary_mask(center_regular: bool, left_regular: bool, right_regular: bool) -> [f64; 3] {
     // level-1 mask of C over (L', C', R'), whose neighbours are regular
     let (side, mid) = if center_regular {
         (1.0 / 6.0, 4.0 / 6.0)
@@ -192,12 +188,7 @@ pub fn limit_points(
 
 /// The limit point of vertex `v`.
 #[inline]
-pub fn limit_point(
-    positions: &[DVec3],
-    topo: &Topology,
-    rule: BoundaryRule,
-    v: usize,
-) -> DVec3 {
+pub fn limit_point(positions: &[DVec3], topo: &Topology, rule: BoundaryRule, v: usize) -> DVec3 {
     let ring = topo.ring(v);
     if topo.boundary[v] {
         let (l, r) = (ring[0] as usize, ring[ring.len() - 1] as usize);
