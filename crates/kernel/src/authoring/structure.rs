@@ -23,7 +23,7 @@
 //! `Δ_j² / Δ_{j−1}`, so the new row's `s` increases too.
 //!
 //! A new line already lies near the surface, so an insert moves it little
-//! (measured on the cars in `tests/authoring_properties.rs`). Deleting removes
+//! (measured on the cars in `tests/authoring_structure.rs`). Deleting removes
 //! the line's tangents and parameters; the net keeps at least 2 × 2. The
 //! anchor stays on the same column where it can (a deleted anchor column
 //! passes the anchor to the column that takes its place, or the new last one).

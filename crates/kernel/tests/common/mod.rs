@@ -1,6 +1,8 @@
 //! Shared strategies and independent reference implementations for the property tests.
 #![allow(dead_code)]
 
+pub mod authoring;
+
 use glam::{DQuat, DVec3};
 use proptest::prelude::*;
 
