@@ -10,32 +10,18 @@
 //! Prints a Markdown table.
 //!
 //! `cargo run -p streamline-kernel --release --example loop_timing -- --osd BIN MESH.obj[:k] …`
-use glam::DVec3;
+#[path = "../tests/common/mod.rs"]
+mod common;
+
 use std::fmt::Write as _;
 use std::process::Command;
 use std::time::Instant;
 use streamline_kernel::loop_subdiv::subdivide::{BoundaryRule, subdivide_levels};
 use streamline_kernel::loop_subdiv::trimesh::TriMesh;
 
+/// The tests' plain OBJ reader (`tests/common`), the mesh without its topology.
 fn read_obj(path: &str) -> TriMesh {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    let mut p = Vec::new();
-    let mut f = Vec::new();
-    for l in text.lines() {
-        let w: Vec<&str> = l.split_whitespace().collect();
-        match w.first() {
-            Some(&"v") => p.push(DVec3::new(
-                w[1].parse().unwrap(),
-                w[2].parse().unwrap(),
-                w[3].parse().unwrap(),
-            )),
-            Some(&"f") => f.push(
-                [0, 1, 2].map(|k| w[k + 1].split('/').next().unwrap().parse::<u32>().unwrap() - 1),
-            ),
-            _ => {}
-        }
-    }
-    TriMesh::new(p, f).unwrap().0
+    common::read_obj(std::path::Path::new(path)).0
 }
 
 fn write_obj(path: &std::path::Path, m: &TriMesh) {

@@ -62,7 +62,7 @@ fn compile_oracle() -> PathBuf {
     bin
 }
 
-use common::read_obj;
+use common::loop_meshes::{MESHES, read_mesh, with_holes};
 
 /// Writes an OBJ with every coordinate round-tripping exactly.
 fn write_obj(path: &Path, p: &[DVec3], faces: &[[u32; 3]]) {
@@ -164,9 +164,8 @@ fn opensubdiv_tells_the_paper_rule_apart() {
     let bin = oracle();
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("osd_paper");
     std::fs::create_dir_all(&dir).unwrap();
-    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/meshes");
     for name in ["snail.obj", "camelhead.obj"] {
-        let (m, t) = read_obj(&data.join(name));
+        let (m, t) = read_mesh(name);
         let mut opts = Options {
             tolerance: 1e-7,
             max_iterations: 5000,
@@ -191,70 +190,27 @@ fn opensubdiv_tells_the_paper_rule_apart() {
 /// The knight with seven holes cut (faces all of whose vertices are within a
 /// ring of a seed face dropped): five boundary loops (some holes merge) and
 /// two single-face corners where a face is left hanging.
-fn holed_knight(path: &Path) -> (TriMesh, Topology) {
-    let (k, _) = read_obj(path);
-    let mut keep = vec![true; k.faces.len()];
-    for seed in [3usize, 150, 290, 420, 610, 777, 930] {
-        let mut near = vec![false; k.positions.len()];
-        for f in k
-            .faces
-            .iter()
-            .filter(|f| f.iter().any(|v| k.faces[seed].contains(v)))
-        {
-            for &v in f {
-                near[v as usize] = true;
-            }
-        }
-        for (kf, f) in keep.iter_mut().zip(&k.faces) {
-            *kf &= !f.iter().all(|&v| near[v as usize]);
-        }
-    }
-    let mut index = vec![u32::MAX; k.positions.len()];
-    let mut p = Vec::new();
-    let faces: Vec<[u32; 3]> = k
-        .faces
-        .iter()
-        .zip(&keep)
-        .filter(|(_, kf)| **kf)
-        .map(|(f, _)| {
-            f.map(|v| {
-                if index[v as usize] == u32::MAX {
-                    index[v as usize] = p.len() as u32;
-                    p.push(k.positions[v as usize]);
-                }
-                index[v as usize]
-            })
-        })
-        .collect();
-    TriMesh::new(p, faces).expect("the holes leave a manifold mesh")
+fn holed_knight() -> (TriMesh, Topology) {
+    let (k, _) = read_mesh("knight.obj");
+    let seeds = [3usize, 150, 290, 420, 610, 777, 930].map(|s| (s, 1));
+    let holed = with_holes(&k, &seeds);
+    TriMesh::new(holed.positions, holed.faces).expect("the holes leave a manifold mesh")
 }
-
-const MESHES: [&str; 8] = [
-    "knight.obj",
-    "snail.obj",
-    "teddy.obj",
-    "spot.obj",
-    "fertility.obj",
-    "fairing-cross.obj",
-    "max-planck.obj",
-    "camelhead.obj",
-];
 
 #[test]
 fn opensubdiv_limit_of_our_control_mesh_hits_the_vertices() {
     let bin = oracle();
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("osd_oracle");
     std::fs::create_dir_all(&dir).unwrap();
-    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/meshes");
     let mut boundary_checked = 0;
     let mut meshes: Vec<(String, TriMesh, Topology)> = MESHES
         .iter()
         .map(|name| {
-            let (m, t) = read_obj(&data.join(name));
+            let (m, t) = read_mesh(name);
             (name.to_string(), m, t)
         })
         .collect();
-    let (m, t) = holed_knight(&data.join("knight.obj"));
+    let (m, t) = holed_knight();
     let corners = (0..t.vertices())
         .filter(|&v| t.boundary[v] && t.valence(v) == 2)
         .count();
