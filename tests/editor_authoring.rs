@@ -6,60 +6,17 @@
 //! several handles (Shift-click) turns together when one of them is dragged
 //! (one `RotateMany` per step, one undo step, Esc restores every one).
 
+mod common;
+
 use bevy::prelude::*;
-use streamline_kernel::{DQuat, DVec3, levels::presets};
-use streamline_studio::ecs::{History, Model, ModelPlugin, Stats};
-use streamline_studio::editor::interaction::{
-    Drag, DragKind, DragTo, HandleId, HandlePressed, Handles, InteractionPlugin, Selection,
-};
+use common::headless_editor::*;
+use streamline_kernel::{DQuat, DVec3};
+use streamline_studio::ecs::{Model, Stats};
+use streamline_studio::editor::interaction::{Drag, DragKind, HandleId, Handles, Selection};
 use streamline_studio::scene::Scene;
-
-fn app() -> App {
-    let mut s = Scene::from_design("car1", presets::car1(), 2);
-    s.edit_depth = 0;
-    let mut app = App::new();
-    app.add_plugins(MinimalPlugins)
-        .init_resource::<ButtonInput<MouseButton>>()
-        .init_resource::<ButtonInput<KeyCode>>()
-        .add_plugins(ModelPlugin::new(s))
-        .add_plugins(InteractionPlugin);
-    frame(&mut app);
-    app
-}
-
-fn frame(app: &mut App) {
-    app.update();
-    let w = app.world_mut();
-    w.resource_mut::<ButtonInput<MouseButton>>().clear();
-    w.resource_mut::<ButtonInput<KeyCode>>().clear();
-}
 
 fn scene(app: &App) -> &Scene {
     &app.world().resource::<Model>().scene
-}
-
-fn undo_steps(app: &App) -> usize {
-    app.world().resource::<History>().undo_len()
-}
-
-fn press(app: &mut App, handle: Option<HandleId>, drag: Option<DragKind>) {
-    let w = app.world_mut();
-    w.resource_mut::<ButtonInput<MouseButton>>()
-        .press(MouseButton::Left);
-    w.write_message(HandlePressed { handle, drag });
-    frame(app);
-}
-
-fn release(app: &mut App) {
-    app.world_mut()
-        .resource_mut::<ButtonInput<MouseButton>>()
-        .release(MouseButton::Left);
-    frame(app);
-}
-
-fn steer(app: &mut App, dir: DVec3) {
-    app.world_mut().write_message(DragTo(dir));
-    frame(app);
 }
 
 fn hold(app: &mut App, k: KeyCode, down: bool) {
@@ -72,10 +29,7 @@ fn hold(app: &mut App, k: KeyCode, down: bool) {
 }
 
 fn esc(app: &mut App) {
-    hold(app, KeyCode::Escape, true);
-    frame(app);
-    hold(app, KeyCode::Escape, false);
-    frame(app);
+    key(app, KeyCode::Escape);
 }
 
 #[test]

@@ -6,74 +6,19 @@
 //! are checked against the model, without a window (the xvfb GUI tests
 //! drive the same core through a real pointer).
 
+mod common;
+
 use bevy::prelude::*;
+use common::headless_editor::*;
 use streamline_kernel::{DVec3, levels::presets};
-use streamline_studio::ecs::{History, Model, ModelPlugin};
+use streamline_studio::ecs::Model;
 use streamline_studio::editor::interaction::{
-    Drag, DragKind, DragTo, HandleId, HandlePressed, HandleSettings, Handles, InteractionPlugin,
-    Selection,
+    Drag, DragKind, HandleId, HandleSettings, Handles, Selection,
 };
 use streamline_studio::scene::Scene;
 
-fn app() -> App {
-    let mut s = Scene::from_design("car1", presets::car1(), 2);
-    s.edit_depth = 0;
-    let mut app = App::new();
-    app.add_plugins(MinimalPlugins)
-        .init_resource::<ButtonInput<MouseButton>>()
-        .init_resource::<ButtonInput<KeyCode>>()
-        .add_plugins(ModelPlugin::new(s))
-        .add_plugins(InteractionPlugin);
-    frame(&mut app);
-    app
-}
-
-/// One frame; then the input is as the input plugin leaves it for the next
-/// (presses no longer "just" pressed).
-fn frame(app: &mut App) {
-    app.update();
-    let w = app.world_mut();
-    w.resource_mut::<ButtonInput<MouseButton>>().clear();
-    w.resource_mut::<ButtonInput<KeyCode>>().clear();
-}
-
 fn net(app: &App, (r, c): (usize, usize)) -> DVec3 {
     app.world().resource::<Model>().scene.design.net().get(r, c)
-}
-
-fn undo_steps(app: &App) -> usize {
-    app.world().resource::<History>().undo_len()
-}
-
-fn press(app: &mut App, handle: Option<HandleId>, drag: Option<DragKind>) {
-    let w = app.world_mut();
-    w.resource_mut::<ButtonInput<MouseButton>>()
-        .press(MouseButton::Left);
-    w.write_message(HandlePressed { handle, drag });
-    frame(app);
-}
-
-fn steer(app: &mut App, dir: DVec3) {
-    app.world_mut().write_message(DragTo(dir));
-    frame(app);
-}
-
-fn key(app: &mut App, k: KeyCode) {
-    app.world_mut()
-        .resource_mut::<ButtonInput<KeyCode>>()
-        .press(k);
-    frame(app);
-    app.world_mut()
-        .resource_mut::<ButtonInput<KeyCode>>()
-        .release(k);
-    frame(app);
-}
-
-fn release(app: &mut App) {
-    app.world_mut()
-        .resource_mut::<ButtonInput<MouseButton>>()
-        .release(MouseButton::Left);
-    frame(app);
 }
 
 #[test]

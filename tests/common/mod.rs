@@ -1,6 +1,8 @@
 //! Helpers shared by the ECS test files.
 #![allow(dead_code)]
 
+pub mod headless_editor;
+
 use bevy::prelude::*;
 use streamline_kernel::{DVec3, Grid};
 use streamline_studio::ecs::{self, SurfaceData};
