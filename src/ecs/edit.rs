@@ -90,16 +90,9 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             axis,
             radians,
         } => {
-            let axis = Tangent::new(*axis)
-                .map_err(|_| {
-                    "the rotation axis is zero or not finite; give a non-zero axis".to_string()
-                })?
-                .get();
-            if !radians.is_finite() {
-                return Err("the rotation angle is not finite; give a number of degrees".into());
-            }
+            let q = rotation(*axis, *radians)?;
             let cur = current_direction(ctx, *row, *col)?;
-            let dir = DQuat::from_axis_angle(axis, *radians) * cur;
+            let dir = q * cur;
             set_direction(ctx, *row, *col, dir)
         }
         Edit::SetLength {
@@ -237,19 +230,11 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             axis,
             radians,
         } => {
-            let axis = Tangent::new(*axis)
-                .map_err(|_| {
-                    "the rotation axis is zero or not finite; give a non-zero axis".to_string()
-                })?
-                .get();
-            if !radians.is_finite() {
-                return Err("the rotation angle is not finite; give a number of degrees".into());
-            }
+            let q = rotation(*axis, *radians)?;
             if handles.is_empty() {
                 return Err("no handles to rotate; give at least one (row, col)".into());
             }
             // every handle checked before any is turned: all or nothing
-            let q = DQuat::from_axis_angle(axis, *radians);
             let dirs = handles
                 .iter()
                 .map(|&(r, c)| current_direction(ctx, r, c).map(|d| q * d))
@@ -412,6 +397,17 @@ fn set_direction(ctx: &mut EditCtx, row: usize, col: usize, dir: DVec3) -> Resul
         ctx.dirty.cell(level, row, col);
     }
     Ok(format!("detail ({row}, {col}) at level {level}"))
+}
+
+/// The rotation of a `Rotate` or `RotateMany` edit, its axis and angle checked.
+fn rotation(axis: DVec3, radians: f64) -> Result<DQuat, String> {
+    let axis = Tangent::new(axis)
+        .map_err(|_| "the rotation axis is zero or not finite; give a non-zero axis".to_string())?
+        .get();
+    if !radians.is_finite() {
+        return Err("the rotation angle is not finite; give a number of degrees".into());
+    }
+    Ok(DQuat::from_axis_angle(axis, radians))
 }
 
 fn set_length(ctx: &mut EditCtx, row: usize, col: usize, k: f64) -> Result<String, String> {
