@@ -4,6 +4,7 @@
 use super::authoring::AuthorEdit;
 use super::messages::Edit;
 use super::resources::*;
+use super::warnings::BuildWarnings;
 use super::{headless_app, send};
 use crate::scene::format::{Dir, OrderSpec, SchemeSpec};
 use crate::scene::script::{Script, Step};
@@ -36,6 +37,7 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
     let mut report = PlayReport::default();
     let mut marks: HashMap<String, Grid<DVec3>> = HashMap::new();
     let mut pending: Option<(usize, String)> = None;
+    let mut warned = warn_new(&app, 0, &[], &mut report);
     for (i, step) in script.steps.iter().enumerate() {
         let n = i + 1;
         if !matches!(step, Step::ExpectError(_))
@@ -100,6 +102,7 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
                 }
             ));
         }
+        warned = warn_new(&app, n, &warned, &mut report);
     }
     if let Some((at, err)) = pending {
         report.failures += 1;
@@ -108,6 +111,16 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
             .push(format!("step {at:>3}: FAIL unexpected error: {err}"));
     }
     report
+}
+
+/// Adds a `warning:` line for each build warning ([`BuildWarnings`]) of
+/// `app` after step `n` that `before` did not have; returns them all.
+fn warn_new(app: &App, n: usize, before: &[String], report: &mut PlayReport) -> Vec<String> {
+    let now = &app.world().resource::<BuildWarnings>().lines;
+    for w in now.iter().filter(|w| !before.contains(w)) {
+        report.lines.push(format!("step {n:>3} warning: {w}"));
+    }
+    now.clone()
 }
 
 fn short(step: &Step) -> String {
