@@ -1,6 +1,7 @@
 //! CAD exchange (docs/math.md §10, docs/cad.md): STEP and IGES files of the shipped
 //! scenes, a Cylinder template and a mirrored design read back by OpenCascade (tests/python/check_cad.py, in the test
-//! virtual environment that `scripts/setup.sh --tests` makes), and `.glb`
+//! virtual environment that `scripts/setup.sh --tests` makes), scenes with
+//! hostile names read back with their names, and `.glb`
 //! files read back by the `gltf` crate against the OBJ of the same build.
 
 mod common;
@@ -152,9 +153,37 @@ fn a_mirrored_scene_is_fitted_over_both_halves() {
     assert!(fit.fit.report.deviation.max <= fit.fit.report.tolerance);
 }
 
+/// Runs tests/python/check_cad.py on `manifest` (written into `dir`) and
+/// returns its results, one a file, in the manifest's order; fails with
+/// OpenCascade's reason when it refuses a file.
+fn opencascade_check(dir: &Path, manifest: &[serde_json::Value]) -> Vec<serde_json::Value> {
+    let py = venv_python();
+    let m = dir.join("manifest.json");
+    std::fs::write(&m, serde_json::to_string(manifest).unwrap()).unwrap();
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_cad.py");
+    let out = Command::new(&py).arg(&script).arg(&m).output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "OpenCascade refused a file:\n{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // OpenCascade's own messages go to stdout too: the results are the JSON lines
+    let results: Vec<serde_json::Value> = stdout
+        .lines()
+        .filter(|l| l.starts_with('{'))
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(
+        results.len(),
+        manifest.len(),
+        "one result per file:\n{stdout}"
+    );
+    results
+}
+
 #[test]
 fn opencascade_reads_every_step_and_iges_file_we_write() {
-    let py = venv_python();
     let dir = scratch("occ");
     let mut manifest = Vec::new();
     for (name, scene, depth) in scenes() {
@@ -187,27 +216,7 @@ fn opencascade_reads_every_step_and_iges_file_we_write() {
             }));
         }
     }
-    let m = dir.join("manifest.json");
-    std::fs::write(&m, serde_json::to_string(&manifest).unwrap()).unwrap();
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_cad.py");
-    let out = Command::new(&py).arg(&script).arg(&m).output().unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "OpenCascade refused a file:\n{stdout}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    // OpenCascade's own messages go to stdout too: the results are the JSON lines
-    let results: Vec<serde_json::Value> = stdout
-        .lines()
-        .filter(|l| l.starts_with('{'))
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
-    assert_eq!(
-        results.len(),
-        manifest.len(),
-        "one result per file:\n{stdout}"
-    );
+    let results = opencascade_check(&dir, &manifest);
     for (r, m) in results.iter().zip(&manifest) {
         assert_eq!(r["file"], m["file"]);
         assert!(r.get("error").is_none() && r["valid"] == true, "{r}");
@@ -217,6 +226,109 @@ fn opencascade_reads_every_step_and_iges_file_we_write() {
             "{r}"
         );
         eprintln!("{r}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// What IGES holds of a name in this file's test names (scene/cad_text.rs):
+/// its first 1000 characters in ASCII, these letters transliterated,
+/// whitespace a space, anything else `?`.
+fn iges_name(name: &str) -> String {
+    name.chars()
+        .take(1000)
+        .map(|c| match c {
+            ' '..='~' => c,
+            '\n' | '\t' => ' ',
+            'Ü' => 'U',
+            'ï' => 'i',
+            'ø' => 'o',
+            'é' => 'e',
+            _ => '?',
+        })
+        .collect()
+}
+
+/// Issue 27: a scene may be called anything. Each name below goes through
+/// the export the CLI and the editor use into a STEP and an IGES file (one
+/// file name hostile too); OpenCascade must read every file (one valid
+/// face, degree and poles as reported) and read back, from STEP, the name
+/// itself (the PRODUCT's id and name, the shape representation's, the name
+/// XCAF shows, and the header's file name): its first 1000 characters, NUL
+/// left out; from IGES (ASCII only) its transliteration.
+#[test]
+fn any_scene_name_gives_step_and_iges_files_that_opencascade_reads_with_the_name() {
+    let long: String = "a');b\\ Ü🚗,".chars().cycle().take(500).collect();
+    let too_long: String = "🚗é'".chars().cycle().take(1500).collect();
+    let names = [
+        "a');b",
+        "'",
+        "''",
+        "\\",
+        "a\\b",
+        ";",
+        "(",
+        ")",
+        "Ünïcødé 車",
+        "emoji 🚗",
+        "",
+        "x'\" ,)",
+        "ADVANCED_FACE(#99",
+        "line\nbreak\ttab",
+        "\\X2\\0041\\X0\\ \\S\\A",
+        "END-ISO-10303-21;",
+        "nul\0byte",
+        &long,
+        &too_long,
+    ];
+    let dir = scratch("names");
+    let base = builtin::scene("minimal").unwrap();
+    let depth = 4;
+    let mesh = mesh_of(&base, depth);
+    let mut manifest = Vec::new();
+    for (i, name) in names.into_iter().enumerate() {
+        let mut scene = base.clone();
+        scene.name = name.to_string();
+        let stem = match i {
+            0 => "a');b Ü 車".to_string(),
+            _ => format!("name{i}"),
+        };
+        for ext in ["step", "igs"] {
+            let file = format!("{stem}.{ext}");
+            let path = dir.join(&file);
+            let out = export_scene(&scene, &mesh, depth, &path, &ExportOptions::default())
+                .unwrap_or_else(|e| panic!("{name:?}: {e}"));
+            let r = out.fit.expect("a CAD format reports its fit").fit.report;
+            let written = if ext == "step" {
+                let kept: String = name.chars().take(1000).filter(|&c| c != '\0').collect();
+                serde_json::json!({
+                    "product id": [kept],
+                    "product name": [kept],
+                    "representation": [kept],
+                    "xcaf": [kept],
+                    "file": file,
+                })
+            } else {
+                serde_json::json!({
+                    "sender": iges_name(name),
+                    "receiver": iges_name(name),
+                    "file": iges_name(&file),
+                })
+            };
+            manifest.push(serde_json::json!({
+                "file": path,
+                "degree": [r.degree.0, r.degree.1],
+                "poles": [r.poles.0, r.poles.1],
+                "tolerance": r.tolerance,
+                "points": {},
+                "names": written,
+            }));
+        }
+    }
+    let results = opencascade_check(&dir, &manifest);
+    for (r, m) in results.iter().zip(&manifest) {
+        assert_eq!(r["file"], m["file"]);
+        assert!(r.get("error").is_none() && r["valid"] == true, "{r}");
+        assert_eq!(r["names"], m["names"], "{r}");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
