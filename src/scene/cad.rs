@@ -6,7 +6,7 @@
 
 use std::time::Instant;
 use streamline_kernel::grid::Grid;
-use streamline_kernel::levels::incremental::{place_row_tuned, reference_levels};
+use streamline_kernel::levels::incremental::{place_rows_tuned, reference_levels};
 use streamline_kernel::nurbs::{Fit, FitError, FitOptions, Samples, fit};
 
 use super::model::Scene;
@@ -19,18 +19,13 @@ pub fn samples(scene: &Scene, depth: u32) -> Result<Samples, FitError> {
     let level = levels.last().expect("level 0 at least");
     let (rows, cols) = (level.tangents.rows(), level.tangents.cols() + 1);
     let mut data = Vec::with_capacity(rows * cols);
-    let mut row = Vec::with_capacity(cols);
-    for r in 0..rows {
-        place_row_tuned(
-            design.initial(),
-            &level.tangents,
-            &level.params,
-            r,
-            scene.tuning.as_ref(),
-            &mut row,
-        );
-        data.extend_from_slice(&row);
-    }
+    place_rows_tuned(
+        design.initial(),
+        &level.tangents,
+        &level.params,
+        scene.tuning.as_ref(),
+        &mut data,
+    );
     Samples::from_level(level, Grid::new(rows, cols, data)?)
 }
 
