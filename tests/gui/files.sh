@@ -26,7 +26,7 @@ xdotool type --delay 80 "$OPEN"; sleep 1
 xdotool key Return; sleep 3
 chord ctrl+shift s; sleep 1
 # clear the proposed name (the name field has the focus)
-xdotool key --delay 40 --repeat 200 BackSpace; sleep 1
+xdotool key End; sleep 0.3; xdotool key --delay 40 --repeat 200 BackSpace; sleep 1
 xdotool type --delay 80 "$SAVE"; sleep 1
 xdotool key Return; sleep 3
 # let the last frames land, then let the editor take its picture and exit

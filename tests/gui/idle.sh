@@ -31,7 +31,7 @@ echo "idle $((b - a))"
 chord() { xdotool keydown "$1"; sleep 0.6; xdotool key "$2"; sleep 0.6; xdotool keyup "$1"; sleep 1; }
 a=$(ticks)
 chord ctrl+shift s; sleep 1
-xdotool key --delay 40 --repeat 200 BackSpace; sleep 1
+xdotool key End; sleep 0.3; xdotool key --delay 40 --repeat 200 BackSpace; sleep 1
 xdotool type --delay 80 "$SAVE"; sleep 1
 xdotool key Return
 for _ in $(seq 1 50); do
