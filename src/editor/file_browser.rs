@@ -14,6 +14,7 @@ use super::files::{self, Browse, FileUi, PathAction, Pending};
 use super::mesh_mode::MeshView;
 use crate::ecs::runner::ScriptRun;
 use crate::ecs::{Edit, EditMessage, Model};
+use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
 use egui_file_dialog::{FileDialog, FileDialogStorage, OpeningMode};
@@ -111,63 +112,64 @@ fn dialog_for(req: &Browse, recent: &[PathBuf], storage: Option<FileDialogStorag
     d
 }
 
-/// Hands `path` to what it was picked for.
-fn deliver(
-    req: Browse,
-    path: PathBuf,
-    model: &Model,
-    files_ui: &mut FileUi,
-    edits: &mut MessageWriter<EditMessage>,
-    exit: &mut MessageWriter<AppExit>,
-    script: &mut ScriptRun,
-    mesh: &mut MeshView,
-) {
-    match req.action {
-        PathAction::Open => files::request(Pending::Open(path), model, files_ui, edits, exit),
-        PathAction::SaveAs => files::save_as(path, req.then, files_ui, edits),
-        PathAction::Export(_) => {
-            edits.write(EditMessage::from(Edit::Export(path)));
+/// What a picked file goes to.
+#[derive(SystemParam)]
+struct Receivers<'w> {
+    model: Res<'w, Model>,
+    files_ui: ResMut<'w, FileUi>,
+    edits: MessageWriter<'w, EditMessage>,
+    exit: MessageWriter<'w, AppExit>,
+    script: ResMut<'w, ScriptRun>,
+    mesh: ResMut<'w, MeshView>,
+}
+
+impl Receivers<'_> {
+    /// Hands `path` to what it was picked for.
+    fn deliver(&mut self, req: Browse, path: PathBuf) {
+        let (model, ui, edits) = (&self.model, &mut *self.files_ui, &mut self.edits);
+        match req.action {
+            PathAction::Open => {
+                files::request(Pending::Open(path), model, ui, edits, &mut self.exit)
+            }
+            PathAction::SaveAs => files::save_as(path, req.then, ui, edits),
+            PathAction::Export(_) => {
+                edits.write(EditMessage::from(Edit::Export(path)));
+            }
+            PathAction::RunScript => {
+                self.script.input = path.display().to_string();
+                self.script.start(path);
+            }
+            PathAction::OpenMesh => {
+                self.mesh.input = path.display().to_string();
+                self.mesh.open(path);
+            }
+            PathAction::ExportMeshSurface => self.mesh.export(path, false),
+            PathAction::ExportMeshControl => self.mesh.export(path, true),
+            PathAction::ExportMeshUsd => self.mesh.export_usd(path),
         }
-        PathAction::RunScript => {
-            script.input = path.display().to_string();
-            script.start(path);
-        }
-        PathAction::OpenMesh => {
-            mesh.input = path.display().to_string();
-            mesh.open(path);
-        }
-        PathAction::ExportMeshSurface => mesh.export(path, false),
-        PathAction::ExportMeshControl => mesh.export(path, true),
-        PathAction::ExportMeshUsd => mesh.export_usd(path),
     }
 }
 
-#[allow(clippy::too_many_arguments)]
 fn browse(
     meter: Res<crate::ecs::meter::CpuMeter>,
     mut contexts: EguiContexts,
     mut browser: ResMut<FileBrowser>,
-    mut files_ui: ResMut<FileUi>,
-    model: Res<Model>,
-    mut edits: MessageWriter<EditMessage>,
-    mut exit: MessageWriter<AppExit>,
-    mut script: ResMut<ScriptRun>,
-    mut mesh: ResMut<MeshView>,
+    mut to: Receivers,
 ) -> Result {
     let _meter = meter.start();
-    if let Some(req) = files_ui.browse.take() {
+    if let Some(req) = to.files_ui.browse.take() {
         let storage = browser
             .dialog
             .take()
             .map(|mut d| d.storage_mut().clone())
             .or_else(|| browser.storage.take());
-        let d = dialog_for(&req, &files_ui.recent, storage);
+        let d = dialog_for(&req, &to.files_ui.recent, storage);
         browser.dialog = Some(d);
         browser.request = Some(req);
     }
     let open = browser.dialog.is_some();
-    if files_ui.browsing != open {
-        files_ui.browsing = open;
+    if to.files_ui.browsing != open {
+        to.files_ui.browsing = open;
     }
     let Some(d) = browser.dialog.as_mut() else {
         return Ok(());
@@ -179,20 +181,10 @@ fn browse(
     if !closed && picked.is_none() {
         return Ok(());
     }
-    let storage = browser.dialog.take().map(|mut d| d.storage_mut().clone());
-    browser.storage = storage;
-    files_ui.browsing = false;
+    browser.storage = browser.dialog.take().map(|mut d| d.storage_mut().clone());
+    to.files_ui.browsing = false;
     if let (Some(path), Some(req)) = (picked, browser.request.take()) {
-        deliver(
-            req,
-            path,
-            &model,
-            &mut files_ui,
-            &mut edits,
-            &mut exit,
-            &mut script,
-            &mut mesh,
-        );
+        to.deliver(req, path);
     }
     Ok(())
 }

@@ -12,7 +12,7 @@
 # Usage: browser.sh BIN OUT.png REPORT.json MODE FOLDER NAME.obj
 set -euo pipefail
 BIN=$1; OUT=$2; REPORT=$3; MODE=$4; FOLDER=$5; NAME=$6
-STREAMLINE_STUDIO_SHOT_WAIT="$REPORT.done" STREAMLINE_STUDIO_SHOT_FRAMES=${FRAMES:-30} "$BIN" screenshot minimal --out "$OUT" \
+STREAMLINE_STUDIO_SHOT_WAIT="$REPORT.done" STREAMLINE_STUDIO_SHOT_FRAMES=${FRAMES:-30} "$BIN" screenshot "${SCENE:-minimal}" ${SHOT_ARGS:-} --out "$OUT" \
   --select 0,0 --report "$REPORT" --size 900x600 2>"$REPORT.log" &
 PID=$!
 for _ in $(seq 1 600); do
@@ -28,8 +28,8 @@ goto() { xdotool mousemove "$(($1 - 2))" "$2"; sleep 0.6; xdotool mousemove "$1"
 click() { goto "$1" "$2"; xdotool click 1; sleep 1.5; }
 chord() { xdotool keydown "$1"; sleep 0.6; xdotool key "$2"; sleep 0.6; xdotool keyup "$1"; sleep 1; }
 # where things are in a 900×600 window (egui's default style)
-FILE_MENU="18 11"; HELP_MENU="122 11"
-OPEN_ENTRY="50 87"; EXPORT_ENTRY="50 180"; OBJ_ENTRY="240 180"; KEYS_ENTRY="150 34"
+FILE_MENU="18 11"; HELP_MENU="130 11"
+OPEN_ENTRY="50 87"; EXPORT_ENTRY="50 180"; OBJ_ENTRY="240 180"; KEYS_ENTRY="150 36"
 FIRST_ENTRY="360 200"; OPEN_BUTTON="735 468"
 finish() { sleep 2; touch "$REPORT.done"; wait "$PID"; exit; }
 # File ▸ Open…, then `/`, the folder typed over the current one, Enter
@@ -37,7 +37,9 @@ open_folder() {
   click $FILE_MENU; click $OPEN_ENTRY; sleep 1
   xdotool key slash; sleep 1.2
   chord ctrl a
-  xdotool type --delay 60 "$FOLDER"; sleep 0.6
+  # the browser reads Enter before the text of the same frame: let the
+  # typing land first
+  xdotool type --delay 60 "$FOLDER"; sleep 2
   xdotool key Return; sleep 2.5
 }
 case "$MODE" in
@@ -52,7 +54,7 @@ sleep 3
 # File ▸ Export ▸ OBJ mesh…: the name field has the focus
 click $FILE_MENU; goto $EXPORT_ENTRY; sleep 1; click $OBJ_ENTRY; sleep 1.5
 chord ctrl a
-xdotool type --delay 60 "$NAME"; sleep 0.6
+xdotool type --delay 60 "$NAME"; sleep 2
 click $OPEN_BUTTON
 sleep 3
 finish

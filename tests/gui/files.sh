@@ -22,7 +22,8 @@ chord() { xdotool keydown "$1"; sleep 0.6; xdotool key "$2"; sleep 0.6; xdotool 
 chord ctrl o; sleep 1
 xdotool key slash; sleep 1.2
 chord ctrl a
-xdotool type --delay 80 "$OPEN"; sleep 1
+# the browser reads Enter before the text of the same frame: let it land
+xdotool type --delay 80 "$OPEN"; sleep 2
 xdotool key Return; sleep 3
 chord ctrl+shift s; sleep 1
 # clear the proposed name (the name field has the focus)

@@ -39,22 +39,10 @@ pub const KEYS: &[(&str, &[(&str, &str)])] = &[
         &[
             ("Ctrl+Z", "Undo"),
             ("Ctrl+Shift+Z, Ctrl+Y", "Redo"),
-            (
-                "Esc",
-                "Cancel the drag (the arrow goes back); close a menu or dialog",
-            ),
-            (
-                "R / Shift+R",
-                "Insert a row after / before the selected arrow",
-            ),
-            (
-                "C / Shift+C",
-                "Insert a column after / before the selected arrow",
-            ),
-            (
-                "Delete / Shift+Delete",
-                "Delete the selected arrow's row / column",
-            ),
+            ("Esc", "Cancel a drag (the arrow goes back); close a menu"),
+            ("R / Shift+R", "Insert a row after / before the selection"),
+            ("C / Shift+C", "Insert a column after / before it"),
+            ("Delete / Shift+Delete", "Delete its row / column"),
         ],
     ),
     (
@@ -75,11 +63,11 @@ pub const KEYS: &[(&str, &[(&str, &str)])] = &[
             ),
             (
                 "Shift+click, Shift+drag",
-                "Select several arrows (a box); drag turns them all",
+                "Select several (a box); a drag turns all",
             ),
             (
                 "Right click on an arrow",
-                "Insert and delete rows and columns there",
+                "Insert or delete rows and columns there",
             ),
             ("Right drag", "Orbit"),
             ("Middle drag", "Pan"),
@@ -89,8 +77,8 @@ pub const KEYS: &[(&str, &[(&str, &str)])] = &[
     (
         "File browser",
         &[
-            ("/", "Type a path (a folder to go to, or a file to pick)"),
-            ("Enter", "Open the folder or pick the file selected"),
+            ("/", "Type a path (a folder, or a file to pick)"),
+            ("Enter", "Open the folder or pick the file"),
             ("↑ / ↓", "Select the entry above / below"),
             ("Alt+↑", "The parent folder"),
             ("Backspace, Alt+←", "Back"),
@@ -285,28 +273,44 @@ fn view_menu(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut Sections) {
     d.sphere.set_if_neq(sp);
 }
 
+/// Groups of bindings as a grid: the group's name, then key and what it does.
+fn key_grid(ui: &mut egui::Ui, id: &str, groups: &[(&str, &[(&str, &str)])]) {
+    egui::Grid::new(id)
+        .num_columns(2)
+        .spacing([14.0, 3.0])
+        .striped(true)
+        .show(ui, |ui| {
+            for (group, rows) in groups {
+                ui.label(egui::RichText::new(*group).strong().underline());
+                ui.end_row();
+                for (key, what) in *rows {
+                    ui.label(egui::RichText::new(*key).strong());
+                    ui.label(*what);
+                    ui.end_row();
+                }
+            }
+        });
+}
+
 fn help_windows(ctx: &egui::Context, help: &mut HelpWindows) {
     let mut keys = help.keys;
     egui::Window::new("Keys and mouse")
         .open(&mut keys)
         .collapsible(false)
         .resizable(false)
-        .default_pos([220.0, 60.0])
+        .pivot(egui::Align2::CENTER_TOP)
+        .default_pos([ctx.viewport_rect().center().x, 30.0])
         .show(ctx, |ui| {
-            egui::Grid::new("help_keys")
-                .num_columns(2)
-                .spacing([18.0, 3.0])
-                .striped(true)
+            let tall = (ctx.viewport_rect().height() - 90.0).max(120.0);
+            egui::ScrollArea::vertical()
+                .max_height(tall)
                 .show(ui, |ui| {
-                    for (group, rows) in KEYS {
-                        ui.strong(*group);
-                        ui.end_row();
-                        for (key, what) in *rows {
-                            ui.monospace(*key);
-                            ui.label(*what);
-                            ui.end_row();
-                        }
-                    }
+                    ui.horizontal_top(|ui| {
+                        let (left, right) = KEYS.split_at(3);
+                        key_grid(ui, "help_keys_left", left);
+                        ui.add_space(12.0);
+                        key_grid(ui, "help_keys_right", right);
+                    });
                 });
         });
     if keys != help.keys {
