@@ -79,9 +79,9 @@ pub const KEYS: &[(&str, &[(&str, &str)])] = &[
         &[
             ("/", "Type a path (a folder, or a file to pick)"),
             ("Enter", "Open the folder or pick the file"),
-            ("↑ / ↓", "Select the entry above / below"),
-            ("Alt+↑", "The parent folder"),
-            ("Backspace, Alt+←", "Back"),
+            ("Up / Down", "Select the entry above / below"),
+            ("Alt+Up", "The parent folder"),
+            ("Backspace, Alt+Left", "Back"),
             ("Esc", "Close without picking"),
         ],
     ),
