@@ -217,6 +217,13 @@ fn save_recent(dirs: &EditorDirs, recent: &[PathBuf]) {
     }
 }
 
+/// Whether no file dialog (the unsaved-changes question, recovery) and no
+/// file browser is on screen: the editor's keys (framing, structure) wait
+/// while one is, as the file shortcuts do.
+pub fn no_file_dialog(ui: Option<Res<FileUi>>) -> bool {
+    ui.is_none_or(|u| u.dialog.is_none() && !u.browsing)
+}
+
 /// Starts `p`, or asks about unsaved changes first.
 pub fn request(
     p: Pending,
