@@ -44,7 +44,7 @@ elif [ "$MODE" = new ]; then
   click 310 392   # Create
   sleep 2
   chord ctrl s; sleep 1
-  # clear the suggested path (the cursor is at its end), type the file
+  # clear the proposed name in the file browser (End: past its extension), type the file
   xdotool key End; sleep 0.3; xdotool key --delay 40 --repeat 200 BackSpace; sleep 1
   xdotool type --delay 80 "$FILE"; sleep 1
   xdotool key Return; sleep 3
