@@ -24,11 +24,16 @@ fn temp_dir(name: &str) -> PathBuf {
 
 /// Runs `screenshot` with `args` at 800×600 and returns the decoded RGB pixels.
 fn shot(dir: &Path, name: &str, args: &[&str]) -> (u32, u32, Vec<[u8; 3]>) {
+    shot_sized(dir, name, "800x600", args)
+}
+
+/// [`shot`] at `size` (`WxH`).
+fn shot_sized(dir: &Path, name: &str, size: &str, args: &[&str]) -> (u32, u32, Vec<[u8; 3]>) {
     let out = dir.join(format!("{name}.png"));
     let run = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1280x800x24", BIN, "screenshot"])
         .args(args)
-        .args(["--size", "800x600", "--out"])
+        .args(["--size", size, "--out"])
         .arg(&out)
         .env_remove("DISPLAY")
         .output()
@@ -118,8 +123,14 @@ fn screenshots_show_the_surface_panels_and_curvature() {
         "green {green:.3}, red {red:.4}"
     );
     // fine tuning: the panel's sliders and labels, and the plot of α in yellow
-    // (the panel is 300 px wide at 800×600: count only inside it)
-    let (w, h, px) = shot(&dir, "tuning", &["car1-tuned", "--panel", "tuning"]);
+    // (the panel is 300 px wide: count only inside it; 680 px high, so that
+    // the plot fits under the menu bar, the toolbar and the sliders)
+    let (w, h, px) = shot_sized(
+        &dir,
+        "tuning",
+        "800x680",
+        &["car1-tuned", "--panel", "tuning"],
+    );
     let in_panel = |f: &dyn Fn([u8; 3]) -> bool| {
         (0..h * w)
             .filter(|i| i % w < 280)
