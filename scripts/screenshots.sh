@@ -44,4 +44,16 @@ xvfb-run -a -s "-screen 0 1280x800x24" bash tests/gui/authoring.sh "$BIN" docs/i
 cp "$T/2-insert.ron" "$T/menu.ron"
 xvfb-run -a -s "-screen 0 1280x800x24" bash tests/gui/authoring.sh "$BIN" docs/img/menu-arrow.png "$T/m.json" menu "$T/menu.ron"
 echo docs/img/dialog-new-design.png docs/img/menu-arrow.png
+# the menu bar and the file browser (docs/editor.md): a folder of designs,
+# opened from one of them so that it is a recent place too
+mkdir -p "$T/designs/archive" "$T/work"
+cp scenes/car1.ron scenes/car2.ron scenes/qi-side.ron "$T/designs/"
+cp scenes/minimal.ron "$T/designs/body-v2.ron"
+cp scenes/car1.ron "$T/designs/archive/car1-old.ron"
+echo notes > "$T/designs/notes.txt"
+for m in menu:menu-file browser:file-browser keys:help-keys; do
+  (cd "$T/work" && SCENE="$T/designs/car2.ron" SHOT_ARGS="--msaa 4" xvfb-run -a -s "-screen 0 1280x800x24" \
+    bash "$OLDPWD/tests/gui/browser.sh" "$OLDPWD/$BIN" "$OLDPWD/docs/img/${m#*:}.png" "$T/${m%%:*}.json" "${m%%:*}" "$T/designs" x.obj)
+  echo "docs/img/${m#*:}.png"
+done
 rm -rf "$T"

@@ -24,11 +24,16 @@ fn temp_dir(name: &str) -> PathBuf {
 
 /// Runs `screenshot` with `args` at 800×600 and returns the decoded RGB pixels.
 fn shot(dir: &Path, name: &str, args: &[&str]) -> (u32, u32, Vec<[u8; 3]>) {
+    shot_sized(dir, name, "800x600", args)
+}
+
+/// [`shot`] at `size` (`WxH`).
+fn shot_sized(dir: &Path, name: &str, size: &str, args: &[&str]) -> (u32, u32, Vec<[u8; 3]>) {
     let out = dir.join(format!("{name}.png"));
     let run = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1280x800x24", BIN, "screenshot"])
         .args(args)
-        .args(["--size", "800x600", "--out"])
+        .args(["--size", size, "--out"])
         .arg(&out)
         .env_remove("DISPLAY")
         .output()
@@ -118,8 +123,14 @@ fn screenshots_show_the_surface_panels_and_curvature() {
         "green {green:.3}, red {red:.4}"
     );
     // fine tuning: the panel's sliders and labels, and the plot of α in yellow
-    // (the panel is 300 px wide at 800×600: count only inside it)
-    let (w, h, px) = shot(&dir, "tuning", &["car1-tuned", "--panel", "tuning"]);
+    // (the panel is 300 px wide: count only inside it; 680 px high, so that
+    // the plot fits under the menu bar, the toolbar and the sliders)
+    let (w, h, px) = shot_sized(
+        &dir,
+        "tuning",
+        "800x680",
+        &["car1-tuned", "--panel", "tuning"],
+    );
     let in_panel = |f: &dyn Fn([u8; 3]) -> bool| {
         (0..h * w)
             .filter(|i| i % w < 280)
@@ -148,6 +159,8 @@ fn screenshots_show_the_surface_panels_and_curvature() {
 
 #[derive(serde::Deserialize, Debug)]
 struct Report {
+    #[serde(default)]
+    path: Option<PathBuf>,
     undo: usize,
     last_edit: String,
     selection: Option<(usize, usize)>,
@@ -528,5 +541,88 @@ fn a_glb_exported_with_a_map_shown_has_its_colours() {
             None => assert!(!coloured, "{analysis}: COLOR_0 missing"),
         }
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Runs `tests/gui/browser.sh` in `mode` from `cwd` (the editor's working
+/// folder) with the scene folder `folder`; returns the report.
+fn browser(dir: &Path, cwd: &Path, mode: &str, folder: &Path, name: &str) -> Report {
+    let report = dir.join(format!("{mode}.json"));
+    let run = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24", "bash"])
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/gui/browser.sh"))
+        .arg(BIN)
+        .arg(dir.join(format!("{mode}.png")))
+        .arg(&report)
+        .arg(mode)
+        .arg(folder)
+        .arg(name)
+        .current_dir(cwd)
+        .env("STREAMLINE_STUDIO_HOME", dir.join("home"))
+        .env_remove("DISPLAY")
+        .output()
+        .expect("xvfb-run and xdotool are installed by scripts/setup.sh");
+    assert!(
+        run.status.success(),
+        "browser run ({mode}) failed: {}{}",
+        String::from_utf8_lossy(&run.stderr),
+        std::fs::read_to_string(report.with_extension("json.log")).unwrap_or_default()
+    );
+    serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap()
+}
+
+/// Issue 27: with a real pointer, File ▸ Open… in the menu bar opens the file
+/// browser in the working folder; a typed folder elsewhere, a click on the
+/// scene listed there and on Open load it (its path, its net). Then File ▸
+/// Export ▸ OBJ mesh… opens the browser in that scene's folder: a typed name
+/// and a click on Save write a valid OBJ of the scene's surface there.
+#[test]
+fn menu_bar_and_file_browser_open_and_export() {
+    let _gui = gui_lock();
+    let dir = temp_dir("browser");
+    let (cwd, folder) = (dir.join("work"), dir.join("elsewhere"));
+    std::fs::create_dir_all(&cwd).unwrap();
+    std::fs::create_dir_all(&folder).unwrap();
+    let scene = folder.join("car2.ron");
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/car2.ron"),
+        &scene,
+    )
+    .unwrap();
+    // not a scene: the browser's filter hides it
+    std::fs::write(folder.join("notes.txt"), "not a scene\n").unwrap();
+    let r = browser(&dir, &cwd, "run", &folder, "through-browser.obj");
+    let car2 = streamline_studio::scene::io::load(&scene).unwrap();
+    let opened = r.path.as_deref().map(std::fs::canonicalize);
+    assert_eq!(
+        opened.map(Result::unwrap),
+        Some(std::fs::canonicalize(&scene).unwrap()),
+        "the scene from the other folder was opened: {r:?}"
+    );
+    assert_eq!(r.cols, car2.design.net().cols(), "{r:?}");
+    assert_eq!(r.net.len(), car2.design.net().data().len(), "{r:?}");
+    let obj = folder.join("through-browser.obj");
+    let text = std::fs::read_to_string(&obj).unwrap_or_else(|e| {
+        panic!(
+            "no OBJ in the scene's folder ({e}): {r:?}; {:?}",
+            std::fs::read_dir(&folder).unwrap().collect::<Vec<_>>()
+        )
+    });
+    let mesh = car2.design.build(car2.display_depth).unwrap().mesh;
+    let count = |p: &str| text.lines().filter(|l| l.starts_with(p)).count();
+    assert_eq!(
+        count("v "),
+        mesh.positions.len(),
+        "one vertex per mesh point"
+    );
+    assert_eq!(count("f "), mesh.indices.len() / 3, "every triangle");
+    for l in text.lines().filter(|l| l.starts_with("v ")) {
+        let xyz: Vec<f64> = l[2..]
+            .split_whitespace()
+            .map(|v| v.parse().unwrap())
+            .collect();
+        assert!(xyz.len() == 3 && xyz.iter().all(|v| v.is_finite()), "{l}");
+    }
+    assert!(r.last_edit.contains("export"), "{r:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -27,7 +27,9 @@ impl Plugin for OrbitCameraPlugin {
                     bounds,
                     follow_scene_view,
                     orbit.run_if(not(egui_wants_any_pointer_input)),
-                    keys.run_if(not(egui_wants_any_keyboard_input)),
+                    keys.run_if(
+                        not(egui_wants_any_keyboard_input).and_then(super::files::no_file_dialog),
+                    ),
                     apply_frame_and_view,
                 )
                     .chain()

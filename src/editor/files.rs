@@ -1,11 +1,13 @@
 //! Files: new, open, save, save as, export OBJ/STL, recent files, the
 //! unsaved-changes prompt (before new, open and quit), and a dialog for edits
 //! that failed (a failed open keeps the current scene: the model refuses it).
-//! Paths are typed or picked from the scene files found nearby (no native file
-//! dialog: that would need GTK or a desktop portal on Linux).
+//! Files are picked in the editor's own file browser (`file_browser.rs`: no
+//! native file dialog, which would need GTK or a desktop portal on Linux);
+//! this file asks it for one with [`browse`].
 
 use crate::ecs::{Edit, EditLog, EditMessage, Model};
 use crate::scene::builtin;
+use crate::scene::export::Format;
 use bevy::prelude::*;
 use bevy::window::WindowCloseRequested;
 use bevy_egui::input::egui_wants_any_keyboard_input;
@@ -64,50 +66,85 @@ pub enum Pending {
     Quit,
 }
 
-/// What a path prompt is for.
+/// What a file is picked for (in the file browser, `file_browser.rs`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PathAction {
     /// Open a scene.
     Open,
     /// Save the scene under a new name.
     SaveAs,
-    /// Export the mesh as OBJ.
-    ExportObj,
-    /// Export the mesh as STL.
-    ExportStl,
+    /// Export the surface (`Edit::Export`; the extension picks the format).
+    Export(Format),
+    /// Play a script's edits into the scene.
+    RunScript,
+    /// Open a triangle mesh in the Loop mesh panel.
+    OpenMesh,
+    /// Write the Loop mesh panel's surface (OBJ).
+    ExportMeshSurface,
+    /// Write the Loop mesh panel's control mesh (OBJ).
+    ExportMeshControl,
+    /// Write the Loop mesh panel's control mesh as USD.
+    ExportMeshUsd,
 }
 
 impl PathAction {
-    fn title(self) -> &'static str {
+    /// The browser's title.
+    pub fn title(self) -> String {
         match self {
-            PathAction::Open => "Open scene",
-            PathAction::SaveAs => "Save scene as",
-            PathAction::ExportObj => "Export OBJ",
-            PathAction::ExportStl => "Export STL",
+            PathAction::Open => "Open scene".into(),
+            PathAction::SaveAs => "Save scene as".into(),
+            PathAction::Export(f) => format!("Export {}", f.name()),
+            PathAction::RunScript => "Run script".into(),
+            PathAction::OpenMesh => "Open a triangle mesh (Loop mesh)".into(),
+            PathAction::ExportMeshSurface => "Export the Loop surface (OBJ)".into(),
+            PathAction::ExportMeshControl => "Export the Loop control mesh (OBJ)".into(),
+            PathAction::ExportMeshUsd => "Export the Loop control mesh (USD)".into(),
         }
     }
 
-    fn extension(self) -> &'static str {
+    /// The file filter's name and the extensions it shows (the first one is
+    /// what a save adds).
+    pub fn filter(self) -> (&'static str, &'static [&'static str]) {
         match self {
-            PathAction::Open | PathAction::SaveAs => "ron",
-            PathAction::ExportObj => "obj",
-            PathAction::ExportStl => "stl",
+            PathAction::Open | PathAction::SaveAs | PathAction::RunScript => {
+                ("RON files (.ron)", &["ron"])
+            }
+            PathAction::Export(Format::Obj)
+            | PathAction::OpenMesh
+            | PathAction::ExportMeshSurface
+            | PathAction::ExportMeshControl => ("OBJ meshes (.obj)", &["obj"]),
+            PathAction::Export(Format::Stl) => ("STL meshes (.stl)", &["stl"]),
+            PathAction::Export(Format::Glb) => ("binary glTF (.glb)", &["glb"]),
+            PathAction::Export(Format::Step) => ("STEP (.step, .stp)", &["step", "stp"]),
+            PathAction::Export(Format::Iges) => ("IGES (.igs, .iges)", &["igs", "iges"]),
+            PathAction::ExportMeshUsd => ("USD text (.usda)", &["usda"]),
         }
     }
+
+    /// Whether it picks an existing file (else it names one to write).
+    pub fn opens(self) -> bool {
+        matches!(
+            self,
+            PathAction::Open | PathAction::RunScript | PathAction::OpenMesh
+        )
+    }
+}
+
+/// A request for the file browser.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Browse {
+    /// What for.
+    pub action: PathAction,
+    /// Where it starts: a file (its folder is shown and, for a save, its
+    /// name proposed) or a folder.
+    pub start: PathBuf,
+    /// What to do after a save-as (from the unsaved prompt).
+    pub then: Option<Pending>,
 }
 
 /// A dialog on screen.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Dialog {
-    /// Type or pick a path.
-    Path {
-        /// What for.
-        action: PathAction,
-        /// The path typed so far.
-        text: String,
-        /// What to do after a save-as (from the unsaved prompt).
-        then: Option<Pending>,
-    },
     /// Unsaved changes: save, discard or cancel before `then`.
     Unsaved(Pending),
     /// Offer to recover autosaved work.
@@ -124,6 +161,10 @@ pub enum Dialog {
 pub struct FileUi {
     /// The dialog shown.
     pub dialog: Option<Dialog>,
+    /// A file to pick, for the file browser to open (`file_browser.rs`).
+    pub browse: Option<Browse>,
+    /// Whether the file browser is on screen (the shortcuts wait).
+    pub browsing: bool,
     /// Error messages to show (failed open, save, export, refused edits).
     pub errors: Vec<String>,
     /// Recently opened or saved files, newest first.
@@ -176,6 +217,13 @@ fn save_recent(dirs: &EditorDirs, recent: &[PathBuf]) {
     }
 }
 
+/// Whether no file dialog (the unsaved-changes question, recovery) and no
+/// file browser is on screen: the editor's keys (framing, structure) wait
+/// while one is, as the file shortcuts do.
+pub fn no_file_dialog(ui: Option<Res<FileUi>>) -> bool {
+    ui.is_none_or(|u| u.dialog.is_none() && !u.browsing)
+}
+
 /// Starts `p`, or asks about unsaved changes first.
 pub fn request(
     p: Pending,
@@ -222,18 +270,42 @@ pub fn save(model: &Model, ui: &mut FileUi, edits: &mut MessageWriter<EditMessag
         Some(p) => {
             edits.write(EditMessage::from(Edit::Save(p.clone())));
         }
-        None => {
-            ui.dialog = Some(Dialog::Path {
-                action: PathAction::SaveAs,
-                text: suggested(model, "ron"),
-                then: None,
-            })
-        }
+        None => browse(ui, PathAction::SaveAs, suggested(model, "ron"), None),
     }
+}
+
+/// Asks the file browser for a file to `action`, starting at `start`.
+pub fn browse(
+    ui: &mut FileUi,
+    action: PathAction,
+    start: impl Into<PathBuf>,
+    then: Option<Pending>,
+) {
+    ui.browse = Some(Browse {
+        action,
+        start: start.into(),
+        then,
+    });
+}
+
+/// Saves to `path` (a file picked in the browser), then goes on with `then`.
+pub fn save_as(
+    path: PathBuf,
+    then: Option<Pending>,
+    ui: &mut FileUi,
+    edits: &mut MessageWriter<EditMessage>,
+) {
+    edits.write(EditMessage::from(Edit::Save(path)));
+    ui.after_save = then;
 }
 
 /// A path for a new file: next to the scene, named after it.
 pub fn suggested(model: &Model, ext: &str) -> String {
+    suggested_path(model, ext).display().to_string()
+}
+
+/// [`suggested`] as a path.
+pub fn suggested_path(model: &Model, ext: &str) -> PathBuf {
     let dir = model
         .path
         .as_ref()
@@ -253,7 +325,20 @@ pub fn suggested(model: &Model, ext: &str) -> String {
             }
         })
         .collect();
-    dir.join(format!("{stem}.{ext}")).display().to_string()
+    dir.join(format!("{stem}.{ext}"))
+}
+
+/// Where a file to open is looked for first: the scene's folder, else the
+/// working folder.
+pub fn scene_folder(model: &Model) -> PathBuf {
+    model
+        .path
+        .as_ref()
+        .and_then(|p| p.parent())
+        .filter(|p| !p.as_os_str().is_empty())
+        .map(Path::to_path_buf)
+        .or_else(|| std::env::current_dir().ok())
+        .unwrap_or_default()
 }
 
 fn shortcuts(
@@ -262,6 +347,7 @@ fn shortcuts(
     model: Res<Model>,
     mut ui: ResMut<FileUi>,
     mut edits: MessageWriter<EditMessage>,
+    mut exit: MessageWriter<AppExit>,
 ) {
     let _meter = meter.start();
     // a modifier pressed and let go within one frame (a fast tap, or a
@@ -269,7 +355,7 @@ fn shortcuts(
     let held = |k: [KeyCode; 2]| keys.any_pressed(k) || keys.any_just_pressed(k);
     let ctrl = held([KeyCode::ControlLeft, KeyCode::ControlRight]);
     let shift = held([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
-    if !ctrl || ui.dialog.is_some() {
+    if !ctrl || ui.dialog.is_some() || ui.browsing {
         return;
     }
     if keys.just_pressed(KeyCode::KeyZ) {
@@ -282,20 +368,19 @@ fn shortcuts(
         edits.write(EditMessage::from(Edit::Redo));
     } else if keys.just_pressed(KeyCode::KeyS) {
         if shift {
-            ui.dialog = Some(Dialog::Path {
-                action: PathAction::SaveAs,
-                text: suggested(&model, "ron"),
-                then: None,
-            });
+            browse(
+                &mut ui,
+                PathAction::SaveAs,
+                suggested_path(&model, "ron"),
+                None,
+            );
         } else {
             save(&model, &mut ui, &mut edits);
         }
     } else if keys.just_pressed(KeyCode::KeyO) {
-        ui.dialog = Some(Dialog::Path {
-            action: PathAction::Open,
-            text: String::new(),
-            then: None,
-        });
+        browse(&mut ui, PathAction::Open, scene_folder(&model), None);
+    } else if keys.just_pressed(KeyCode::KeyQ) {
+        request(Pending::Quit, &model, &mut ui, &mut edits, &mut exit);
     }
 }
 
@@ -361,33 +446,6 @@ fn continue_after_save(
     }
 }
 
-/// `.ron` files in the scene's folder, `./scenes` and the working folder.
-fn nearby_scenes(model: &Model) -> Vec<PathBuf> {
-    let mut dirs: Vec<PathBuf> = Vec::new();
-    if let Some(d) = model.path.as_ref().and_then(|p| p.parent()) {
-        dirs.push(d.to_path_buf());
-    }
-    dirs.push(PathBuf::from("scenes"));
-    dirs.push(PathBuf::from("."));
-    let mut out = Vec::new();
-    for d in dirs {
-        let Ok(rd) = std::fs::read_dir(&d) else {
-            continue;
-        };
-        let mut files: Vec<PathBuf> = rd
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .filter(|p| p.extension().is_some_and(|e| e == "ron"))
-            .collect();
-        files.sort();
-        for f in files {
-            if !out.contains(&f) && out.len() < 40 {
-                out.push(f);
-            }
-        }
-    }
-    out
-}
-
 fn dialogs(
     meter: Res<crate::ecs::meter::CpuMeter>,
     mut contexts: EguiContexts,
@@ -424,71 +482,6 @@ fn dialogs(
     let mut close = false;
     let modal =
         egui::Modal::new(egui::Id::new("file_dialog")).show(&ctx, |m| match dialog.clone() {
-            Dialog::Path {
-                action,
-                mut text,
-                then,
-            } => {
-                m.heading(action.title());
-                let field = m
-                    .add(egui::TextEdit::singleline(&mut text).desired_width(420.0))
-                    .on_hover_text(format!("A file path ending in .{}", action.extension()));
-                // typing goes to the path at once (once: Enter later gives focus up)
-                let focus_id = egui::Id::new("path_dialog_focused");
-                if !m.data(|d| d.get_temp::<bool>(focus_id).unwrap_or(false)) {
-                    field.request_focus();
-                    m.data_mut(|d| d.insert_temp(focus_id, true));
-                }
-                let enter = field.lost_focus() && m.input(|i| i.key_pressed(egui::Key::Enter));
-                if action == PathAction::Open {
-                    m.label(egui::RichText::new("Scene files nearby:").weak());
-                    egui::ScrollArea::vertical().max_height(180.0).show(m, |s| {
-                        for p in nearby_scenes(&model) {
-                            if s.selectable_label(false, p.display().to_string())
-                                .on_hover_text("Pick this file")
-                                .clicked()
-                            {
-                                text = p.display().to_string();
-                            }
-                        }
-                    });
-                }
-                let mut go = enter;
-                m.horizontal(|h| {
-                    go |= h
-                        .button(if action == PathAction::Open {
-                            "Open"
-                        } else {
-                            "Save"
-                        })
-                        .on_hover_text("Go ahead with this path")
-                        .clicked();
-                    if h.button("Cancel")
-                        .on_hover_text("Close without doing anything")
-                        .clicked()
-                    {
-                        close = true;
-                    }
-                });
-                if go && !text.trim().is_empty() {
-                    let path = PathBuf::from(text.trim());
-                    close = true;
-                    match action {
-                        PathAction::Open => {
-                            request(Pending::Open(path), &model, &mut ui, &mut edits, &mut exit)
-                        }
-                        PathAction::SaveAs => {
-                            edits.write(EditMessage::from(Edit::Save(path)));
-                            ui.after_save = then.clone();
-                        }
-                        PathAction::ExportObj | PathAction::ExportStl => {
-                            edits.write(EditMessage::from(Edit::Export(path)));
-                        }
-                    }
-                } else if !close {
-                    ui.dialog = Some(Dialog::Path { action, text, then });
-                }
-            }
             Dialog::Unsaved(p) => {
                 m.heading("Unsaved changes");
                 m.label(format!(
@@ -504,11 +497,13 @@ fn dialogs(
                                 close = true;
                             }
                             None => {
-                                ui.dialog = Some(Dialog::Path {
-                                    action: PathAction::SaveAs,
-                                    text: suggested(&model, "ron"),
-                                    then: Some(p.clone()),
-                                });
+                                browse(
+                                    &mut ui,
+                                    PathAction::SaveAs,
+                                    suggested_path(&model, "ron"),
+                                    Some(p.clone()),
+                                );
+                                close = true;
                             }
                         }
                     }
@@ -556,7 +551,6 @@ fn dialogs(
                 });
             }
         });
-    let before = ui.dialog.clone();
     // a branch that moved on to another dialog keeps that one
     if close {
         if ui.dialog.as_ref() == Some(&dialog) {
@@ -564,11 +558,6 @@ fn dialogs(
         }
     } else if modal.should_close() {
         ui.dialog = None;
-    }
-    // the next path dialog takes the keyboard focus again
-    let kind = |d: &Option<Dialog>| d.as_ref().map(std::mem::discriminant);
-    if kind(&ui.dialog) != kind(&before) || ui.dialog.is_none() {
-        ctx.data_mut(|d| d.remove::<bool>(egui::Id::new("path_dialog_focused")));
     }
     Ok(())
 }

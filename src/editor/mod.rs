@@ -13,6 +13,7 @@ mod box_select;
 mod camera;
 mod coords;
 mod deviation;
+mod file_browser;
 pub mod files;
 mod frame_timing;
 pub mod interaction;
@@ -80,6 +81,7 @@ impl Plugin for EditorPlugin {
             new_design::NewDesignPlugin,
             structure::StructurePlugin,
             box_select::BoxSelectPlugin,
+            file_browser::FileBrowserPlugin,
         ));
     }
 }

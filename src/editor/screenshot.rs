@@ -180,6 +180,10 @@ fn set_up_view(
 /// What a GUI test reads back after the run.
 #[derive(serde::Serialize)]
 struct Report {
+    /// The file the scene was opened from or saved to.
+    path: Option<PathBuf>,
+    /// The scene's name.
+    scene: String,
     undo: usize,
     redo: usize,
     unsaved: bool,
@@ -330,6 +334,8 @@ fn drive(
             write_report(
                 path,
                 &Report {
+                    path: model.path.clone(),
+                    scene: model.scene.name.clone(),
                     undo: history.undo_len(),
                     redo: history.redo_len(),
                     unsaved: model.unsaved,

@@ -191,7 +191,8 @@ impl Plugin for StructurePlugin {
                     ),
                     keys.run_if(
                         not(egui_wants_any_keyboard_input)
-                            .and_then(in_state(EditorMode::Streamline)),
+                            .and_then(in_state(EditorMode::Streamline))
+                            .and_then(super::files::no_file_dialog),
                     ),
                 )
                     .in_set(EditorSet::Input),

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Drives the authoring tools with a real pointer (xdotool) on a virtual
 # display: run it inside `xvfb-run -a`. Window 900×600, the File section open.
-#   new:    File ▸ New… ▸ New design…, rows 4, columns 7, width 3, Create, then
+#   new:    File ▸ New design… (the menu bar), rows 4, columns 7, width 3, Create, then
 #           Ctrl+S and a typed path (a new design has no file yet), Enter.
 #   insert: opens SCENE with arrow (1, 3) selected, right-clicks that arrow,
 #           picks "Insert row after" from its menu, saves (Ctrl+S).
@@ -34,18 +34,18 @@ field() {
 }
 chord() { xdotool keydown "$1"; sleep 0.6; xdotool key "$2"; sleep 0.6; xdotool keyup "$1"; sleep 1; }
 if [ "$MODE" = dialog ]; then
-  click 48 68; click 75 93; click 467 290
+  click 18 11; click 55 36; click 467 290
 elif [ "$MODE" = new ]; then
-  click 48 68     # File ▸ New…
-  click 75 93     # New design…
+  click 18 11     # File (the menu bar)
+  click 55 36     # New design…
   field 431 242 4 # rows
   field 431 266 7 # columns
   field 431 314 3 # width
   click 310 392   # Create
   sleep 2
   chord ctrl s; sleep 1
-  # clear the suggested path (the cursor is at its end), type the file
-  xdotool key --delay 40 --repeat 200 BackSpace; sleep 1
+  # clear the proposed name in the file browser (End: past its extension), type the file
+  xdotool key End; sleep 0.3; xdotool key --delay 40 --repeat 200 BackSpace; sleep 1
   xdotool type --delay 80 "$FILE"; sleep 1
   xdotool key Return; sleep 3
 else

@@ -2,8 +2,9 @@
 # The editor rests when nobody touches it and wakes on input (run inside
 # `xvfb-run -a`): opens the interactive editor (not `screenshot`, which draws
 # every frame) on SCENE, lets the start settle, counts the CPU it takes over
-# five idle seconds, then saves the scene to SAVE with Ctrl+Shift+S, a typed
-# path and Enter, and counts the CPU of that too.
+# five idle seconds, then saves the scene to SAVE with Ctrl+Shift+S, a path
+# typed into the file browser's name field and Enter, and counts the CPU of
+# that too.
 # Prints "idle TICKS" and "busy TICKS" (1/100 s); the caller checks SAVE.
 # Usage: idle.sh BIN SCENE.ron SAVE.ron
 set -euo pipefail
@@ -30,7 +31,7 @@ echo "idle $((b - a))"
 chord() { xdotool keydown "$1"; sleep 0.6; xdotool key "$2"; sleep 0.6; xdotool keyup "$1"; sleep 1; }
 a=$(ticks)
 chord ctrl+shift s; sleep 1
-xdotool key --delay 40 --repeat 200 BackSpace; sleep 1
+xdotool key End; sleep 0.3; xdotool key --delay 40 --repeat 200 BackSpace; sleep 1
 xdotool type --delay 80 "$SAVE"; sleep 1
 xdotool key Return
 for _ in $(seq 1 50); do

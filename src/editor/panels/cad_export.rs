@@ -6,7 +6,7 @@
 
 use super::PanelCtx;
 use crate::ecs::Edit;
-use crate::editor::files;
+use crate::editor::files::{self, FileUi, PathAction};
 use crate::scene::export::Format;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
@@ -31,7 +31,8 @@ struct Fields {
     path: String,
 }
 
-pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut CadExportSection) {
+/// `files_ui`: the File feature's state, through which the file browser is asked.
+pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut CadExportSection, files_ui: &mut FileUi) {
     let id = ui.id().with("cad-export");
     let mut f = ui
         .data(|d| d.get_temp::<Fields>(id))
@@ -77,18 +78,27 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut CadExportSection) {
                 });
             });
             ui.horizontal(|ui| {
-                ui.add(egui::TextEdit::singleline(&mut f.path).desired_width(190.0))
+                ui.add(egui::TextEdit::singleline(&mut f.path).desired_width(160.0))
                     .on_hover_text("The file to write (the extension picks the format)");
+                let fit = FitOptions {
+                    degree: (f.degree, f.degree),
+                    tolerance: Tolerance::Relative(f.relative),
+                };
                 if ui
                     .button("Export")
                     .on_hover_text("Fit (STEP, IGES) and write; atomic and verified, a refusal keeps the old file")
                     .clicked()
                 {
-                    s.export.fit = FitOptions {
-                        degree: (f.degree, f.degree),
-                        tolerance: Tolerance::Relative(f.relative),
-                    };
+                    s.export.fit = fit;
                     p.send(Edit::Export(std::path::PathBuf::from(f.path.trim())));
+                }
+                if ui
+                    .button("…")
+                    .on_hover_text("Pick the folder and name in the file browser, then fit and write")
+                    .clicked()
+                {
+                    s.export.fit = fit;
+                    files::browse(files_ui, PathAction::Export(f.format), f.path.trim(), None);
                 }
             });
             match &s.last_export.written {

@@ -2,12 +2,14 @@
 
 use super::PanelCtx;
 use crate::ecs::runner::ScriptRun;
-use crate::editor::files::{self, Dialog, FileUi, PathAction, Pending};
+use crate::editor::files::{self, FileUi, PathAction, Pending};
 use crate::editor::new_design::NewDesignForm;
 use crate::scene::builtin;
+use crate::scene::export::Format;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::egui;
+use std::path::PathBuf;
 
 /// What only the File section touches.
 #[derive(SystemParam)]
@@ -67,11 +69,8 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
             .on_hover_text("Open a scene file (.ron), Ctrl+O")
             .clicked()
         {
-            s.files.dialog = Some(Dialog::Path {
-                action: PathAction::Open,
-                text: String::new(),
-                then: None,
-            });
+            let folder = files::scene_folder(&p.model);
+            files::browse(&mut s.files, PathAction::Open, folder, None);
         }
         if ui
             .button("Save")
@@ -85,34 +84,28 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
             .on_hover_text("Save under a new name (Ctrl+Shift+S)")
             .clicked()
         {
-            s.files.dialog = Some(Dialog::Path {
-                action: PathAction::SaveAs,
-                text: files::suggested(&p.model, "ron"),
-                then: None,
-            });
+            let start = files::suggested_path(&p.model, "ron");
+            files::browse(&mut s.files, PathAction::SaveAs, start, None);
         }
     });
     ui.horizontal(|ui| {
-        for (label, action, ext, tip) in [
+        for (label, format, ext, tip) in [
             (
                 "Export OBJ…",
-                PathAction::ExportObj,
+                Format::Obj,
                 "obj",
                 "Write the surface mesh as Wavefront OBJ (positions, normals, faces)",
             ),
             (
                 "Export STL…",
-                PathAction::ExportStl,
+                Format::Stl,
                 "stl",
                 "Write the surface mesh as binary STL",
             ),
         ] {
             if ui.button(label).on_hover_text(tip).clicked() {
-                s.files.dialog = Some(Dialog::Path {
-                    action,
-                    text: files::suggested(&p.model, ext),
-                    then: None,
-                });
+                let start = files::suggested_path(&p.model, ext);
+                files::browse(&mut s.files, PathAction::Export(format), start, None);
             }
         }
     });
@@ -134,12 +127,13 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
         }
     }
     ui.separator();
-    script(ui, &mut s.script);
+    let folder = files::scene_folder(&p.model);
+    script(ui, &mut s.script, &mut s.files, folder);
 }
 
 /// Run script: a script's edits played into the open scene, off the frame's
 /// budget (a batch of steps a frame), with progress and Cancel.
-fn script(ui: &mut egui::Ui, run: &mut ResMut<ScriptRun>) {
+fn script(ui: &mut egui::Ui, run: &mut ResMut<ScriptRun>, files_ui: &mut FileUi, folder: PathBuf) {
     use crate::ecs::runner::RunState;
     let busy = run.busy();
     ui.horizontal(|ui| {
@@ -149,7 +143,7 @@ fn script(ui: &mut egui::Ui, run: &mut ResMut<ScriptRun>) {
             !busy,
             egui::TextEdit::singleline(&mut input)
                 .hint_text("script.ron")
-                .desired_width(170.0),
+                .desired_width(150.0),
         )
         .on_hover_text("A script file (RON steps, see tests/scripts); its paths are relative to it");
         if input != run.input {
@@ -160,8 +154,15 @@ fn script(ui: &mut egui::Ui, run: &mut ResMut<ScriptRun>) {
             .on_hover_text("Play the script's edits into this scene (one undo step each); expectations are skipped")
             .clicked()
         {
-            let path = std::path::PathBuf::from(run.input.trim());
+            let path = PathBuf::from(run.input.trim());
             run.start(path);
+        }
+        if ui
+            .add_enabled(!busy, egui::Button::new("…"))
+            .on_hover_text("Pick the script in the file browser and run it")
+            .clicked()
+        {
+            files::browse(files_ui, PathAction::RunScript, folder, None);
         }
     });
     let mut cancel = false;

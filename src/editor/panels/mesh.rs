@@ -2,6 +2,7 @@
 //! surface (method, tolerance, depth shown), read the iteration count and the
 //! errors, export the surface or its control mesh, close.
 
+use crate::editor::files::{self, FileUi, PathAction};
 use crate::editor::mesh_mode::MeshView;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
@@ -16,12 +17,13 @@ pub struct MeshSection<'w> {
     pub view: ResMut<'w, MeshView>,
 }
 
-pub fn show(ui: &mut egui::Ui, p: &mut MeshSection) {
+/// `files_ui`: the File feature's state, through which the file browser is asked.
+pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
     let v = &mut p.view;
     ui.horizontal(|ui| {
         // typed on a copy: the view is marked changed only when the text is
         let mut input = v.input.clone();
-        ui.add(egui::TextEdit::singleline(&mut input).desired_width(170.0))
+        ui.add(egui::TextEdit::singleline(&mut input).desired_width(140.0))
             .on_hover_text("A triangle mesh (OBJ); polygons are split into fans of triangles");
         if input != v.input {
             v.input = input;
@@ -33,6 +35,18 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection) {
         {
             let path = PathBuf::from(v.input.trim());
             v.open(path);
+        }
+        if ui
+            .button("…")
+            .on_hover_text("Pick the mesh in the file browser and open it")
+            .clicked()
+        {
+            let typed = PathBuf::from(v.input.trim());
+            let start = match typed.parent() {
+                Some(d) if d.is_dir() => d.to_path_buf(),
+                _ => std::env::current_dir().unwrap_or_default(),
+            };
+            files::browse(files_ui, PathAction::OpenMesh, start, None);
         }
     });
     if let Some(job) = &v.job {
@@ -161,38 +175,38 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection) {
         if ui
             .button("Export surface")
             .on_hover_text(format!(
-                "Write the surface shown to {stem}-loop.obj beside the input"
+                "Write the surface shown (OBJ); the browser proposes {stem}-loop.obj beside the input"
             ))
             .clicked()
         {
             let to = v.path.as_ref().map_or(PathBuf::from("."), |p| {
                 p.with_file_name(format!("{stem}-loop.obj"))
             });
-            v.export(to, false);
+            files::browse(files_ui, PathAction::ExportMeshSurface, to, None);
         }
         if ui
             .button("Export control")
             .on_hover_text(format!(
-                "Write the control mesh (input's vertex order and faces) to {stem}-control.obj"
+                "Write the control mesh (input's vertex order and faces, OBJ); the browser proposes {stem}-control.obj"
             ))
             .clicked()
         {
             let to = v.path.as_ref().map_or(PathBuf::from("."), |p| {
                 p.with_file_name(format!("{stem}-control.obj"))
             });
-            v.export(to, true);
+            files::browse(files_ui, PathAction::ExportMeshControl, to, None);
         }
         if ui
             .button("Export USD")
             .on_hover_text(format!(
-                "Write the control mesh to {stem}-control.usda: a USD mesh with subdivisionScheme loop and the boundary rule, so USD renderers draw this surface (not for paper)"
+                "Write the control mesh (the browser proposes {stem}-control.usda): a USD mesh with subdivisionScheme loop and the boundary rule, so USD renderers draw this surface (not for paper)"
             ))
             .clicked()
         {
             let to = v.path.as_ref().map_or(PathBuf::from("."), |p| {
                 p.with_file_name(format!("{stem}-control.usda"))
             });
-            v.export_usd(to);
+            files::browse(files_ui, PathAction::ExportMeshUsd, to, None);
         }
         if ui
             .button("Close")

@@ -1,4 +1,5 @@
-//! The egui panels: a toolbar (undo, redo, frame) and a side panel of
+//! The egui panels: a menu bar (File, Edit, View, Help), a toolbar (undo,
+//! redo, frame) and a side panel of
 //! sections (File, Subdivision, Structure, Selection, Display, Fine tuning, Analysis,
 //! Loop mesh, Stats). Panels are thin views: they read resources and send
 //! edit messages (or change display settings, only when a value really
@@ -14,6 +15,7 @@ mod file;
 mod group;
 mod initial;
 mod lengths;
+mod menu_bar;
 mod mesh;
 mod selection;
 mod stats;
@@ -196,6 +198,7 @@ pub struct Sections<'w, 's> {
     mesh: mesh::MeshSection<'w>,
     stats: stats::StatsSection<'w>,
     curvature: curvature::CurvatureSection<'w, 's>,
+    help: ResMut<'w, menu_bar::HelpWindows>,
 }
 
 /// The control net as the scene was opened (the Selection panel's reset).
@@ -260,6 +263,7 @@ impl Plugin for PanelPlugin {
         app.init_resource::<UiState>()
             .init_resource::<SliderGroups>()
             .init_resource::<OpenedScene>()
+            .init_resource::<menu_bar::HelpWindows>()
             .add_systems(Update, track_opened.after(crate::ecs::ModelSet::Output))
             .add_systems(Startup, spawn_ui_camera)
             .add_systems(EguiPrimaryContextPass, panel);
@@ -398,6 +402,7 @@ fn panel(
             .layer_id(egui::LayerId::background())
             .max_rect(ctx.viewport_rect()),
     );
+    egui::Panel::top("menu_bar").show(&mut root, |ui| menu_bar::show(ui, &mut p, &mut sections));
     egui::Panel::top("toolbar").show(&mut root, |ui| toolbar(ui, &mut p, &mut sections.bar));
     egui::Panel::bottom("status").show(&mut root, |ui| status(ui, &text.status));
     egui::Panel::left("side_panel")
@@ -417,7 +422,12 @@ fn panel(
                     let shown = header.show(ui, |ui| match name {
                         PanelName::File => {
                             file::show(ui, &mut p, &mut sections.file);
-                            cad_export::show(ui, &mut p, &mut sections.cad);
+                            cad_export::show(
+                                ui,
+                                &mut p,
+                                &mut sections.cad,
+                                &mut sections.file.files,
+                            );
                         }
                         PanelName::Subdivision => subdivision::show(ui, &mut p),
                         PanelName::Structure => structure::show(ui, &mut p),
@@ -428,7 +438,9 @@ fn panel(
                         PanelName::Display => display::show(ui, &mut sections.display),
                         PanelName::Tuning => tuning::show(ui, &mut p),
                         PanelName::Analysis => analysis::show(ui, &mut sections.analysis),
-                        PanelName::Mesh => mesh::show(ui, &mut sections.mesh),
+                        PanelName::Mesh => {
+                            mesh::show(ui, &mut sections.mesh, &mut sections.file.files)
+                        }
                         PanelName::Stats => {
                             stats::show(ui, &text.stats, &sections.stats.warnings.lines)
                         }
