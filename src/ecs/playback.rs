@@ -1,12 +1,11 @@
 //! Scripted playback: each step of a [`Script`] is an edit message sent to a
 //! headless app (one update per step) or an expectation checked against it.
 
-use super::authoring::AuthorEdit;
 use super::messages::Edit;
 use super::resources::*;
 use super::{headless_app, send};
-use crate::scene::format::{Dir, OrderSpec, SchemeSpec};
-use crate::scene::script::{Script, Step};
+use crate::scene::format::{OrderSpec, SchemeSpec};
+use crate::scene::script::{Expect, Script, Step};
 use crate::scene::{Scene, builtin};
 use bevy::prelude::*;
 use std::collections::HashMap;
@@ -38,7 +37,7 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
     let mut pending: Option<(usize, String)> = None;
     for (i, step) in script.steps.iter().enumerate() {
         let n = i + 1;
-        if !matches!(step, Step::ExpectError(_))
+        if !matches!(step, Step::Expect(Expect::ExpectError(_)))
             && let Some((at, err)) = pending.take()
         {
             report.failures += 1;
@@ -46,8 +45,8 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
                 .lines
                 .push(format!("step {at:>3}: FAIL unexpected error: {err}"));
         }
-        if step.is_expectation() {
-            let res = check(&app, step, &mut marks, &mut pending);
+        if let Step::Expect(x) = step {
+            let res = check(&app, x, &mut marks, &mut pending);
             let label = short(step);
             match res {
                 Ok(m) => report.lines.push(format!("step {n:>3} {label}: ok {m}")),
@@ -132,8 +131,10 @@ fn output(dir: &Path, p: &str) -> Result<PathBuf, String> {
     Ok(path)
 }
 
+/// The edit a step sends: file names resolved against the script's folder
+/// `dir` (outputs confined to it), a fine-tuning function checked, any other
+/// edit as it is.
 pub(crate) fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
-    let v = |d: &Dir| d.vec();
     Ok(match step {
         Step::Load(p) => match p.strip_prefix("builtin:") {
             Some(name) => Edit::Replace(Box::new(builtin::scene(name).map_err(|e| e.to_string())?)),
@@ -141,124 +142,9 @@ pub(crate) fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
         },
         Step::Save(p) => Edit::Save(output(dir, p)?),
         Step::Export(p) => Edit::Export(output(dir, p)?),
-        Step::SetDirection { row, col, dir } => Edit::SetDirection {
-            row: *row,
-            col: *col,
-            dir: v(dir),
-        },
-        Step::Rotate {
-            row,
-            col,
-            axis,
-            degrees,
-        } => Edit::Rotate {
-            row: *row,
-            col: *col,
-            axis: v(axis),
-            radians: degrees.0.to_radians(),
-        },
-        Step::SetLength {
-            row,
-            col,
-            coefficient,
-        } => Edit::SetLength {
-            row: *row,
-            col: *col,
-            coefficient: coefficient.0,
-        },
-        Step::ClearDetail { row, col } => Edit::ClearDetail {
-            row: *row,
-            col: *col,
-        },
-        Step::SetScheme(s) => Edit::SetScheme(s.to_kernel()),
-        Step::SetBlendOrder(o) => Edit::SetBlendOrder(o.to_kernel()),
-        Step::SetDisplayDepth(d) => Edit::SetDisplayDepth(*d),
-        Step::SetEditDepth(d) => Edit::SetEditDepth(*d),
-        Step::SetTuning(t) => Edit::SetTuning(match t {
-            None => None,
-            Some(t) => Some(t.to_kernel()?),
-        }),
-        Step::SetTuningValue { row, col, value } => Edit::SetTuningValue {
-            row: *row,
-            col: *col,
-            value: value.0,
-        },
-        Step::SetTuningConstraint(c) => Edit::SetTuningConstraint(c.to_kernel()),
-        Step::SetInterpolateTangents(on) => Edit::SetInterpolateTangents(*on),
-        Step::Undo => Edit::Undo,
-        Step::Redo => Edit::Redo,
-        Step::RotateMany {
-            handles,
-            axis,
-            degrees,
-        } => Edit::RotateMany {
-            handles: handles.clone(),
-            axis: v(axis),
-            radians: degrees.0.to_radians(),
-        },
-        step => match author_edit(step, v) {
-            Some(a) => Edit::Author(a),
-            None => return Err("not an edit".into()),
-        },
-    })
-}
-
-/// The authoring steps (`docs/math.md §9`) as their edits.
-fn author_edit(step: &Step, v: impl Fn(&Dir) -> DVec3) -> Option<AuthorEdit> {
-    use streamline_kernel::authoring::Axis;
-    Some(match step {
-        Step::NewDesign {
-            rows,
-            cols,
-            length,
-            template,
-            scheme,
-        } => AuthorEdit::NewDesign {
-            rows: *rows,
-            cols: *cols,
-            length: length.0,
-            template: template.to_kernel(),
-            scheme: scheme.map_or_else(Default::default, |s| s.to_kernel()),
-        },
-        Step::InsertRow { at } => AuthorEdit::Insert {
-            axis: Axis::Row,
-            at: *at,
-        },
-        Step::InsertColumn { at } => AuthorEdit::Insert {
-            axis: Axis::Column,
-            at: *at,
-        },
-        Step::DeleteRow(at) => AuthorEdit::Delete {
-            axis: Axis::Row,
-            at: *at,
-        },
-        Step::DeleteColumn(at) => AuthorEdit::Delete {
-            axis: Axis::Column,
-            at: *at,
-        },
-        Step::SetInitialDirection { index, dir } => AuthorEdit::SetInitialDirection {
-            index: *index,
-            dir: v(dir),
-        },
-        Step::RotateInitial {
-            index,
-            axis,
-            degrees,
-        } => AuthorEdit::RotateInitial {
-            index: *index,
-            axis: v(axis),
-            radians: degrees.0.to_radians(),
-        },
-        Step::SetInitialLength(l) => AuthorEdit::SetInitialLength(l.0),
-        Step::SetInitialOrigin(p) => AuthorEdit::SetInitialOrigin(p.vec()),
-        Step::SetInitialOrder(k) => AuthorEdit::SetInitialOrder(*k),
-        Step::SetAnchor(c) => AuthorEdit::SetAnchor(*c),
-        Step::SetStreamlineLength { row, length } => AuthorEdit::SetStreamlineLength {
-            row: *row,
-            length: length.0,
-        },
-        Step::SetMirror(on) => AuthorEdit::SetMirror(*on),
-        _ => return None,
+        Step::SetTuning(t) => Edit::SetTuning(t.as_ref().map(|t| t.to_kernel()).transpose()?),
+        Step::Edit(e) => e.clone(),
+        Step::Expect(_) => return Err("not an edit".into()),
     })
 }
 
@@ -277,7 +163,7 @@ fn max_diff(a: &Grid<DVec3>, b: &Grid<DVec3>) -> Option<f64> {
 
 fn check(
     app: &App,
-    step: &Step,
+    step: &Expect,
     marks: &mut HashMap<String, Grid<DVec3>>,
     pending: &mut Option<(usize, String)>,
 ) -> Result<String, String> {
@@ -287,7 +173,7 @@ fn check(
     let stats = w.resource::<Stats>();
     let history = w.resource::<History>();
     match step {
-        Step::ExpectPoint {
+        Expect::ExpectPoint {
             row,
             index,
             near,
@@ -312,7 +198,7 @@ fn check(
                 ))
             }
         }
-        Step::ExpectStats {
+        Expect::ExpectStats {
             max_reblended,
             max_reintegrated,
             min_reintegrated,
@@ -355,7 +241,7 @@ fn check(
                 Err(bad.join(", "))
             }
         }
-        Step::ExpectScene {
+        Expect::ExpectScene {
             display_depth,
             edit_depth,
             scheme,
@@ -462,22 +348,22 @@ fn check(
                 Err(bad.join(", "))
             }
         }
-        Step::ExpectError(text) => match pending.take() {
+        Expect::ExpectError(text) => match pending.take() {
             Some((_, e)) if e.contains(text.as_str()) => Ok(format!("({e})")),
             Some((_, e)) => Err(format!(
                 "the error was `{e}`, which does not contain `{text}`"
             )),
             None => Err("the previous step succeeded, but an error was expected".into()),
         },
-        Step::Mark(name) => {
+        Expect::Mark(name) => {
             marks.insert(name.clone(), surface.points.clone());
             Ok(format!("({} points)", surface.points.data().len()))
         }
-        Step::ExpectSame { mark, tolerance } | Step::ExpectChanged { mark, tolerance } => {
+        Expect::ExpectSame { mark, tolerance } | Expect::ExpectChanged { mark, tolerance } => {
             let m = marks
                 .get(mark)
                 .ok_or_else(|| format!("no mark `{mark}`; add a Mark(\"{mark}\") step first"))?;
-            let same = matches!(step, Step::ExpectSame { .. });
+            let same = matches!(step, Expect::ExpectSame { .. });
             match max_diff(m, &surface.points) {
                 None => {
                     if same {
@@ -493,7 +379,7 @@ fn check(
                 )),
             }
         }
-        Step::ExpectEndsSame { mark, tolerance } => {
+        Expect::ExpectEndsSame { mark, tolerance } => {
             let m = marks
                 .get(mark)
                 .ok_or_else(|| format!("no mark `{mark}`; add a Mark(\"{mark}\") step first"))?;
@@ -515,7 +401,7 @@ fn check(
                 ))
             }
         }
-        Step::ExpectStreamlineLength {
+        Expect::ExpectStreamlineLength {
             row,
             length,
             tolerance,
@@ -534,7 +420,7 @@ fn check(
                 ))
             }
         }
-        Step::ExpectMirrorSymmetric { tolerance } => {
+        Expect::ExpectMirrorSymmetric { tolerance } => {
             if !model.scene.mirror {
                 return Err("the mirror is off".into());
             }
@@ -557,7 +443,7 @@ fn check(
                 ))
             }
         }
-        Step::ExpectShifted {
+        Expect::ExpectShifted {
             mark,
             by,
             tolerance,
@@ -584,6 +470,5 @@ fn check(
                 ))
             }
         }
-        _ => Err("not an expectation".into()),
     }
 }
