@@ -329,141 +329,60 @@ impl AuthorEdit {
 }
 
 /// The file form of an edit's kernel values: each is read and written as a
-/// type of [`super::format`] (a [`Form`]), which checks it while it is read.
+/// type of [`super::format`], which checks it while it is read.
 mod form {
     use super::*;
-    use serde::de::Error;
-
-    /// A file-form type `Self` for the kernel value `K`.
-    pub(super) trait Form<K>: Sized {
-        /// The kernel value, or what is wrong with the file form.
-        fn read(self) -> Result<K, String>;
-        /// The file form of `k`.
-        fn write(k: &K) -> Self;
-    }
 
     /// `#[serde(with = "form::NAME")]` for a kernel type `K` written as the
-    /// file-form type `F`.
+    /// file-form type `F`, with `read: F → K` and `write: K → F`.
     macro_rules! form {
-        ($name:ident: $k:ty as $f:ty) => {
+        ($name:ident: $k:ty as $f:ty, $read:expr, $write:expr) => {
             pub(super) mod $name {
                 use super::*;
                 pub fn serialize<S: Serializer>(k: &$k, s: S) -> Result<S::Ok, S::Error> {
-                    <$f as Form<$k>>::write(k).serialize(s)
+                    let write: fn($k) -> $f = $write;
+                    write(*k).serialize(s)
                 }
                 pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<$k, D::Error> {
-                    <$f>::deserialize(d)?.read().map_err(D::Error::custom)
+                    let read: fn($f) -> $k = $read;
+                    Ok(read(<$f>::deserialize(d)?))
                 }
             }
         };
     }
 
-    form!(dir: DVec3 as Dir);
-    form!(point: DVec3 as Point);
-    form!(finite: f64 as Finite);
-    form!(degrees: f64 as Degrees);
-    form!(scheme: SurfaceScheme as SchemeSpec);
-    form!(new_scheme: SurfaceScheme as Option<SchemeSpec>);
-    form!(order: BlendOrder as OrderSpec);
-    form!(constraint: Constraint as ConstraintSpec);
-    form!(template: Template as TemplateSpec);
+    form!(dir: DVec3 as Dir, Dir::vec, Dir::from_vec);
+    form!(point: DVec3 as Point, Point::vec, Point::from_vec);
+    form!(finite: f64 as Finite, |f| f.0, Finite);
+    form!(degrees: f64 as Finite, |d| d.0.to_radians(), degrees_of);
+    form!(scheme: SurfaceScheme as SchemeSpec, SchemeSpec::to_kernel, SchemeSpec::from_kernel);
+    // `None` is the default scheme (Kobbelt)
+    form!(
+        new_scheme: SurfaceScheme as Option<SchemeSpec>,
+        |s| s.map_or_else(SurfaceScheme::default, SchemeSpec::to_kernel),
+        |k| Some(SchemeSpec::from_kernel(k))
+    );
+    form!(order: BlendOrder as OrderSpec, OrderSpec::to_kernel, OrderSpec::from_kernel);
+    form!(
+        constraint: Constraint as ConstraintSpec,
+        ConstraintSpec::to_kernel,
+        ConstraintSpec::from_kernel
+    );
+    form!(template: Template as TemplateSpec, TemplateSpec::to_kernel, TemplateSpec::from_kernel);
 
-    impl Form<DVec3> for Dir {
-        fn read(self) -> Result<DVec3, String> {
-            Ok(self.vec())
-        }
-        fn write(k: &DVec3) -> Self {
-            Dir::from_vec(*k)
-        }
-    }
-
-    impl Form<DVec3> for Point {
-        fn read(self) -> Result<DVec3, String> {
-            Ok(self.vec())
-        }
-        fn write(k: &DVec3) -> Self {
-            Point::from_vec(*k)
-        }
-    }
-
-    impl Form<f64> for Finite {
-        fn read(self) -> Result<f64, String> {
-            Ok(self.0)
-        }
-        fn write(k: &f64) -> Self {
-            Finite(*k)
-        }
-    }
-
-    /// An angle in radians written as finite degrees.
-    #[derive(Serialize, Deserialize)]
-    #[serde(transparent)]
-    pub(super) struct Degrees(Finite);
-
-    impl Form<f64> for Degrees {
-        fn read(self) -> Result<f64, String> {
-            Ok(self.0.0.to_radians())
-        }
-        /// The degrees that read back as exactly these radians: `to_degrees`
-        /// or one of its nearest neighbours (one rounding each way may miss).
-        fn write(radians: &f64) -> Self {
-            let d = radians.to_degrees();
-            let (mut lo, mut hi) = (d, d);
-            for _ in 0..8 {
-                for x in [lo, hi] {
-                    if x.is_finite() && x.to_radians() == *radians {
-                        return Degrees(Finite(x));
-                    }
+    /// The degrees that read back as exactly `radians`: `to_degrees` or one
+    /// of its nearest neighbours (one rounding each way may miss).
+    fn degrees_of(radians: f64) -> Finite {
+        let d = radians.to_degrees();
+        let (mut lo, mut hi) = (d, d);
+        for _ in 0..8 {
+            for x in [lo, hi] {
+                if x.is_finite() && x.to_radians() == radians {
+                    return Finite(x);
                 }
-                (lo, hi) = (lo.next_down(), hi.next_up());
             }
-            Degrees(Finite(d))
+            (lo, hi) = (lo.next_down(), hi.next_up());
         }
-    }
-
-    impl Form<SurfaceScheme> for SchemeSpec {
-        fn read(self) -> Result<SurfaceScheme, String> {
-            Ok(self.to_kernel())
-        }
-        fn write(k: &SurfaceScheme) -> Self {
-            SchemeSpec::from_kernel(*k)
-        }
-    }
-
-    /// `None` is the default scheme (Kobbelt).
-    impl Form<SurfaceScheme> for Option<SchemeSpec> {
-        fn read(self) -> Result<SurfaceScheme, String> {
-            Ok(self.map_or_else(SurfaceScheme::default, SchemeSpec::to_kernel))
-        }
-        fn write(k: &SurfaceScheme) -> Self {
-            Some(SchemeSpec::from_kernel(*k))
-        }
-    }
-
-    impl Form<BlendOrder> for OrderSpec {
-        fn read(self) -> Result<BlendOrder, String> {
-            Ok(self.to_kernel())
-        }
-        fn write(k: &BlendOrder) -> Self {
-            OrderSpec::from_kernel(*k)
-        }
-    }
-
-    impl Form<Constraint> for ConstraintSpec {
-        fn read(self) -> Result<Constraint, String> {
-            Ok(self.to_kernel())
-        }
-        fn write(k: &Constraint) -> Self {
-            ConstraintSpec::from_kernel(*k)
-        }
-    }
-
-    impl Form<Template> for TemplateSpec {
-        fn read(self) -> Result<Template, String> {
-            Ok(self.to_kernel())
-        }
-        fn write(k: &Template) -> Self {
-            TemplateSpec::from_kernel(*k)
-        }
+        Finite(d)
     }
 }

@@ -485,4 +485,21 @@ mod tests {
         assert_eq!(format!("{:?}", back.steps[4]), "Load(\"a.ron\")");
         assert_eq!(format!("{:?}", back.steps[5]), "Mark(\"m\")");
     }
+
+    #[test]
+    fn angles_read_back_as_the_same_radians() {
+        for d in [0.1, 12.3456, -7.77777, 1e-320, 1e308, -0.0, 359.9999999] {
+            let text = format!(
+                "(steps: [RotateInitial(index: 0, axis: (0.0, 0.0, 1.0), degrees: {d:e})])"
+            );
+            let s = Script::parse(&text, Path::new("t.ron")).unwrap();
+            let again = ron::to_string(&s).unwrap();
+            let back = Script::parse(&again, Path::new("t.ron")).unwrap();
+            let radians = |s: &Script| match &s.steps[0] {
+                Step::Edit(Edit::Author(AuthorEdit::RotateInitial { radians, .. })) => *radians,
+                _ => unreachable!(),
+            };
+            assert_eq!(radians(&back).to_bits(), radians(&s).to_bits(), "{d}");
+        }
+    }
 }
