@@ -371,7 +371,7 @@ fn cli_build_exports_step_and_iges_with_the_fit() {
         (vec!["--degree", "three"], "whole number"),
         (
             vec!["--tolerance", "1e-9"],
-            "loosen the tolerance or export deeper",
+            "the deepest an export samples (the closest it came was",
         ),
     ] {
         let mut a = vec![
@@ -485,5 +485,66 @@ fn cli_play_a_script_named_by_a_bare_file_name() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert!(dir.join("out/w.ron").is_file() && dir.join("out/w.obj").is_file());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Antipodal neighbours (docs/math.md §1) are warnings naming the tangents:
+/// in `build --json` (`"warnings"`, empty for the shipped car), as a
+/// `warning:` line of `play` after the step that made them, and gone again
+/// after the step that undoes it. The same scene through `build` reports the
+/// same pair from its own levels.
+#[test]
+fn antipodal_blends_are_warnings() {
+    let dir = std::env::temp_dir().join(format!("streamline-antipodal-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let (code, out, err) = run(&["build", "car1", "--depth", "3"], "");
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(
+        v["warnings"],
+        serde_json::json!([]),
+        "the car blends no antipodes"
+    );
+    let script = dir.join("antipodal.ron");
+    let scene = dir.join("antipodal-scene.ron");
+    std::fs::write(
+        &script,
+        r#"(steps: [
+    Load("builtin:car1"),
+    SetDirection(row: 2, col: 4, dir: (1.0, 0.0, 0.5)),
+    SetDirection(row: 2, col: 5, dir: (-1.0, 0.0, -0.5)),
+    Save("antipodal-scene.ron"),
+    Undo,
+])"#,
+    )
+    .unwrap();
+    let (code, out, err) = run(&["play", script.to_str().unwrap()], "");
+    assert_eq!(code, 0, "{out}{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    let warning = lines
+        .iter()
+        .position(|l| l.contains("warning: antipodal blend between (2, 4) and (2, 5)"))
+        .unwrap_or_else(|| panic!("no warning line:\n{out}"));
+    assert!(
+        lines[warning].starts_with("step   3 warning:"),
+        "after the step that made it: {out}"
+    );
+    assert_eq!(
+        lines.iter().filter(|l| l.contains("warning:")).count(),
+        1,
+        "said once, not again after every step:\n{out}"
+    );
+    let (code, out, err) = run(&["build", scene.to_str().unwrap()], "");
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let w = v["warnings"].as_array().expect("a list");
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(
+        w[0].as_str()
+            .unwrap()
+            .starts_with("antipodal blend between (2, 4) and (2, 5): "),
+        "{w:?}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

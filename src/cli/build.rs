@@ -7,6 +7,7 @@
 use super::input::{CliError, scene_arg, write_stdout};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::exchange::{ExportSettings, LastExport};
+use crate::ecs::warnings::BuildWarnings;
 use crate::ecs::{self, Edit, EditLog, Stats, SurfaceData};
 use clap::Args;
 use serde::Serialize;
@@ -47,6 +48,9 @@ pub struct BuildArgs {
 /// The fit of a STEP or IGES export, as the report gives it.
 #[derive(Serialize)]
 struct FitFigures {
+    /// The depth the surface was sampled at: the display depth, or deeper
+    /// when the tolerance needed more points (docs/math.md §10).
+    depth: u32,
     degree: [usize; 2],
     poles: [usize; 2],
     tolerance: f64,
@@ -104,6 +108,9 @@ struct BuildReport {
     export: Option<PathBuf>,
     #[serde(skip_serializing_if = "Option::is_none")]
     fit: Option<FitFigures>,
+    /// What the build blended about a fixed axis (antipodal neighbours,
+    /// docs/math.md §1), one sentence each; empty when nothing.
+    warnings: Vec<String>,
 }
 
 /// Builds and prints the stats.
@@ -188,6 +195,7 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
             per_streamline: per,
         },
         timings_us: build_stats,
+        warnings: w.resource::<BuildWarnings>().lines.clone(),
         export: a.export.clone(),
         fit: w
             .resource::<LastExport>()
@@ -197,6 +205,7 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
             .map(|f| {
                 let r = &f.fit.report;
                 FitFigures {
+                    depth: f.depth,
                     degree: [r.degree.0, r.degree.1],
                     poles: [r.poles.0, r.poles.1],
                     tolerance: r.tolerance,

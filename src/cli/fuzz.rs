@@ -17,6 +17,7 @@ use crate::scene::script::{Script, output_path};
 use crate::scene::{Scene, obj};
 use std::path::Path;
 use streamline_kernel::finetune::{Constraint, SurfaceTuning, fine_tune_into};
+use streamline_kernel::levels::incremental::place_rows_tuned;
 use streamline_kernel::loop_subdiv::mesh_interpolation::{Method, Options, interpolate};
 use streamline_kernel::loop_subdiv::subdivide::{
     BoundaryRule, limit_points, subdivide as loop_subdivide,
@@ -98,26 +99,15 @@ pub fn build_scene(scene: &Scene) {
 
 /// Fine-tunes every streamline of `level` and checks the points.
 fn tune(design: &Design, level: &streamline_kernel::Level, tuning: &SurfaceTuning) {
-    let t = &level.params.t;
-    let (lo, hi) = t
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
-            (lo.min(x), hi.max(x))
-        });
     let mut out = Vec::new();
-    for (r, &tr) in t.iter().enumerate() {
-        let f = tuning.row_function(SurfaceTuning::row_v(tr, lo, hi));
-        fine_tune_into(
-            level.tangents.row(r),
-            level.params.s.row(r),
-            level.params.sigma[r],
-            design.initial().point(tr),
-            &f,
-            tuning.constraint,
-            &mut out,
-        );
-        finite("fine-tuned streamline", &out);
-    }
+    place_rows_tuned(
+        design.initial(),
+        &level.tangents,
+        &level.params,
+        Some(tuning),
+        &mut out,
+    );
+    finite("fine-tuned streamlines", &out);
 }
 
 /// The script parser: arbitrary text is an error or a script whose own text

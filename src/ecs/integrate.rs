@@ -7,17 +7,24 @@ use super::components::*;
 use super::resources::{Model, Stats, SurfaceData};
 use bevy::prelude::*;
 use std::time::Instant;
-use streamline_kernel::finetune::{SurfaceTuning, fine_tune_into};
+use streamline_kernel::finetune::{Constraint, SurfaceTuning, fine_tune_into};
+use streamline_kernel::levels::incremental::surface_rows;
 use streamline_kernel::streamline::integrate::{place_slice, place_slice_from};
 use streamline_kernel::streamline::surface_mesh::bounds;
 use streamline_kernel::{DVec3, Grid};
 
-/// Gives every streamline its row of the scene's fine-tuning function; only
-/// rows whose function (or constraint) differs are marked changed.
+/// Gives every streamline its function of the scene's fine tuning; only rows
+/// whose function differs are marked changed. Free: the row's restriction of
+/// the tensor function. Under a constraint: the restriction changed by the
+/// correction field that meets every streamline's constraint and is smooth
+/// across the streamlines (docs/math.md §6, (T4)–(T6)), solved over the
+/// display level at once; the component then holds that function, applied
+/// as it is (`Constraint::Free`).
 pub(crate) fn retune(
     meter: Res<super::meter::CpuMeter>,
     model: Res<Model>,
-    mut lines: Query<(&StreamlineTangents, &mut StreamlineAlpha)>,
+    levels: Query<(&SubdivisionLevel, &LevelData)>,
+    mut lines: Query<(&Streamline, &StreamlineTangents, &mut StreamlineAlpha)>,
     added: Query<(), Added<Streamline>>,
 ) {
     let _meter = meter.start();
@@ -25,17 +32,29 @@ pub(crate) fn retune(
         return;
     }
     let Some(tuning) = &model.scene.tuning else {
-        for (_, mut a) in &mut lines {
+        for (_, _, mut a) in &mut lines {
             a.set_if_neq(StreamlineAlpha(None));
         }
         return;
     };
+    if tuning.constraint != Constraint::Free {
+        let depth = model.scene.display_depth;
+        if let Some((_, level)) = levels.iter().find(|(l, _)| l.0 == depth) {
+            let fs = tuning.row_functions(surface_rows(&level.0.tangents, &level.0.params));
+            for (line, _, mut a) in &mut lines {
+                if let Some(f) = fs.get(line.row) {
+                    a.set_if_neq(StreamlineAlpha(Some((f.clone(), Constraint::Free))));
+                }
+            }
+            return;
+        }
+    }
     let (lo, hi) = lines
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (t, _)| {
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (_, t, _)| {
             (lo.min(t.t), hi.max(t.t))
         });
-    for (t, mut a) in &mut lines {
+    for (_, t, mut a) in &mut lines {
         let v = SurfaceTuning::row_v(t.t, lo, hi);
         let f = tuning.row_function(v);
         a.set_if_neq(StreamlineAlpha(Some((f, tuning.constraint))));

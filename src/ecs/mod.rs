@@ -23,6 +23,7 @@ mod output;
 pub mod playback;
 pub mod resources;
 pub mod runner;
+pub mod warnings;
 
 use crate::scene::Scene;
 use bevy::prelude::*;
@@ -74,6 +75,7 @@ impl Plugin for ModelPlugin {
             .init_resource::<EditLog>()
             .init_resource::<SurfaceData>()
             .init_resource::<Dirty>()
+            .init_resource::<warnings::BuildWarnings>()
             .init_resource::<exchange::ExportSettings>()
             .init_resource::<exchange::LastExport>()
             .configure_sets(
@@ -88,7 +90,12 @@ impl Plugin for ModelPlugin {
                     .chain(),
             )
             .add_systems(Update, edit::apply_edits.in_set(ModelSet::Edit))
-            .add_systems(Update, blend::reblend.in_set(ModelSet::Blend))
+            .add_systems(
+                Update,
+                (blend::reblend, warnings::find_antipodal_blends)
+                    .chain()
+                    .in_set(ModelSet::Blend),
+            )
             .add_systems(
                 Update,
                 (integrate::retune, integrate::integrate)

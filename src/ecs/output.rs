@@ -44,11 +44,12 @@ pub(crate) fn write_files(
                             Some(f) => {
                                 let r = &f.fit.report;
                                 format!(
-                                    "{}x{} poles, degree {}x{}, largest deviation {:.2e} <= {:.2e}, {:.1} ms",
+                                    "{}x{} poles, degree {}x{}, sampled at depth {}, largest deviation {:.2e} <= {:.2e}, {:.1} ms",
                                     r.poles.0,
                                     r.poles.1,
                                     r.degree.0,
                                     r.degree.1,
+                                    f.depth,
                                     r.deviation.max,
                                     r.tolerance,
                                     f.seconds * 1e3

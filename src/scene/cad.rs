@@ -6,7 +6,7 @@
 
 use std::time::Instant;
 use streamline_kernel::grid::Grid;
-use streamline_kernel::levels::incremental::{place_row_tuned, reference_levels};
+use streamline_kernel::levels::incremental::{place_rows_tuned, reference_levels};
 use streamline_kernel::nurbs::{Fit, FitError, FitOptions, Samples, fit};
 
 use super::model::Scene;
@@ -19,19 +19,39 @@ pub fn samples(scene: &Scene, depth: u32) -> Result<Samples, FitError> {
     let level = levels.last().expect("level 0 at least");
     let (rows, cols) = (level.tangents.rows(), level.tangents.cols() + 1);
     let mut data = Vec::with_capacity(rows * cols);
-    let mut row = Vec::with_capacity(cols);
-    for r in 0..rows {
-        place_row_tuned(
-            design.initial(),
-            &level.tangents,
-            &level.params,
-            r,
-            scene.tuning.as_ref(),
-            &mut row,
-        );
-        data.extend_from_slice(&row);
-    }
+    place_rows_tuned(
+        design.initial(),
+        &level.tangents,
+        &level.params,
+        scene.tuning.as_ref(),
+        &mut data,
+    );
     Samples::from_level(level, Grid::new(rows, cols, data)?)
+}
+
+/// The most points the check grid of an export may have: the fit at depth
+/// `d` is checked at every point of depth `d + 1` (docs/math.md §10), and
+/// the deepest export depth is the last whose check grid stays within this
+/// (a 2049 × 1025 grid; the car's depth 6, whose check grid of 1025 × 641
+/// points builds and measures in about a second on one core).
+pub const MAX_CHECK_POINTS: usize = 1 << 21;
+
+/// The deepest depth `fit_scene` samples `scene` at: the last whose check
+/// grid (one depth finer) has at most [`MAX_CHECK_POINTS`] points and passes
+/// the kernel's size limits.
+pub fn max_fit_depth(scene: &Scene) -> u32 {
+    let Ok(design) = scene.shown_design() else {
+        return scene.display_depth;
+    };
+    let (rows, cols) = (design.net().rows(), design.net().cols());
+    let mut depth = 0;
+    while let Ok((r, c)) = design.scheme().check_depth(rows, cols, depth + 2) {
+        if r.saturating_mul(c + 1) > MAX_CHECK_POINTS {
+            break;
+        }
+        depth += 1;
+    }
+    depth
 }
 
 /// A fit of a scene with its time.
@@ -41,19 +61,56 @@ pub struct SceneFit {
     pub fit: Fit,
     /// Seconds the fit took (the builds at `depth` and `depth + 1` not counted).
     pub seconds: f64,
-    /// The depth it was fitted at.
+    /// The depth it was fitted at: the first from the requested one whose
+    /// points were enough for the tolerance.
     pub depth: u32,
 }
 
-/// Fits the scene's surface at `depth` (checked at `depth + 1`).
+/// Fits the scene's surface within the options' tolerance, sampled at
+/// `depth` (checked at `depth + 1`) or, when the tolerance needs more
+/// control points than that grid has points, as much deeper as it needs, up
+/// to [`max_fit_depth`]: which sampling reaches the tolerance is the
+/// exporter's business, not the designer's (the depth used is in
+/// [`SceneFit::depth`]). Only when even the deepest grid is not enough is the
+/// fit refused ([`FitError::TooFewPoints`] at that depth, whose message says
+/// to loosen the tolerance).
 pub fn fit_scene(scene: &Scene, depth: u32, opts: &FitOptions) -> Result<SceneFit, FitError> {
-    let data = samples(scene, depth)?;
-    let check = samples(scene, depth + 1)?;
-    let start = Instant::now();
-    let fit = fit(&data, &check, opts)?;
-    Ok(SceneFit {
-        fit,
-        seconds: start.elapsed().as_secs_f64(),
-        depth,
-    })
+    let deepest = max_fit_depth(scene).max(depth);
+    let mut depth = depth;
+    let mut data = samples(scene, depth)?;
+    let mut seconds = 0.0;
+    loop {
+        let check = samples(scene, depth + 1)?;
+        let start = Instant::now();
+        let result = fit(&data, &check, opts);
+        seconds += start.elapsed().as_secs_f64();
+        match result {
+            Ok(fit) => {
+                return Ok(SceneFit {
+                    fit,
+                    seconds,
+                    depth,
+                });
+            }
+            Err(FitError::TooFewPoints { .. }) if depth < deepest => {
+                depth += 1;
+                data = check;
+            }
+            Err(FitError::TooFewPoints {
+                direction,
+                points,
+                tolerance,
+                reached,
+            }) => {
+                return Err(FitError::TooFewPointsAtDeepest {
+                    direction,
+                    points,
+                    tolerance,
+                    reached,
+                    depth,
+                });
+            }
+            Err(e) => return Err(e),
+        }
+    }
 }

@@ -4,6 +4,7 @@
 //! sections; the global section declares metres (units flag 6) and the
 //! model's resolution.
 
+use super::cad_text::iges_string as hollerith;
 use super::numbers::real;
 use streamline_kernel::nurbs::BSplineSurface;
 
@@ -18,21 +19,6 @@ pub struct IgesInfo<'a> {
     pub resolution: f64,
     /// `YYYYMMDD.HHNNSS`.
     pub timestamp: &'a str,
-}
-
-/// An IGES Hollerith string `nH…` (printable ASCII, no delimiters).
-fn hollerith(s: &str) -> String {
-    let clean: String = s
-        .chars()
-        .map(|c| {
-            if (' '..='~').contains(&c) && c != ',' && c != ';' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    format!("{}H{}", clean.len(), clean)
 }
 
 /// Lays `params` (already delimited, ending in `;`) into records of
@@ -184,6 +170,9 @@ pub fn iges_text(surface: &BSplineSurface, info: &IgesInfo) -> String {
 /// A check of what was written: every record 80 columns, the sections in
 /// order, the terminate counts right, one entity 128.
 pub fn verify(bytes: &[u8]) -> Result<(), String> {
+    if !bytes.is_ascii() {
+        return Err("not ASCII".into());
+    }
     let text = std::str::from_utf8(bytes).map_err(|_| "not ASCII".to_string())?;
     let lines: Vec<&str> = text.lines().collect();
     if let Some(l) = lines.iter().find(|l| l.len() != 80) {

@@ -4,6 +4,7 @@
 
 pub mod builtin;
 pub mod cad;
+pub mod cad_text;
 pub mod edit;
 pub mod error;
 pub mod export;

@@ -13,6 +13,7 @@
 //! is the surface's `∂F/∂u × ∂F/∂v`), each a B-spline curve whose poles are
 //! the surface's boundary poles: the edges lie on the surface exactly.
 
+use super::cad_text::step_string as string;
 use super::numbers::real;
 use std::fmt::Write as _;
 use streamline_kernel::DVec3;
@@ -43,21 +44,6 @@ impl Writer {
         let _ = writeln!(self.text, "#{id}={};", entity.as_ref());
         id
     }
-}
-
-/// A STEP string literal: `'` doubled, only printable ASCII kept.
-fn string(s: &str) -> String {
-    let clean: String = s
-        .chars()
-        .map(|c| {
-            if (' '..='~').contains(&c) && c != '\\' && c != '#' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    format!("'{}'", clean.replace('\'', "''"))
 }
 
 fn list<T>(items: impl IntoIterator<Item = T>, f: impl Fn(T) -> String) -> String {
@@ -206,19 +192,24 @@ pub fn step_text(surface: &BSplineSurface, info: &StepInfo) -> String {
     )
 }
 
-/// A check of what was written: the envelope, one face, one surface, and
-/// every `#n` referenced is defined.
+/// A check of what was written: ASCII, the envelope, one face, one
+/// surface, and every `#n` referenced is defined (all outside string
+/// literals, which may hold anything a name does but a `'`: cad_text.rs).
 pub fn verify(bytes: &[u8]) -> Result<(), String> {
+    if !bytes.is_ascii() {
+        return Err("not ASCII".into());
+    }
     let text = std::str::from_utf8(bytes).map_err(|_| "not ASCII".to_string())?;
     if !(text.starts_with("ISO-10303-21;") && text.trim_end().ends_with("END-ISO-10303-21;")) {
         return Err("no ISO-10303-21 envelope".into());
     }
-    let count = |what: &str| text.matches(what).count();
+    let code: String = text.split('\'').step_by(2).collect();
+    let count = |what: &str| code.matches(what).count();
     if count("ADVANCED_FACE(") != 1 || count("B_SPLINE_SURFACE_WITH_KNOTS(") != 1 {
         return Err("not exactly one face on one B-spline surface".into());
     }
-    let defined = text.lines().filter(|l| l.starts_with('#')).count();
-    for l in text.lines().filter(|l| l.starts_with('#')) {
+    let defined = code.lines().filter(|l| l.starts_with('#')).count();
+    for l in code.lines().filter(|l| l.starts_with('#')) {
         for r in l.split('#').skip(2) {
             let n: usize = r
                 .chars()

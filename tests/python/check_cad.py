@@ -3,7 +3,11 @@ and checks what Streamline Studio reported for it (tests/cad_export.rs,
 docs/cad.md): one face; a non-rational B-spline surface of the reported
 degree and pole counts; BRepCheck_Analyzer valid; and the largest distance
 from the given mesh points to the face, by OpenCascade's projection
-(GeomAPI_ProjectPointOnSurf), within the reported tolerance.
+(GeomAPI_ProjectPointOnSurf), within the reported tolerance. An entry with
+"names" also has the names read back: for STEP the PRODUCT's id and name,
+the shape representation's name, the name XCAF gives the shape (what a CAD
+application shows) and the header's FILE_NAME; for IGES the global
+section's sender and receiver product names and file name.
 
 Usage: check_cad.py MANIFEST.json  (prints one JSON line per file; exit 1 on
 any failure, with the reason).
@@ -11,6 +15,7 @@ any failure, with the reason).
 import json
 import sys
 
+from OCP.APIHeaderSection import APIHeaderSection_MakeHeader
 from OCP.BRep import BRep_Tool
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.Extrema import Extrema_ExtAlgo_Tree
@@ -19,22 +24,75 @@ from OCP.Geom import Geom_BSplineSurface
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.IGESControl import IGESControl_Reader
 from OCP.Interface import Interface_Static
+from OCP.STEPCAFControl import STEPCAFControl_Reader
 from OCP.STEPControl import STEPControl_Reader
+from OCP.StepBasic import StepBasic_Product
+from OCP.StepShape import StepShape_ShapeRepresentation
+from OCP.TCollection import TCollection_ExtendedString
+from OCP.TDataStd import TDataStd_Name
+from OCP.TDF import TDF_ChildIterator
+from OCP.TDocStd import TDocStd_Document
+from OCP.XCAFDoc import XCAFDoc_DocumentTool
 from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS
 from OCP.gp import gp_Pnt
 
 
+def is_step(path):
+    return path.lower().endswith((".step", ".stp"))
+
+
 def read(path):
-    reader = STEPControl_Reader() if path.lower().endswith((".step", ".stp")) else IGESControl_Reader()
+    reader = STEPControl_Reader() if is_step(path) else IGESControl_Reader()
     # our files are in metres; OpenCascade converts to millimetres unless
     # told (the setting exists once a reader has registered it)
     assert Interface_Static.SetCVal_s("xstep.cascade.unit", "M"), "cannot set xstep.cascade.unit"
     if reader.ReadFile(path) != IFSelect_RetDone:
         raise AssertionError(f"{path}: OpenCascade could not read the file")
     reader.TransferRoots()
-    return reader.OneShape()
+    return reader, reader.OneShape()
+
+
+def text(h):
+    """An OpenCascade string handle as Python text (a null one as "")."""
+    return "" if h is None else h.ToCString()
+
+
+def xcaf_names(path):
+    """The names XCAF gives the shapes of a STEP file."""
+    doc = TDocStd_Document(TCollection_ExtendedString("XmlOcaf"))
+    reader = STEPCAFControl_Reader()
+    reader.SetNameMode(True)
+    assert reader.ReadFile(path) == IFSelect_RetDone, f"{path}: XCAF could not read the file"
+    assert reader.Transfer(doc), f"{path}: XCAF could not transfer the file"
+    out = []
+    it = TDF_ChildIterator(XCAFDoc_DocumentTool.ShapeTool_s(doc.Main()).Label(), False)
+    while it.More():
+        name = TDataStd_Name()
+        if it.Value().FindAttribute(TDataStd_Name.GetID_s(), name):
+            out.append(name.Get().ToExtString())
+        it.Next()
+    return out
+
+
+def names(path, reader):
+    """The names written into the file, as OpenCascade reads them."""
+    if not is_step(path):
+        g = reader.IGESModel().GlobalSection()
+        return {"sender": text(g.SendName()), "receiver": text(g.ReceiveName()), "file": text(g.FileName())}
+    model = reader.StepModel()
+    out = {"product id": [], "product name": [], "representation": []}
+    for i in range(1, model.NbEntities() + 1):
+        e = model.Value(i)
+        if isinstance(e, StepBasic_Product):
+            out["product id"].append(text(e.Id()))
+            out["product name"].append(text(e.Name()))
+        elif isinstance(e, StepShape_ShapeRepresentation):
+            out["representation"].append(text(e.Name()))
+    out["xcaf"] = xcaf_names(path)
+    out["file"] = text(APIHeaderSection_MakeHeader(model).Name())
+    return out
 
 
 def faces(shape):
@@ -53,7 +111,7 @@ def points(path):
 
 def check(entry):
     path = entry["file"]
-    shape = read(path)
+    reader, shape = read(path)
     fs = faces(shape)
     assert len(fs) == 1, f"{path}: {len(fs)} faces, want 1"
     face = fs[0]
@@ -91,7 +149,11 @@ def check(entry):
             d_max = max(d_max, d)
         worst[name] = d_max
         assert d_max <= entry["tolerance"], f"{path}: a {name} point is {d_max:.3e} from the face, over the tolerance {entry['tolerance']:.3e}"
-    return {"file": path, **got, "valid": valid, "max_distance": worst, "tolerance": entry["tolerance"]}
+    result = {"file": path, **got, "valid": valid, "max_distance": worst, "tolerance": entry["tolerance"]}
+    if "names" in entry:
+        result["names"] = names(path, reader)
+        assert result["names"] == entry["names"], f"{path}: names {result['names']!r}, written {entry['names']!r}"
+    return result
 
 
 def main():

@@ -247,7 +247,52 @@ pub fn fit_rows() -> Vec<Workload> {
             }),
         }
     })
+    .chain(export_fit_rows())
     .collect()
+}
+
+/// CAD export's fit from the display depth (docs/math.md §10; issue 27): the
+/// car shown at depth 3 fitted within the default `1e-4` of its diagonal,
+/// which its depth-3 grid is too coarse for, so the fit samples deeper
+/// (`cad::fit_scene`; the depth it settles on is the row's result), every
+/// build included: as shipped (`export-fit/car/d3`) and after a fixed
+/// pseudo-random turn of every control tangent by up to 0.1 rad
+/// (`export-fit/car/d3/edited`).
+fn export_fit_rows() -> Vec<Workload> {
+    use crate::scene::{Scene, cad};
+    let car = presets::car1();
+    let mut edited = car.clone();
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    let (rows, cols) = (car.net().rows(), car.net().cols());
+    for r in 0..rows {
+        for c in 0..cols {
+            let axis = DVec3::new(next(), next(), next()).normalize_or(DVec3::Z);
+            let turn = streamline_kernel::DQuat::from_axis_angle(axis, 0.1 * next());
+            let t = turn * car.net().get(r, c);
+            edited
+                .set_tangent(r, c, t)
+                .expect("a unit tangent in the net");
+        }
+    }
+    [("car/d3", car), ("car/d3/edited", edited)]
+        .into_iter()
+        .map(|(label, design)| {
+            let scene = Scene::from_design("car", design, 3);
+            Workload {
+                name: format!("export-fit/{label}"),
+                run: Box::new(move || {
+                    let f = cad::fit_scene(&scene, 3, &Default::default()).expect("fits");
+                    f.depth as f64 + f.fit.report.deviation.max
+                }),
+            }
+        })
+        .collect()
 }
 
 /// The test meshes, where the checkout keeps them (rows that need one are

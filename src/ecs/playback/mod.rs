@@ -6,9 +6,11 @@ mod expect;
 
 use super::messages::Edit;
 use super::resources::*;
+use super::warnings::BuildWarnings;
 use super::{headless_app, send};
 use crate::scene::script::{Expect, Script, Step};
 use crate::scene::{Scene, builtin};
+use bevy::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// The outcome of a script.
@@ -34,6 +36,7 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
     let mut report = PlayReport::default();
     let mut marks = expect::Marks::new();
     let mut pending: Option<(usize, String)> = None;
+    let mut warned = warn_new(&app, 0, &[], &mut report);
     for (i, step) in script.steps.iter().enumerate() {
         let n = i + 1;
         if !matches!(step, Step::Expect(Expect::ExpectError(_)))
@@ -98,6 +101,7 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
                 }
             ));
         }
+        warned = warn_new(&app, n, &warned, &mut report);
     }
     if let Some((at, err)) = pending {
         report.failures += 1;
@@ -106,6 +110,16 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
             .push(format!("step {at:>3}: FAIL unexpected error: {err}"));
     }
     report
+}
+
+/// Adds a `warning:` line for each build warning ([`BuildWarnings`]) of
+/// `app` after step `n` that `before` did not have; returns them all.
+fn warn_new(app: &App, n: usize, before: &[String], report: &mut PlayReport) -> Vec<String> {
+    let now = &app.world().resource::<BuildWarnings>().lines;
+    for w in now.iter().filter(|w| !before.contains(w)) {
+        report.lines.push(format!("step {n:>3} warning: {w}"));
+    }
+    now.clone()
 }
 
 fn short(step: &Step) -> String {

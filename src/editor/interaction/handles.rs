@@ -13,7 +13,7 @@ use crate::ecs::{Edit, Model, SurfaceChanges};
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
 use streamline_kernel::finetune::streamline::point_by_fraction;
-use streamline_kernel::levels::incremental::{LevelState, place_row_tuned};
+use streamline_kernel::levels::incremental::{LevelState, place_rows_tuned};
 
 /// What a handle is a handle of.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -326,14 +326,15 @@ fn level_handles(
         .sum::<f64>()
         / rows.max(1) as f64;
     let length = (span * scale).max(1e-6);
-    let mut pts = Vec::new();
+    let mut all = Vec::new();
+    place_rows_tuned(initial, &l.tangents, &l.params, tuning, &mut all);
     let mut out = Vec::with_capacity(rows * cols);
     let mut copies = Vec::with_capacity(reflected * cols);
     let net = model.scene.design.net();
     for r in 0..rows {
-        place_row_tuned(initial, &l.tangents, &l.params, r, tuning, &mut pts);
+        let pts = &all[r * (cols + 1)..(r + 1) * (cols + 1)];
         for c in 0..cols {
-            let base = point_by_fraction(&pts, s.row(r), s.get(r, c));
+            let base = point_by_fraction(pts, s.row(r), s.get(r, c));
             if r < reflected {
                 // row r of the doubled net reflects control row `reflected − r`
                 copies.push(Handle {

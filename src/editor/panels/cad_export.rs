@@ -96,13 +96,14 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut CadExportSection) {
                     let r = &fit.fit.report;
                     ui.label(
                         egui::RichText::new(format!(
-                            "{}: {} — {}×{} poles, degree {}×{}\nlargest {:.2e}, mean {:.2e}, within {:.2e}; {:.1} ms",
+                            "{}: {} — {}×{} poles, degree {}×{}, sampled at depth {}\nlargest {:.2e}, mean {:.2e}, within {:.2e}; {:.1} ms",
                             format.name(),
                             path.file_name().map(|n| n.to_string_lossy()).unwrap_or_default(),
                             r.poles.0,
                             r.poles.1,
                             r.degree.0,
                             r.degree.1,
+                            fit.depth,
                             r.deviation.max,
                             r.deviation.mean,
                             r.tolerance,
@@ -110,7 +111,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut CadExportSection) {
                         ))
                         .small(),
                     )
-                    .on_hover_text("The last fit: net size, deviation one depth finer than the display depth, time");
+                    .on_hover_text("The last fit: net size, the depth the surface was sampled at (the display depth, or deeper when the tolerance needed more points), deviation one depth finer than that, time");
                 }
                 Some((path, format, None)) => {
                     ui.label(

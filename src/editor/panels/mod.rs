@@ -179,6 +179,7 @@ pub struct PanelCtx<'w> {
 pub struct ToolbarSection<'w> {
     pub history: Res<'w, History>,
     pub log: Res<'w, EditLog>,
+    pub warnings: Res<'w, crate::ecs::warnings::BuildWarnings>,
     pub drag: Res<'w, Drag>,
     pub frame: ResMut<'w, FrameRequest>,
     pub bounds: Res<'w, SceneBounds>,
@@ -428,7 +429,9 @@ fn panel(
                         PanelName::Tuning => tuning::show(ui, &mut p),
                         PanelName::Analysis => analysis::show(ui, &mut sections.analysis),
                         PanelName::Mesh => mesh::show(ui, &mut sections.mesh),
-                        PanelName::Stats => stats::show(ui, &text.stats),
+                        PanelName::Stats => {
+                            stats::show(ui, &text.stats, &sections.stats.warnings.lines)
+                        }
                         PanelName::InitialCurve => initial::show(ui, &mut p),
                         PanelName::Curvature => curvature::show(ui, &mut p, &sections.curvature),
                     });
@@ -511,6 +514,7 @@ fn status_text(bar: &ToolbarSection) -> String {
             Err(e) => format!("error: {e}"),
         })
         .filter(|s| !s.is_empty())
+        .chain(bar.warnings.lines.iter().map(|w| format!("warning: {w}")))
         .collect::<Vec<_>>()
         .join("; ");
     if text.is_empty() {
@@ -522,8 +526,8 @@ fn status_text(bar: &ToolbarSection) -> String {
 
 fn status(ui: &mut egui::Ui, text: &str) {
     ui.horizontal(|ui| {
-        ui.label(egui::RichText::new(text).weak())
-            .on_hover_text("What the last edit did");
+        // the key hints first, from the right; the status takes what is left,
+        // cut short with its whole text on hover (a warning is long)
         ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
             ui.label(
                 egui::RichText::new(
@@ -531,6 +535,11 @@ fn status(ui: &mut egui::Ui, text: &str) {
                 )
                 .weak(),
             );
+            ui.add_space(12.0);
+            ui.with_layout(egui::Layout::left_to_right(egui::Align::Center), |ui| {
+                ui.add(egui::Label::new(egui::RichText::new(text).weak()).truncate())
+                    .on_hover_text(format!("What the last edit did, and the build's warnings:\n{text}"));
+            });
         });
     });
 }

@@ -2,6 +2,7 @@
 
 use super::PanelCtx;
 use crate::ecs::Stats;
+use crate::ecs::warnings::BuildWarnings;
 use crate::editor::frame_timing::FrameTiming;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
@@ -12,6 +13,7 @@ use bevy_egui::egui;
 pub struct StatsSection<'w> {
     pub stats: Res<'w, Stats>,
     pub timing: Res<'w, FrameTiming>,
+    pub warnings: Res<'w, BuildWarnings>,
 }
 
 /// The section's rows: name, figure, tooltip.
@@ -110,6 +112,11 @@ pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, 
             "Rewriting mesh rows and normals",
         );
         row(
+            "warnings",
+            section.warnings.lines.len().to_string(),
+            "Antipodal blends in the current build: neighbouring tangents that point in opposite directions (listed below the figures)",
+        );
+        row(
             "frame (ms)",
             format!(
                 "{:.2} (max {:.2})",
@@ -129,9 +136,16 @@ pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, 
     rows
 }
 
-/// The section, from [`rows`] (refreshed a few times a second, [`super::Throttled`]).
-pub fn show(ui: &mut egui::Ui, rows: &[(&'static str, String, &'static str)]) {
+/// The section, from [`rows`] (refreshed a few times a second, [`super::Throttled`]),
+/// then the build's warnings ([`BuildWarnings`]), one line each.
+pub fn show(ui: &mut egui::Ui, rows: &[(&'static str, String, &'static str)], warnings: &[String]) {
     two_columns(ui, rows);
+    for w in warnings {
+        ui.label(
+            egui::RichText::new(format!("warning: {w}"))
+                .color(egui::Color32::from_rgb(235, 200, 40)),
+        );
+    }
 }
 
 /// The rows as two labels side by side (names, figures), each row with its

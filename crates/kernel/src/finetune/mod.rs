@@ -22,4 +22,4 @@ pub mod surface;
 
 pub use constraint::{Constraint, nearest_meeting};
 pub use streamline::{FineTuned, fine_tune_into};
-pub use surface::SurfaceTuning;
+pub use surface::{SurfaceRows, SurfaceTuning, fine_tune_rows_into};

@@ -96,8 +96,6 @@ pub fn fine_tune_into(
     constraint: Constraint,
     out: &mut Vec<DVec3>,
 ) -> FineTuned {
-    let n = tangents.len() - 1;
-    let dom = Domain::new(s);
     let mut alpha = alpha.clone();
     if constraint != Constraint::Free {
         let rows = constraint_rows(tangents, s, sigma, &alpha, constraint);
@@ -106,6 +104,23 @@ pub fn fine_tune_into(
         let c = nearest_meeting(alpha.values(), &rows, &ones);
         alpha.set_values(&c);
     }
+    integrate_tuned(tangents, s, sigma, origin, &alpha, out);
+    FineTuned { alpha }
+}
+
+/// Integrates one streamline with the function `alpha` as it is (no
+/// constraint), placed so that its point at `sigma` is `origin` (Eq. 65 with
+/// `p' = α t`, docs/math.md §6).
+pub(crate) fn integrate_tuned(
+    tangents: &[DVec3],
+    s: &[f64],
+    sigma: f64,
+    origin: DVec3,
+    alpha: &BSpline,
+    out: &mut Vec<DVec3>,
+) {
+    let n = tangents.len() - 1;
+    let dom = Domain::new(s);
     let anti = alpha.antiderivative();
     let (f0, f1) = (alpha.eval(0.0), alpha.eval(1.0));
     let big: Vec<f64> = (0..n + 2)
@@ -117,7 +132,6 @@ pub fn fine_tune_into(
     for p in out.iter_mut() {
         *p += shift;
     }
-    FineTuned { alpha }
 }
 
 /// The point of a fine-tuned polyline (`points`, from [`fine_tune_into`]) at
@@ -138,7 +152,7 @@ pub fn point_by_fraction(points: &[DVec3], s: &[f64], x: f64) -> DVec3 {
 /// The rows of `A` in `A c = A 1` for one streamline: the far end
 /// `p(s_n) − p(σ)` and near end `p(s₀) − p(σ)` (keep ends, 6 rows) or the
 /// chord `p(s_n) − p(s₀)` (keep closed, 3 rows), each linear in the values.
-fn constraint_rows(
+pub(crate) fn constraint_rows(
     tangents: &[DVec3],
     s: &[f64],
     sigma: f64,

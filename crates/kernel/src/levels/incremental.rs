@@ -11,7 +11,9 @@
 
 use crate::curve::scalar;
 use crate::error::KernelError;
-use crate::finetune::{SurfaceTuning, fine_tune_into};
+use crate::finetune::{
+    Constraint, SurfaceRows, SurfaceTuning, fine_tune_into, fine_tune_rows_into,
+};
 use crate::grid::Grid;
 use crate::levels::design::{Design, Level};
 use crate::levels::dirty_window::{DirtyWindow, half_shape, refine_grid_window};
@@ -295,8 +297,11 @@ pub fn place_row(
     );
 }
 
-/// [`place_row`] with fine tuning (docs/math.md §6): row `r`'s restriction of
-/// `tuning` (at its `v` among the level's rows) scales its derivative.
+/// [`place_row`] with fine tuning (docs/math.md §6): row `r` scaled by its
+/// function of [`SurfaceTuning::row_functions`]. Under a constraint that
+/// function depends on every row (the correction is smooth across the
+/// streamlines, (T5)), so this solves for the whole level: to place every
+/// row, call [`place_rows_tuned`] once.
 pub fn place_row_tuned(
     initial: &InitialCurve,
     tangents: &Grid<DVec3>,
@@ -308,22 +313,54 @@ pub fn place_row_tuned(
     let Some(tuning) = tuning else {
         return place_row(initial, tangents, params, r, out);
     };
-    let (lo, hi) = params
-        .t
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-            (a.min(x), b.max(x))
-        });
-    let f = tuning.row_function(SurfaceTuning::row_v(params.t[r], lo, hi));
+    let rows = surface_rows(tangents, params);
+    let f = if tuning.constraint == Constraint::Free {
+        tuning.row_function(rows.v()[r])
+    } else {
+        tuning.row_functions(rows).swap_remove(r)
+    };
     fine_tune_into(
         tangents.row(r),
         params.s.row(r),
         params.sigma[r],
         initial.point(params.t[r]),
         &f,
-        tuning.constraint,
+        Constraint::Free,
         out,
     );
+}
+
+/// Every row of a level placed on the initial curve, fine-tuned by `tuning`
+/// when given (docs/math.md §6): the rows one after another in `out`,
+/// `cols + 1` points each.
+pub fn place_rows_tuned(
+    initial: &InitialCurve,
+    tangents: &Grid<DVec3>,
+    params: &ParamGrid,
+    tuning: Option<&SurfaceTuning>,
+    out: &mut Vec<DVec3>,
+) {
+    out.clear();
+    let Some(tuning) = tuning else {
+        let mut row = Vec::new();
+        for r in 0..tangents.rows() {
+            place_row(initial, tangents, params, r, &mut row);
+            out.extend_from_slice(&row);
+        }
+        return;
+    };
+    let origins: Vec<DVec3> = params.t.iter().map(|&t| initial.point(t)).collect();
+    fine_tune_rows_into(surface_rows(tangents, params), &origins, tuning, out);
+}
+
+/// A level's rows as fine tuning reads them.
+pub fn surface_rows<'a>(tangents: &'a Grid<DVec3>, params: &'a ParamGrid) -> SurfaceRows<'a> {
+    SurfaceRows {
+        tangents,
+        s: &params.s,
+        t: &params.t,
+        sigma: &params.sigma,
+    }
 }
 
 /// What [`propagate`] did at each level.

@@ -37,6 +37,16 @@ pub enum FitError {
         tolerance: f64,
         reached: f64,
     },
+    /// [`FitError::TooFewPoints`] at the deepest depth an exporter samples
+    /// (it tries deeper grids first).
+    TooFewPointsAtDeepest {
+        direction: Direction,
+        points: usize,
+        tolerance: f64,
+        reached: f64,
+        /// The depth of that grid.
+        depth: u32,
+    },
     /// Parameters that do not rise strictly from 0 to 1 (or sizes that do not match).
     BadSamples { problem: String },
     /// Building the design at the export depth (or one finer) failed.
@@ -62,6 +72,16 @@ impl fmt::Display for FitError {
             } => write!(
                 f,
                 "fitting within {tolerance:e} needs more control points in {direction} than the grid's {points} points (the closest it came was {reached:e}); loosen the tolerance or export deeper"
+            ),
+            FitError::TooFewPointsAtDeepest {
+                direction,
+                points,
+                tolerance,
+                reached,
+                depth,
+            } => write!(
+                f,
+                "fitting within {tolerance:e} needs more control points in {direction} than even depth {depth}'s {points} points, the deepest an export samples (the closest it came was {reached:e}); loosen the tolerance"
             ),
             FitError::BadSamples { problem } => write!(f, "fit input: {problem}"),
             FitError::Build(e) => write!(f, "{e}"),

@@ -31,8 +31,8 @@ pub(crate) const QUARTER_MIN_NORM2: f64 = 1e-4;
 static ANTIPODAL_EVENTS: AtomicUsize = AtomicUsize::new(0);
 
 /// How many antipodal pairs were blended since the program started (all threads).
-/// A client compares it before and after an edit to tell the designer that the
-/// result depends on the documented fixed axis (the editor does not yet).
+/// A diagnostic for tests and benchmarks: a build names the pairs it blends
+/// about the fixed axis from its own levels ([`super::antipodal`]).
 pub fn antipodal_events() -> usize {
     ANTIPODAL_EVENTS.load(Ordering::Relaxed)
 }
