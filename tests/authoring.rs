@@ -112,38 +112,10 @@ fn structure_edits_are_one_undo_step_and_drop_details() {
     let start = bits(&scene(&app));
     let surface = points(&app);
     for (e, rows, cols) in [
-        (
-            AuthorEdit::Insert {
-                axis: Axis::Row,
-                at: 2,
-            },
-            7,
-            9,
-        ),
-        (
-            AuthorEdit::Insert {
-                axis: Axis::Column,
-                at: 9,
-            },
-            6,
-            10,
-        ),
-        (
-            AuthorEdit::Delete {
-                axis: Axis::Row,
-                at: 0,
-            },
-            5,
-            9,
-        ),
-        (
-            AuthorEdit::Delete {
-                axis: Axis::Column,
-                at: 4,
-            },
-            6,
-            8,
-        ),
+        (AuthorEdit::insert(Axis::Row, 2), 7, 9),
+        (AuthorEdit::insert(Axis::Column, 9), 6, 10),
+        (AuthorEdit::delete(Axis::Row, 0), 5, 9),
+        (AuthorEdit::delete(Axis::Column, 4), 6, 8),
         (
             AuthorEdit::SetStreamlineLength {
                 row: 3,

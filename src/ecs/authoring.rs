@@ -12,93 +12,11 @@
 
 use super::components::{LevelData, SubdivisionLevel};
 use crate::scene::Scene;
+pub use crate::scene::edit::AuthorEdit;
 use crate::scene::format::InitialSpec;
 use bevy::prelude::*;
-use streamline_kernel::authoring::{Axis, Template};
 use streamline_kernel::levels::incremental::check_params;
-use streamline_kernel::{DQuat, DVec3, Design, SurfaceScheme, Tangent};
-
-/// One authoring edit (the [`super::Edit::Author`] payload).
-#[derive(Debug, Clone, PartialEq)]
-pub enum AuthorEdit {
-    /// A new, unsaved design from a template.
-    NewDesign {
-        /// Control rows (2–64).
-        rows: usize,
-        /// Control columns (2–64).
-        cols: usize,
-        /// Streamline length.
-        length: f64,
-        /// Flat or Cylinder.
-        template: Template,
-        /// The scheme.
-        scheme: SurfaceScheme,
-    },
-    /// A new row or column that gets index `at`.
-    Insert { axis: Axis, at: usize },
-    /// Deletes row or column `at`.
-    Delete { axis: Axis, at: usize },
-    /// Points the initial curve's control tangent `index` in `dir`.
-    SetInitialDirection { index: usize, dir: DVec3 },
-    /// Rotates the initial curve's control tangent `index`.
-    RotateInitial {
-        index: usize,
-        axis: DVec3,
-        radians: f64,
-    },
-    /// The initial curve's length.
-    SetInitialLength(f64),
-    /// The initial curve's start point.
-    SetInitialOrigin(DVec3),
-    /// The initial curve's QI order.
-    SetInitialOrder(usize),
-    /// The anchor column.
-    SetAnchor(usize),
-    /// Control row `row`'s streamline length.
-    SetStreamlineLength { row: usize, length: f64 },
-    /// Mirror symmetry on or off.
-    SetMirror(bool),
-}
-
-impl AuthorEdit {
-    /// A short description.
-    pub fn label(&self) -> String {
-        match self {
-            AuthorEdit::NewDesign {
-                rows,
-                cols,
-                template,
-                ..
-            } => format!("new {rows} × {cols} design ({template:?})"),
-            AuthorEdit::Insert { axis, at } => format!("insert {} {at}", axis.name()),
-            AuthorEdit::Delete { axis, at } => format!("delete {} {at}", axis.name()),
-            AuthorEdit::SetInitialDirection { index, .. } => {
-                format!("initial tangent {index} direction")
-            }
-            AuthorEdit::RotateInitial { index, radians, .. } => {
-                format!(
-                    "rotate initial tangent {index} by {:.3}°",
-                    radians.to_degrees()
-                )
-            }
-            AuthorEdit::SetInitialLength(l) => format!("initial curve length {l}"),
-            AuthorEdit::SetInitialOrigin(o) => {
-                format!("initial curve origin ({}, {}, {})", o.x, o.y, o.z)
-            }
-            AuthorEdit::SetInitialOrder(k) => format!("initial curve order {k}"),
-            AuthorEdit::SetAnchor(c) => format!("anchor column {c}"),
-            AuthorEdit::SetStreamlineLength { row, length } => {
-                format!("streamline {row} length {length}")
-            }
-            AuthorEdit::SetMirror(on) => format!("mirror {}", if *on { "on" } else { "off" }),
-        }
-    }
-
-    /// Whether it gets an undo step (a new design replaces the scene and its history).
-    pub fn is_undoable(&self) -> bool {
-        !matches!(self, AuthorEdit::NewDesign { .. })
-    }
-}
+use streamline_kernel::{DQuat, DVec3, Design, Tangent};
 
 /// What the pipeline must redo after an authoring edit.
 #[derive(Debug)]
@@ -170,13 +88,19 @@ pub(crate) fn apply(scene: &mut Scene, e: &AuthorEdit) -> Result<(String, Effect
             );
             return Ok((msg, Effect::NewScene(Box::new(new))));
         }
-        AuthorEdit::Insert { axis, at } | AuthorEdit::Delete { axis, at } => {
+        AuthorEdit::InsertRow { .. }
+        | AuthorEdit::InsertColumn { .. }
+        | AuthorEdit::DeleteRow(_)
+        | AuthorEdit::DeleteColumn(_) => {
             if s.mirror && s.edit_depth > 0 {
                 return Err(mirror_depth_msg());
             }
+            let (axis, at) = e.structure().expect("a structure edit");
             s.design = match e {
-                AuthorEdit::Insert { .. } => d.inserted(*axis, *at),
-                _ => d.deleted(*axis, *at),
+                AuthorEdit::InsertRow { .. } | AuthorEdit::InsertColumn { .. } => {
+                    d.inserted(axis, at)
+                }
+                _ => d.deleted(axis, at),
             }
             .map_err(|x| format!("{label} refused: {x}"))?;
             if s.mirror {

@@ -140,7 +140,7 @@ impl Receivers<'_> {
                 self.script.start(path);
             }
             PathAction::OpenMesh => {
-                self.mesh.input = path.display().to_string();
+                self.mesh.text.input = path.display().to_string();
                 self.mesh.open(path);
             }
             PathAction::ExportMeshSurface => self.mesh.export(path, false),

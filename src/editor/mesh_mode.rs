@@ -49,9 +49,24 @@ pub struct Computed {
     pub seconds: f64,
 }
 
-/// The mesh shown, the settings of its interpolation, and the outcome.
-#[derive(Resource)]
+/// Mesh mode's state, by what it holds: the mesh open and what was computed
+/// from it, the settings of its interpolation, the work off the frame, and
+/// the panel's text.
+#[derive(Resource, Default)]
 pub struct MeshView {
+    /// The mesh open and its interpolation.
+    pub doc: MeshDocument,
+    /// How it is interpolated and shown.
+    pub settings: MeshSettings,
+    /// The job running off the frame and what the next frame must do.
+    pub work: MeshWork,
+    /// The path typed and the last failure.
+    pub text: MeshText,
+}
+
+/// The mesh open and what was computed from it.
+#[derive(Default)]
+pub struct MeshDocument {
     /// The file opened.
     pub path: Option<PathBuf>,
     /// The given mesh and its topology.
@@ -64,6 +79,10 @@ pub struct MeshView {
     pub report: Option<Report>,
     /// Seconds it took.
     pub seconds: f64,
+}
+
+/// How the mesh is interpolated and shown.
+pub struct MeshSettings {
     /// Plain or fast.
     pub method: Method,
     /// The boundary rules of the Loop surface.
@@ -74,37 +93,64 @@ pub struct MeshView {
     pub depth: u32,
     /// Show the given mesh's wireframe and vertices.
     pub show_given: bool,
-    /// The last failure (open or export), shown in the panel.
-    pub error: Option<String>,
-    /// The path typed in the panel.
-    pub input: String,
-    /// Interpolate and rebuild the view in the next frame.
-    pub dirty: bool,
-    /// Frame the camera on the mesh in the next frame.
-    pub frame: bool,
-    /// The reading or interpolation running off the frame, if any.
-    pub job: Option<Job<Result<Computed, String>>>,
 }
 
-impl Default for MeshView {
+impl Default for MeshSettings {
     fn default() -> Self {
-        MeshView {
-            path: None,
-            given: None,
-            control: Vec::new(),
-            surface: None,
-            report: None,
-            seconds: 0.0,
+        MeshSettings {
             method: Method::Fast,
             boundary: BoundaryRule::EdgeAndCorner,
             tolerance: 1e-3,
             depth: 3,
             show_given: true,
-            error: None,
+        }
+    }
+}
+
+impl MeshSettings {
+    fn options(&self) -> Options {
+        Options {
+            tolerance: self.tolerance,
+            max_iterations: 10_000,
+            method: self.method,
+            boundary: self.boundary,
+        }
+    }
+}
+
+/// The work off the frame, and what the next frame must do.
+#[derive(Default)]
+pub struct MeshWork {
+    /// The reading or interpolation running off the frame, if any.
+    pub job: Option<Job<Result<Computed, String>>>,
+    /// Interpolate and rebuild the view in the next frame.
+    pub dirty: bool,
+    /// Frame the camera on the mesh in the next frame.
+    pub frame: bool,
+}
+
+impl MeshWork {
+    /// Stops the running job (its result is dropped).
+    pub fn cancel(&mut self) {
+        if let Some(j) = self.job.take() {
+            j.cancel();
+        }
+    }
+}
+
+/// The panel's text.
+pub struct MeshText {
+    /// The path typed in the panel.
+    pub input: String,
+    /// The last failure (open or export), shown in the panel.
+    pub error: Option<String>,
+}
+
+impl Default for MeshText {
+    fn default() -> Self {
+        MeshText {
             input: "tests/data/meshes/snail.obj".into(),
-            dirty: false,
-            frame: false,
-            job: None,
+            error: None,
         }
     }
 }
@@ -112,12 +158,12 @@ impl Default for MeshView {
 impl MeshView {
     /// Whether a mesh is open (the streamline surface steps aside).
     pub fn active(&self) -> bool {
-        self.given.is_some()
+        self.doc.given.is_some()
     }
 
     /// Whether a job is running.
     pub fn busy(&self) -> bool {
-        self.job.is_some()
+        self.work.job.is_some()
     }
 
     /// Opens an OBJ file off the frame: read, checked, interpolated and
@@ -125,9 +171,9 @@ impl MeshView {
     /// stays and the error is kept.
     pub fn open(&mut self, path: PathBuf) {
         self.cancel();
-        let (opts, depth) = (self.options(), self.depth);
+        let (opts, depth) = (self.settings.options(), self.settings.depth);
         let label = format!("opening {}", path.display());
-        self.job = Some(Job::spawn(&label, move |p| {
+        self.work.job = Some(Job::spawn(&label, move |p| {
             let given: Given = Arc::new(
                 obj::read_with(&path, p).map_err(|e| format!("{e} (nothing was opened)"))?,
             );
@@ -139,65 +185,55 @@ impl MeshView {
 
     /// Stops the running job (its result is dropped).
     pub fn cancel(&mut self) {
-        if let Some(j) = self.job.take() {
-            j.cancel();
-        }
-    }
-
-    fn options(&self) -> Options {
-        Options {
-            tolerance: self.tolerance,
-            max_iterations: 10_000,
-            method: self.method,
-            boundary: self.boundary,
-        }
+        self.work.cancel();
     }
 
     /// Leaves mesh mode.
     pub fn close(&mut self) {
         self.cancel();
-        self.given = None;
-        self.surface = None;
-        self.report = None;
-        self.control.clear();
-        self.dirty = true;
+        self.doc.given = None;
+        self.doc.surface = None;
+        self.doc.report = None;
+        self.doc.control.clear();
+        self.work.dirty = true;
     }
 
     /// Writes the control mesh as USD text (`.usda`, with the boundary rule it
     /// was interpolated for; refused for 002's rule, which USD cannot say).
     pub fn export_usd(&mut self, to: PathBuf) {
-        let result = match &self.given {
+        let result = match &self.doc.given {
             Some(g) => crate::scene::usd::write(
                 &to,
-                &self.control,
+                &self.doc.control,
                 &g.0.faces,
-                self.boundary,
+                self.settings.boundary,
                 "control mesh of an interpolating Loop surface",
             ),
             None => {
-                self.error = Some("nothing to export: open a mesh first".into());
+                self.text.error = Some("nothing to export: open a mesh first".into());
                 return;
             }
         };
-        self.error = result.err().map(|e| e.to_string());
+        self.text.error = result.err().map(|e| e.to_string());
     }
 
     /// Writes the shown surface (`control == false`) or the control mesh as OBJ.
     pub fn export(&mut self, to: PathBuf, control: bool) {
-        let result = match (&self.given, &self.surface) {
+        let doc = &self.doc;
+        let result = match (&doc.given, &doc.surface) {
             (Some(g), _) if control => obj::write(
                 &to,
-                &self.control,
+                &doc.control,
                 &g.0.faces,
                 "control mesh of an interpolating Loop surface",
             ),
             (_, Some(s)) => obj::write(&to, &s.positions, &s.faces, "Loop surface"),
             _ => {
-                self.error = Some("nothing to export: open a mesh first".into());
+                self.text.error = Some("nothing to export: open a mesh first".into());
                 return;
             }
         };
-        self.error = result.err().map(|e| e.to_string());
+        self.text.error = result.err().map(|e| e.to_string());
     }
 }
 
@@ -309,18 +345,19 @@ fn setup(mut commands: Commands, mut materials: ResMut<Assets<StandardMaterial>>
 /// Starts a job when a setting changed, and takes a finished job's result.
 fn recompute(meter: Res<crate::ecs::meter::CpuMeter>, mut view: ResMut<MeshView>) {
     let _meter = meter.start();
-    if view.dirty {
-        view.dirty = false;
-        if let Some(given) = view.given.clone() {
+    if view.work.dirty {
+        let view = &mut *view;
+        view.work.dirty = false;
+        if let Some(given) = view.doc.given.clone() {
             // a newer setting replaces a running interpolation
-            view.cancel();
-            let (opts, depth) = (view.options(), view.depth);
-            view.job = Some(Job::spawn("interpolating", move |p| {
+            view.work.cancel();
+            let (opts, depth) = (view.settings.options(), view.settings.depth);
+            view.work.job = Some(Job::spawn("interpolating", move |p| {
                 compute(&given, &opts, depth, p)
             }));
         }
     }
-    let Some(job) = &view.job else {
+    let Some(job) = &view.work.job else {
         return;
     };
     let result = match job.poll() {
@@ -328,21 +365,23 @@ fn recompute(meter: Res<crate::ecs::meter::CpuMeter>, mut view: ResMut<MeshView>
         Poll::Done(r) => r,
         Poll::Lost => Err("the worker stopped without a result (a bug; please report it)".into()),
     };
-    view.job = None;
+    let view = &mut *view;
+    view.work.job = None;
     match result {
         Ok(c) => {
+            let doc = &mut view.doc;
             if let Some((path, given)) = c.opened {
-                view.path = Some(path);
-                view.given = Some(given);
-                view.frame = true;
+                doc.path = Some(path);
+                doc.given = Some(given);
+                view.work.frame = true;
             }
-            view.error = None;
-            view.control = c.control;
-            view.report = Some(c.report);
-            view.seconds = c.seconds;
-            view.surface = Some(c.surface);
+            view.text.error = None;
+            doc.control = c.control;
+            doc.report = Some(c.report);
+            doc.seconds = c.seconds;
+            doc.surface = Some(c.surface);
         }
-        Err(e) => view.error = Some(e),
+        Err(e) => view.text.error = Some(e),
     }
 }
 
@@ -392,11 +431,11 @@ fn show(
 ) {
     let _meter = meter.start();
     let active = view.active();
-    let key = view.surface.as_ref().map(|s| {
+    let key = view.doc.surface.as_ref().map(|s| {
         (
             s.positions.len(),
-            view.depth,
-            view.report.map_or(0, |r| r.max_error.to_bits()),
+            view.settings.depth,
+            view.doc.report.map_or(0, |r| r.max_error.to_bits()),
         )
     });
     if !active || key != *shown {
@@ -405,7 +444,7 @@ fn show(
             commands.entity(e).despawn();
         }
         *shown = None;
-        if let (true, Some(s), Some(g)) = (active, &view.surface, &view.given) {
+        if let (true, Some(s), Some(g)) = (active, &view.doc.surface, &view.doc.given) {
             let (given, topo) = (&g.0, &g.1);
             commands.spawn((
                 MeshModeSurface,
@@ -424,7 +463,7 @@ fn show(
                     depth_bias: -0.002,
                 },
                 Transform::from_rotation(kernel_to_view()),
-                if view.show_given {
+                if view.settings.show_given {
                     Visibility::Inherited
                 } else {
                     Visibility::Hidden
@@ -436,13 +475,13 @@ fn show(
         // only the wireframe toggles; the surface is always shown
         for (_, mut v, wire) in &mut shown_entities {
             if wire {
-                set_visible(&mut v, view.show_given);
+                set_visible(&mut v, view.settings.show_given);
             }
         }
     }
-    if view.frame {
-        view.frame = false;
-        if let Some(g) = &view.given {
+    if view.work.frame {
+        view.work.frame = false;
+        if let Some(g) = &view.doc.given {
             let (lo, hi) = g.0.bounds();
             frame.0 = Some(((lo + hi) * 0.5, 0.6 * (hi - lo).max_element()));
         }

@@ -166,13 +166,13 @@ fn set_up_view(
         selection.select(HandleId::tangent(model.scene.edit_depth, row, col));
     }
     if let Some(b) = req.mesh_boundary {
-        mesh.boundary = b;
+        mesh.settings.boundary = b;
     }
     if let Some(k) = req.select_initial {
         selection.select(HandleId::initial(k));
     }
     if let Some(path) = &req.mesh {
-        mesh.input = path.display().to_string();
+        mesh.text.input = path.display().to_string();
         mesh.open(path.clone());
     }
 }
@@ -369,7 +369,7 @@ fn drive(
                         .map(|d| d.probe.clone())
                         .collect(),
                     busy_frames: p.busy_frames,
-                    mesh_error: mesh.error.clone(),
+                    mesh_error: mesh.text.error.clone(),
                     shown_gap: p.shown_gap,
                 },
             );

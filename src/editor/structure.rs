@@ -78,46 +78,18 @@ impl StructureAction {
     ) -> (AuthorEdit, (usize, usize)) {
         let (rows, cols) = shape;
         match self {
-            StructureAction::RowBefore => (
-                AuthorEdit::Insert {
-                    axis: Axis::Row,
-                    at: row,
-                },
-                (row, col),
-            ),
-            StructureAction::RowAfter => (
-                AuthorEdit::Insert {
-                    axis: Axis::Row,
-                    at: row + 1,
-                },
-                (row + 1, col),
-            ),
-            StructureAction::ColumnBefore => (
-                AuthorEdit::Insert {
-                    axis: Axis::Column,
-                    at: col,
-                },
-                (row, col),
-            ),
-            StructureAction::ColumnAfter => (
-                AuthorEdit::Insert {
-                    axis: Axis::Column,
-                    at: col + 1,
-                },
-                (row, col + 1),
-            ),
+            StructureAction::RowBefore => (AuthorEdit::insert(Axis::Row, row), (row, col)),
+            StructureAction::RowAfter => (AuthorEdit::insert(Axis::Row, row + 1), (row + 1, col)),
+            StructureAction::ColumnBefore => (AuthorEdit::insert(Axis::Column, col), (row, col)),
+            StructureAction::ColumnAfter => {
+                (AuthorEdit::insert(Axis::Column, col + 1), (row, col + 1))
+            }
             StructureAction::DeleteRow => (
-                AuthorEdit::Delete {
-                    axis: Axis::Row,
-                    at: row,
-                },
+                AuthorEdit::delete(Axis::Row, row),
                 (row.min(rows.saturating_sub(2)), col),
             ),
             StructureAction::DeleteColumn => (
-                AuthorEdit::Delete {
-                    axis: Axis::Column,
-                    at: col,
-                },
+                AuthorEdit::delete(Axis::Column, col),
                 (row, col.min(cols.saturating_sub(2))),
             ),
         }
@@ -345,41 +317,17 @@ mod tests {
         let shape = (6, 9);
         let cell = (2, 5);
         let (e, next) = StructureAction::RowBefore.edit(cell, shape);
-        assert_eq!(
-            e,
-            AuthorEdit::Insert {
-                axis: Axis::Row,
-                at: 2
-            }
-        );
+        assert_eq!(e, AuthorEdit::insert(Axis::Row, 2));
         assert_eq!(next, (2, 5));
         let (e, next) = StructureAction::RowAfter.edit(cell, shape);
-        assert_eq!(
-            e,
-            AuthorEdit::Insert {
-                axis: Axis::Row,
-                at: 3
-            }
-        );
+        assert_eq!(e, AuthorEdit::insert(Axis::Row, 3));
         assert_eq!(next, (3, 5));
         let (e, next) = StructureAction::ColumnAfter.edit(cell, shape);
-        assert_eq!(
-            e,
-            AuthorEdit::Insert {
-                axis: Axis::Column,
-                at: 6
-            }
-        );
+        assert_eq!(e, AuthorEdit::insert(Axis::Column, 6));
         assert_eq!(next, (2, 6));
         // the last row deleted: the selection moves to the new last row
         let (e, next) = StructureAction::DeleteRow.edit((5, 8), shape);
-        assert_eq!(
-            e,
-            AuthorEdit::Delete {
-                axis: Axis::Row,
-                at: 5
-            }
-        );
+        assert_eq!(e, AuthorEdit::delete(Axis::Row, 5));
         assert_eq!(next, (4, 8));
         let (_, next) = StructureAction::DeleteColumn.edit((5, 8), shape);
         assert_eq!(next, (5, 7));

@@ -264,6 +264,20 @@ impl TemplateSpec {
             },
         }
     }
+
+    /// From the kernel's template.
+    pub fn from_kernel(t: streamline_kernel::authoring::Template) -> Self {
+        use streamline_kernel::authoring::Template;
+        match t {
+            Template::Flat { width } => TemplateSpec::Flat {
+                width: Finite(width),
+            },
+            Template::Cylinder { radius, degrees } => TemplateSpec::Cylinder {
+                radius: Finite(radius),
+                degrees: Finite(degrees),
+            },
+        }
+    }
 }
 
 /// A finite point `(x, y, z)`.

@@ -1,10 +1,11 @@
 //! The model layer: scene files (RON, versioned), their validation with
-//! located errors, atomic saving, scripts, mesh export, and OBJ triangle meshes. Depends on the
+//! located errors, atomic saving, edits and scripts, mesh export, and OBJ triangle meshes. Depends on the
 //! kernel and serde/ron only (no Bevy).
 
 pub mod builtin;
 pub mod cad;
 pub mod cad_text;
+pub mod edit;
 pub mod error;
 pub mod export;
 pub mod format;

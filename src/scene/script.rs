@@ -1,5 +1,6 @@
-//! Scripts: a RON list of steps, each an edit message (what a user can do in
-//! the editor) or an expectation checked by `streamline-studio play`.
+//! Scripts: a RON list of steps, each a file operation, an edit (the
+//! [`Edit`] a user makes in the editor) or an expectation checked by
+//! `streamline-studio play`.
 //!
 //! ```ron
 //! (steps: [
@@ -11,27 +12,34 @@
 //! ])
 //! ```
 
+use super::edit::{AuthorEdit, Edit};
 use super::error::SceneError;
-use super::format::{
-    ConstraintSpec, Dir, Finite, OrderSpec, Point, SchemeSpec, TemplateSpec, TuningSpec,
+use super::format::{Finite, OrderSpec, Point, SchemeSpec, TuningSpec};
+use serde::de::{
+    self, DeserializeOwned, DeserializeSeed, EnumAccess, VariantAccess, Visitor,
+    value::EnumAccessDeserializer,
 };
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use std::fmt;
 use std::path::{Path, PathBuf};
 
 /// The most steps a script may hold (larger scripts are refused before running).
 pub const MAX_STEPS: usize = 1_000_000;
 
 /// A script file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Script {
     /// The steps, run in order.
     pub steps: Vec<Step>,
 }
 
-/// One step.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// One step: a file operation, an edit, or an expectation. In RON each is
+/// written by its name alone (`SetDirection(row: 2, col: 4, dir: (1.0, 0.0, 0.4))`,
+/// `Undo`, `ExpectSame(mark: "start", tolerance: 0.0)`): an edit step is the
+/// very [`Edit`] the model applies, named by its variant (an authoring edit
+/// by its [`AuthorEdit`] variant).
+#[derive(Clone)]
 pub enum Step {
     /// Opens a scene file (relative to the script) or `builtin:NAME`.
     Load(String),
@@ -41,91 +49,67 @@ pub enum Step {
     /// mesh as `.obj`, `.stl` or `.glb`, the fitted B-spline surface as
     /// `.step`/`.stp` or `.igs`/`.iges` (default degree and tolerance).
     Export(String),
-    /// Points the handle `(row, col)` of the edit depth in `dir` (unit length kept).
-    SetDirection { row: usize, col: usize, dir: Dir },
-    /// Rotates the handle about `axis` by `degrees`.
-    Rotate {
-        row: usize,
-        col: usize,
-        axis: Dir,
-        degrees: Finite,
-    },
-    /// Scales the `s` intervals on both sides of control tangent `(row, col)`.
-    SetLength {
-        row: usize,
-        col: usize,
-        coefficient: Finite,
-    },
-    /// Removes the detail of handle `(row, col)` at the edit depth.
-    ClearDetail { row: usize, col: usize },
-    /// Changes the scheme (and ω).
-    SetScheme(SchemeSpec),
-    /// Changes the blend order.
-    SetBlendOrder(OrderSpec),
-    /// Changes the display depth.
-    SetDisplayDepth(u32),
-    /// Changes the edit depth.
-    SetEditDepth(u32),
-    /// Turns fine tuning on with this function (see the scene's `tuning`), or off with `None`.
+    /// Turns fine tuning on with this function (see the scene's `tuning`), or
+    /// off with `None`: [`Edit::SetTuning`], the function checked when the
+    /// step runs (a bad one is the step's error, which `ExpectError` can expect).
     SetTuning(Option<TuningSpec>),
-    /// Sets fine-tuning control value `(row, col)` (row across, column along the streamlines).
-    SetTuningValue {
-        row: usize,
-        col: usize,
-        value: Finite,
-    },
-    /// What fine-tuned streamlines keep: `Free`, `KeepEnds` or `KeepClosed`.
-    SetTuningConstraint(ConstraintSpec),
-    /// Makes Catmull–Clark and Doo–Sabin pass through the interior control tangents, or not.
-    SetInterpolateTangents(bool),
-    /// Replaces the scene with a new, unsaved design from a template
-    /// (`docs/math.md §9`); the scheme defaults to Kobbelt.
-    NewDesign {
-        rows: usize,
-        cols: usize,
-        length: Finite,
-        template: TemplateSpec,
-        #[serde(default)]
-        scheme: Option<SchemeSpec>,
-    },
-    /// Inserts a control row (a streamline) so that it gets index `at` (0 ..= rows).
-    InsertRow { at: usize },
-    /// Inserts a control column so that it gets index `at` (0 ..= columns).
-    InsertColumn { at: usize },
-    /// Deletes control row `i` (the net keeps at least 2).
-    DeleteRow(usize),
-    /// Deletes control column `j` (the net keeps at least 2).
-    DeleteColumn(usize),
-    /// Points the initial curve's control tangent `index` in `dir`.
-    SetInitialDirection { index: usize, dir: Dir },
-    /// Rotates the initial curve's control tangent `index` about `axis` by `degrees`.
-    RotateInitial {
-        index: usize,
-        axis: Dir,
-        degrees: Finite,
-    },
-    /// The initial curve's arc length.
-    SetInitialLength(Finite),
-    /// The initial curve's start point.
-    SetInitialOrigin(Point),
-    /// The initial curve's QI order.
-    SetInitialOrder(usize),
-    /// The anchor column (where every streamline meets the initial curve).
-    SetAnchor(usize),
-    /// Makes control row `row`'s streamline exactly `length` long (Eq. 65).
-    SetStreamlineLength { row: usize, length: Finite },
-    /// Turns several handles `(row, col)` of the edit depth by one rotation.
-    RotateMany {
-        handles: Vec<(usize, usize)>,
-        axis: Dir,
-        degrees: Finite,
-    },
-    /// Mirror symmetry on or off (`docs/math.md §9`).
-    SetMirror(bool),
-    /// Undoes the last edit.
-    Undo,
-    /// Redoes the last undone edit.
-    Redo,
+    /// An edit, sent to the model as it is.
+    Edit(Edit),
+    /// An expectation, checked against the model.
+    Expect(Expect),
+}
+
+/// Every step's name, in the order an unknown step's message lists them
+/// (as `docs/scenes.md` does): files, edits, expectations.
+const STEPS: &[&str] = &[
+    "Load",
+    "Save",
+    "Export",
+    "SetDirection",
+    "Rotate",
+    "SetLength",
+    "ClearDetail",
+    "SetScheme",
+    "SetBlendOrder",
+    "SetDisplayDepth",
+    "SetEditDepth",
+    "SetTuning",
+    "SetTuningValue",
+    "SetTuningConstraint",
+    "SetInterpolateTangents",
+    "NewDesign",
+    "InsertRow",
+    "InsertColumn",
+    "DeleteRow",
+    "DeleteColumn",
+    "SetInitialDirection",
+    "RotateInitial",
+    "SetInitialLength",
+    "SetInitialOrigin",
+    "SetInitialOrder",
+    "SetAnchor",
+    "SetStreamlineLength",
+    "RotateMany",
+    "SetMirror",
+    "Undo",
+    "Redo",
+    "ExpectPoint",
+    "ExpectStats",
+    "ExpectScene",
+    "ExpectStreamlineLength",
+    "ExpectMirrorSymmetric",
+    "ExpectError",
+    "Mark",
+    "ExpectSame",
+    "ExpectChanged",
+    "ExpectEndsSame",
+    "ExpectShifted",
+];
+
+/// One expectation: checked by `streamline-studio play`, not sent to the model.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Expect {
     /// Point `index` of streamline `row` (display depth) is within `tolerance` of `near`.
     ExpectPoint {
         row: usize,
@@ -212,20 +196,158 @@ pub enum Step {
 impl Step {
     /// Whether the step is an expectation (checked, not sent to the model).
     pub fn is_expectation(&self) -> bool {
-        matches!(
+        matches!(self, Step::Expect(_))
+    }
+}
+
+/// As written in the script: the edit or expectation by its own name.
+impl fmt::Debug for Step {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Step::Load(p) => f.debug_tuple("Load").field(p).finish(),
+            Step::Save(p) => f.debug_tuple("Save").field(p).finish(),
+            Step::Export(p) => f.debug_tuple("Export").field(p).finish(),
+            Step::SetTuning(t) => f.debug_tuple("SetTuning").field(t).finish(),
+            Step::Edit(Edit::Author(a)) => fmt::Debug::fmt(a, f),
+            Step::Edit(e) => fmt::Debug::fmt(e, f),
+            Step::Expect(x) => fmt::Debug::fmt(x, f),
+        }
+    }
+}
+
+impl Serialize for Step {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Step::Load(p) => s.serialize_newtype_variant("Step", 0, "Load", p),
+            Step::Save(p) => s.serialize_newtype_variant("Step", 1, "Save", p),
+            Step::Export(p) => s.serialize_newtype_variant("Step", 2, "Export", p),
+            Step::SetTuning(t) => s.serialize_newtype_variant("Step", 11, "SetTuning", t),
+            Step::Edit(Edit::Author(a)) => a.serialize(s),
+            Step::Edit(e) => e.serialize(s),
+            Step::Expect(x) => x.serialize(s),
+        }
+    }
+}
+
+/// Reads the step's name, then hands the rest of the step to the type that
+/// has a variant of that name ([`Edit`], [`AuthorEdit`], [`Expect`]): the
+/// same reader goes on, so every error keeps its place in the file.
+impl<'de> Deserialize<'de> for Step {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_enum("Step", STEPS, StepVisitor)
+    }
+}
+
+struct StepVisitor;
+
+impl<'de> Visitor<'de> for StepVisitor {
+    type Value = Step;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a script step")
+    }
+
+    fn visit_enum<A: EnumAccess<'de>>(self, data: A) -> Result<Step, A::Error> {
+        let (name, rest) = data.variant_seed(StepName)?;
+        let named = |rest| EnumAccessDeserializer::new(Named { name, rest });
+        Ok(match name {
+            "Load" => Step::Load(rest.newtype_variant()?),
+            "Save" => Step::Save(rest.newtype_variant()?),
+            "Export" => Step::Export(rest.newtype_variant()?),
+            "SetTuning" => Step::SetTuning(rest.newtype_variant()?),
+            _ if names::<Expect>().contains(&name) => {
+                Step::Expect(Expect::deserialize(named(rest))?)
+            }
+            _ if names::<AuthorEdit>().contains(&name) => {
+                Step::Edit(Edit::Author(AuthorEdit::deserialize(named(rest))?))
+            }
+            _ => Step::Edit(Edit::deserialize(named(rest))?),
+        })
+    }
+}
+
+/// A step's name, one of [`STEPS`].
+struct StepName;
+
+impl<'de> DeserializeSeed<'de> for StepName {
+    type Value = &'static str;
+
+    fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<&'static str, D::Error> {
+        d.deserialize_identifier(self)
+    }
+}
+
+impl Visitor<'_> for StepName {
+    type Value = &'static str;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a step name")
+    }
+
+    fn visit_str<E: de::Error>(self, v: &str) -> Result<&'static str, E> {
+        STEPS
+            .iter()
+            .find(|s| **s == v)
+            .copied()
+            .ok_or_else(|| E::unknown_variant(v, STEPS))
+    }
+}
+
+/// A step whose name is read, as an enum for the type that has that name.
+struct Named<V> {
+    name: &'static str,
+    rest: V,
+}
+
+impl<'de, V: VariantAccess<'de>> EnumAccess<'de> for Named<V> {
+    type Error = V::Error;
+    type Variant = V;
+
+    fn variant_seed<S: DeserializeSeed<'de>>(self, seed: S) -> Result<(S::Value, V), V::Error> {
+        let name = seed.deserialize(de::value::StrDeserializer::<V::Error>::new(self.name))?;
+        Ok((name, self.rest))
+    }
+}
+
+/// The variant names `T`'s derived `Deserialize` reads: serde hands them to
+/// `deserialize_enum`, where this deserializer catches them.
+fn names<T: DeserializeOwned>() -> &'static [&'static str] {
+    #[derive(Debug)]
+    struct Names(&'static [&'static str]);
+    impl fmt::Display for Names {
+        fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+            f.write_str("variant names")
+        }
+    }
+    impl std::error::Error for Names {}
+    impl de::Error for Names {
+        fn custom<M: fmt::Display>(_: M) -> Self {
+            Names(&[])
+        }
+    }
+    struct Probe;
+    impl<'de> Deserializer<'de> for Probe {
+        type Error = Names;
+        fn deserialize_any<V: Visitor<'de>>(self, _: V) -> Result<V::Value, Names> {
+            Err(Names(&[]))
+        }
+        fn deserialize_enum<V: Visitor<'de>>(
             self,
-            Step::ExpectPoint { .. }
-                | Step::ExpectStats { .. }
-                | Step::ExpectScene { .. }
-                | Step::ExpectError(_)
-                | Step::Mark(_)
-                | Step::ExpectSame { .. }
-                | Step::ExpectChanged { .. }
-                | Step::ExpectEndsSame { .. }
-                | Step::ExpectStreamlineLength { .. }
-                | Step::ExpectShifted { .. }
-                | Step::ExpectMirrorSymmetric { .. }
-        )
+            _: &'static str,
+            variants: &'static [&'static str],
+            _: V,
+        ) -> Result<V::Value, Names> {
+            Err(Names(variants))
+        }
+        serde::forward_to_deserialize_any! {
+            bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string
+            bytes byte_buf option unit unit_struct newtype_struct seq tuple
+            tuple_struct map struct identifier ignored_any
+        }
+    }
+    match T::deserialize(Probe) {
+        Err(Names(v)) => v,
+        Ok(_) => &[],
     }
 }
 
@@ -326,4 +448,58 @@ pub fn confine(dir: &Path, path: &Path) -> Result<(), String> {
         return Err(link_out(path));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_step_name_is_read_by_one_type() {
+        let mut read: Vec<&str> = ["Load", "Save", "Export", "SetTuning"]
+            .into_iter()
+            .chain(names::<Edit>().iter().copied())
+            .chain(names::<AuthorEdit>().iter().copied())
+            .chain(names::<Expect>().iter().copied())
+            .collect();
+        let mut listed = STEPS.to_vec();
+        read.sort_unstable();
+        listed.sort_unstable();
+        assert_eq!(read, listed);
+    }
+
+    #[test]
+    fn steps_read_back_as_themselves() {
+        let text = "(steps: [Rotate(row: 1, col: 2, axis: (0.0, 0.0, 1.0), degrees: 0.1), \
+            InsertColumn(at: 3), DeleteRow(1), NewDesign(rows: 4, cols: 5, length: 2.0, \
+            template: Flat(width: 1.0)), Load(\"a.ron\"), Mark(\"m\")])";
+        let s = Script::parse(text, Path::new("t.ron")).unwrap();
+        assert!(matches!(
+            s.steps[1],
+            Step::Edit(Edit::Author(AuthorEdit::InsertColumn { at: 3 }))
+        ));
+        assert!(s.steps[5].is_expectation());
+        let again = ron::to_string(&s).unwrap();
+        let back = Script::parse(&again, Path::new("t.ron")).unwrap();
+        assert_eq!(ron::to_string(&back).unwrap(), again);
+        assert_eq!(format!("{:?}", back.steps[4]), "Load(\"a.ron\")");
+        assert_eq!(format!("{:?}", back.steps[5]), "Mark(\"m\")");
+    }
+
+    #[test]
+    fn angles_read_back_as_the_same_radians() {
+        for d in [0.1, 12.3456, -7.77777, 1e-320, 1e308, -0.0, 359.9999999] {
+            let text = format!(
+                "(steps: [RotateInitial(index: 0, axis: (0.0, 0.0, 1.0), degrees: {d:e})])"
+            );
+            let s = Script::parse(&text, Path::new("t.ron")).unwrap();
+            let again = ron::to_string(&s).unwrap();
+            let back = Script::parse(&again, Path::new("t.ron")).unwrap();
+            let radians = |s: &Script| match &s.steps[0] {
+                Step::Edit(Edit::Author(AuthorEdit::RotateInitial { radians, .. })) => *radians,
+                _ => unreachable!(),
+            };
+            assert_eq!(radians(&back).to_bits(), radians(&s).to_bits(), "{d}");
+        }
+    }
 }

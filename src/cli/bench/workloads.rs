@@ -162,9 +162,9 @@ pub fn authoring() -> Vec<Workload> {
             let axis = Axis::Row;
             inserted = !inserted;
             let edit = if inserted {
-                AuthorEdit::Insert { axis, at: 3 }
+                AuthorEdit::insert(axis, 3)
             } else {
-                AuthorEdit::Delete { axis, at: 3 }
+                AuthorEdit::delete(axis, 3)
             };
             ecs::send(&mut app, Edit::Author(edit));
             app.update();

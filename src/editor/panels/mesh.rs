@@ -22,18 +22,18 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
     let v = &mut p.view;
     ui.horizontal(|ui| {
         // typed on a copy: the view is marked changed only when the text is
-        let mut input = v.input.clone();
+        let mut input = v.text.input.clone();
         ui.add(egui::TextEdit::singleline(&mut input).desired_width(140.0))
             .on_hover_text("A triangle mesh (OBJ); polygons are split into fans of triangles");
-        if input != v.input {
-            v.input = input;
+        if input != v.text.input {
+            v.text.input = input;
         }
         if ui
             .button("Open OBJ")
             .on_hover_text("Open the mesh and make a Loop surface pass through every vertex")
             .clicked()
         {
-            let path = PathBuf::from(v.input.trim());
+            let path = PathBuf::from(v.text.input.trim());
             v.open(path);
         }
         if ui
@@ -41,7 +41,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
             .on_hover_text("Pick the mesh in the file browser and open it")
             .clicked()
         {
-            let typed = PathBuf::from(v.input.trim());
+            let typed = PathBuf::from(v.text.input.trim());
             let start = match typed.parent() {
                 Some(d) if d.is_dir() => d.to_path_buf(),
                 _ => std::env::current_dir().unwrap_or_default(),
@@ -49,7 +49,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
             files::browse(files_ui, PathAction::OpenMesh, start, None);
         }
     });
-    if let Some(job) = &v.job {
+    if let Some(job) = &v.work.job {
         let (done, total) = job.progress.counts();
         let stage = job.progress.stage_name();
         ui.label(&job.label);
@@ -67,14 +67,14 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
         ui.ctx().request_repaint();
         if cancel {
             v.cancel();
-            v.error = Some("cancelled; nothing changed".into());
+            v.text.error = Some("cancelled; nothing changed".into());
         }
     }
-    if let Some(e) = &v.error {
+    if let Some(e) = &v.text.error {
         ui.colored_label(egui::Color32::from_rgb(240, 110, 90), e)
             .on_hover_text("The last open or export failed; nothing else changed");
     }
-    let Some(g) = &v.given else {
+    let Some(g) = &v.doc.given else {
         ui.label(egui::RichText::new("No mesh open: the streamline surface is shown.").weak());
         return;
     };
@@ -89,22 +89,23 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
         }
     ))
     .on_hover_text(
-        v.path
+        v.doc
+            .path
             .as_ref()
             .map_or(String::new(), |p| p.display().to_string()),
     );
-    let mut method = v.method;
+    let mut method = v.settings.method;
     ui.horizontal(|ui| {
         ui.radio_value(&mut method, Method::Plain, "plain")
             .on_hover_text("002's progressive iteration: V += V⁰ − V∞, boundary first");
         ui.radio_value(&mut method, Method::Fast, "fast")
             .on_hover_text("Conjugate gradients (interior) and BiCGSTAB (boundary) on the same system: fewer iterations");
     });
-    if method != v.method {
-        v.method = method;
-        v.dirty = true;
+    if method != v.settings.method {
+        v.settings.method = method;
+        v.work.dirty = true;
     }
-    let mut boundary = v.boundary;
+    let mut boundary = v.settings.boundary;
     ui.horizontal(|ui| {
         ui.label("boundary");
         for (rule, tip) in [
@@ -115,36 +116,36 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
             ui.radio_value(&mut boundary, rule, rule.name()).on_hover_text(tip);
         }
     });
-    if boundary != v.boundary {
-        v.boundary = boundary;
-        v.dirty = true;
+    if boundary != v.settings.boundary {
+        v.settings.boundary = boundary;
+        v.work.dirty = true;
     }
-    let mut exp = -v.tolerance.log10();
+    let mut exp = -v.settings.tolerance.log10();
     if ui
         .add(egui::Slider::new(&mut exp, 2.0..=9.0).step_by(1.0).text("tolerance 10^-n"))
         .on_hover_text("Stop when every vertex is this close to its limit point (bounding box's largest side = 1; 002 uses 1e-3)")
         .changed()
     {
-        v.tolerance = 10f64.powf(-exp);
-        v.dirty = true;
+        v.settings.tolerance = 10f64.powf(-exp);
+        v.work.dirty = true;
     }
-    let mut depth = v.depth;
+    let mut depth = v.settings.depth;
     if ui
         .add(egui::Slider::new(&mut depth, 0..=crate::editor::mesh_mode::MAX_DEPTH).text("depth"))
         .on_hover_text("Loop subdivision levels of the control mesh shown (each multiplies the triangles by 4)")
         .changed()
     {
-        v.depth = depth;
-        v.dirty = true;
+        v.settings.depth = depth;
+        v.work.dirty = true;
     }
-    let mut show_given = v.show_given;
+    let mut show_given = v.settings.show_given;
     ui.checkbox(&mut show_given, "given mesh").on_hover_text(
         "Draw the given mesh's edges (blue) and vertices (red crosses) over the surface",
     );
-    if show_given != v.show_given {
-        v.show_given = show_given;
+    if show_given != v.settings.show_given {
+        v.settings.show_given = show_given;
     }
-    if let Some(r) = v.report {
+    if let Some(r) = v.doc.report {
         egui::Grid::new("mesh_stats").num_columns(2).striped(true).show(ui, |ui| {
             ui.label("iterations");
             ui.label(if loops > 0 {
@@ -162,11 +163,12 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
             ui.label(format!("{:.3e}", r.avg_error));
             ui.end_row();
             ui.label("time");
-            ui.label(format!("{:.1} ms{}", v.seconds * 1e3, if r.converged { "" } else { " (did not converge)" }));
+            ui.label(format!("{:.1} ms{}", v.doc.seconds * 1e3, if r.converged { "" } else { " (did not converge)" }));
             ui.end_row();
         });
     }
     let stem = v
+        .doc
         .path
         .as_ref()
         .and_then(|p| p.file_stem())
@@ -179,7 +181,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
             ))
             .clicked()
         {
-            let to = v.path.as_ref().map_or(PathBuf::from("."), |p| {
+            let to = v.doc.path.as_ref().map_or(PathBuf::from("."), |p| {
                 p.with_file_name(format!("{stem}-loop.obj"))
             });
             files::browse(files_ui, PathAction::ExportMeshSurface, to, None);
@@ -191,7 +193,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
             ))
             .clicked()
         {
-            let to = v.path.as_ref().map_or(PathBuf::from("."), |p| {
+            let to = v.doc.path.as_ref().map_or(PathBuf::from("."), |p| {
                 p.with_file_name(format!("{stem}-control.obj"))
             });
             files::browse(files_ui, PathAction::ExportMeshControl, to, None);
@@ -203,7 +205,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
             ))
             .clicked()
         {
-            let to = v.path.as_ref().map_or(PathBuf::from("."), |p| {
+            let to = v.doc.path.as_ref().map_or(PathBuf::from("."), |p| {
                 p.with_file_name(format!("{stem}-control.usda"))
             });
             files::browse(files_ui, PathAction::ExportMeshUsd, to, None);

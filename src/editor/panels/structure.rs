@@ -94,7 +94,7 @@ fn body(ui: &mut egui::Ui, p: &mut PanelCtx, fields: &mut IndexFields) {
                 .on_disabled_hover_text(format!("64 {name}s is the most a net may have"))
                 .clicked()
             {
-                p.send(Edit::Author(AuthorEdit::Insert { axis, at: *index }));
+                p.send(Edit::Author(AuthorEdit::insert(axis, *index)));
             }
             let can_delete = n > 2 && *index < n;
             if ui
@@ -107,7 +107,7 @@ fn body(ui: &mut egui::Ui, p: &mut PanelCtx, fields: &mut IndexFields) {
                 })
                 .clicked()
             {
-                p.send(Edit::Author(AuthorEdit::Delete { axis, at: *index }));
+                p.send(Edit::Author(AuthorEdit::delete(axis, *index)));
             }
         });
     }
