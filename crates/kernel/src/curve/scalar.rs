@@ -2,8 +2,19 @@
 //! parameter grids `s`, `t` and `σ` with the same scheme as the tangents (docs/math.md §4).
 //! Planar rules: Chaikin Eqs. 49–50, cubic B-spline Eqs. 55–56, 4-point Eq. 60
 //! with `w = ω/16` and the quadratic end rule `⅜p₀ + ¾p₁ − ⅛p₂`.
+//!
+//! [`CurveScheme::refine_scalars`] is defined here (not in `scheme.rs`), so
+//! that this file imports `scheme.rs` and not the other way round.
 
 use crate::curve::scheme::{CurveScheme, Stencil};
+
+impl CurveScheme {
+    /// One refinement step of planar scalars (the parameter grids: docs/math.md §4), the
+    /// same scheme with the ordinary affine combinations (Eqs. 49–50, 55–56, 60).
+    pub fn refine_scalars(self, input: &[f64], out: &mut Vec<f64>) {
+        refine(self, input, out);
+    }
+}
 
 /// One step of `scheme` on scalars into `out` (cleared first).
 pub fn refine(scheme: CurveScheme, p: &[f64], out: &mut Vec<f64>) {

@@ -178,12 +178,6 @@ impl CurveScheme {
             CurveScheme::FourPoint { .. } => Stencil::Insert((k - 1) / 2),
         }
     }
-
-    /// One refinement step of planar scalars (the parameter grids: docs/math.md §4), the
-    /// same scheme with the ordinary affine combinations (Eqs. 49–50, 55–56, 60).
-    pub fn refine_scalars(self, input: &[f64], out: &mut Vec<f64>) {
-        crate::curve::scalar::refine(self, input, out);
-    }
 }
 
 /// The 4-point rule with its blends precomputed for one ω.

@@ -146,6 +146,17 @@ impl Builder {
     }
 }
 
+impl Design {
+    /// Full build at `depth`: blend, integrate, mesh (a [`Builder`] used
+    /// once; keep a `Builder` to rebuild without allocating). Defined here
+    /// rather than in `design.rs` so that file does not import this one.
+    pub fn build(&self, depth: u32) -> Result<Built, KernelError> {
+        let mut b = Builder::new();
+        b.build(self, depth)?;
+        Ok(b.into_built().expect("a successful build has a result"))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

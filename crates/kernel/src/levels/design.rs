@@ -1,9 +1,12 @@
 //! A whole streamline surface: control net, parameters, scheme, blend order,
-//! anchor column and initial curve, and its full build (blend → integrate → mesh).
+//! anchor column and initial curve. Its full build (blend → integrate → mesh),
+//! [`Design::build`], is defined in `builder.rs`, next to the [`Builder`] it
+//! uses once, so that `builder.rs` imports this file and not the other way round.
+//!
+//! [`Builder`]: crate::levels::builder::Builder
 
 use crate::error::{KernelError, Place};
 use crate::grid::Grid;
-use crate::levels::builder::Builder;
 use crate::levels::params::ParamGrid;
 use crate::levels::surface::{BlendOrder, SurfaceScheme, normalize_grid, refine_grid};
 use crate::streamline::initial_curve::InitialCurve;
@@ -236,14 +239,6 @@ impl Design {
             origin,
             out,
         );
-    }
-
-    /// Full build at `depth`: blend, integrate, mesh (a [`Builder`] used
-    /// once; keep a `Builder` to rebuild without allocating).
-    pub fn build(&self, depth: u32) -> Result<Built, KernelError> {
-        let mut b = Builder::new();
-        b.build(self, depth)?;
-        Ok(b.into_built().expect("a successful build has a result"))
     }
 
     /// Replaces one control tangent (normalised), for editing.

@@ -11,87 +11,9 @@
 
 use crate::curve::scheme::CurveScheme;
 use crate::grid::Grid;
-use crate::levels::surface::{BlendOrder, Refine, SurfaceScheme};
-
-/// An inclusive, non-empty index range `lo ..= hi`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Span {
-    /// First index.
-    pub lo: usize,
-    /// Last index (inclusive).
-    pub hi: usize,
-}
-
-impl Span {
-    /// `lo ..= hi` (swapped if given the wrong way round).
-    pub fn new(lo: usize, hi: usize) -> Self {
-        Span {
-            lo: lo.min(hi),
-            hi: lo.max(hi),
-        }
-    }
-
-    /// One index.
-    pub fn single(i: usize) -> Self {
-        Span { lo: i, hi: i }
-    }
-
-    /// Every index of `n` (`n ≥ 1`).
-    pub fn all(n: usize) -> Self {
-        Span {
-            lo: 0,
-            hi: n.saturating_sub(1),
-        }
-    }
-
-    /// Number of indices.
-    pub fn len(self) -> usize {
-        self.hi - self.lo + 1
-    }
-
-    /// Never empty; present for clippy's `len_without_is_empty`.
-    pub fn is_empty(self) -> bool {
-        false
-    }
-
-    /// The smallest span holding both.
-    pub fn union(self, o: Span) -> Span {
-        Span {
-            lo: self.lo.min(o.lo),
-            hi: self.hi.max(o.hi),
-        }
-    }
-
-    /// Widened by `by` on each side, clipped to `0 ..= n−1`.
-    pub fn widen(self, by: usize, n: usize) -> Span {
-        Span {
-            lo: self.lo.saturating_sub(by),
-            hi: (self.hi + by).min(n.saturating_sub(1)),
-        }
-    }
-
-    /// The indices iterated.
-    pub fn iter(self) -> std::ops::RangeInclusive<usize> {
-        self.lo..=self.hi
-    }
-
-    /// The outputs of one step of `scheme` on `n` inputs that read any input in
-    /// `self` (Chaikin: `[2a−2, 2b+1]`, cubic B-spline: `[2a−3, 2b+1]`,
-    /// 4-point: `[2a−3, 2b+3]`, clipped).
-    pub fn refine(self, scheme: CurveScheme, n: usize) -> Span {
-        let m = scheme.refined_len(n);
-        let (a, b) = (2 * self.lo, 2 * self.hi);
-        let (lo, hi) = match scheme {
-            CurveScheme::Chaikin => (a.saturating_sub(2), b + 1),
-            CurveScheme::CubicBSpline => (a.saturating_sub(3), b + 1),
-            CurveScheme::FourPoint { .. } => (a.saturating_sub(3), b + 3),
-        };
-        Span {
-            lo: lo.min(m - 1),
-            hi: hi.min(m - 1),
-        }
-    }
-}
+use crate::levels::scheme::{BlendOrder, Refine, SurfaceScheme};
+// Defined in `span.rs` (below `scheme.rs`, which reads it); the public path stays here.
+pub use crate::levels::span::Span;
 
 /// A rectangle of grid cells: rows (streamlines) × columns (along `s`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -154,12 +76,6 @@ impl DirtyWindow {
         }
     }
 }
-
-/// Windows of tangents smaller than this many entries are refined on the
-/// calling thread; larger ones are split in two halves of rows run on two
-/// threads (the work per entry is the same either way, so results are
-/// bitwise equal). Scalar grids stay on one thread ([`Refine::PARALLEL_MIN_ENTRIES`]).
-pub(crate) const PARALLEL_MIN_ENTRIES: usize = 16_384;
 
 /// Splits rows `rows` of `dst` (a `width`-wide grid) between the calling
 /// thread and, when `parallel`, one more: `run(chunk, first_row)` fills its
@@ -374,6 +290,7 @@ pub(crate) fn half_shape(
 mod tests {
     use super::*;
     use crate::levels::oracle::refine_grid_gathered;
+    use crate::levels::scheme::PARALLEL_MIN_ENTRIES;
     use glam::DVec3;
 
     fn net(rows: usize, cols: usize) -> Grid<DVec3> {
@@ -437,12 +354,18 @@ mod tests {
                     in_place(scheme, order, rows),
                     "{scheme:?} {order:?}"
                 );
-                let (mut half, mut next) = (
-                    Grid::filled(0, 0, DVec3::ZERO),
-                    Grid::filled(0, 0, DVec3::ZERO),
+                // the full step (as `surface::refine_grid_into` runs it)
+                let c = scheme.curve();
+                let mut half = Grid::filled(hr, hc, DVec3::ZERO);
+                let mut next = Grid::filled(c.refined_len(rows), c.refined_len(cols), DVec3::ZERO);
+                refine_grid_window(
+                    scheme,
+                    order,
+                    &g,
+                    &mut half,
+                    &mut next,
+                    DirtyWindow::all(rows, cols),
                 );
-                crate::levels::surface::refine_grid_into(scheme, order, &g, &mut half, &mut next);
-                assert_eq!((half.rows(), half.cols()), (hr, hc));
                 let windows = [
                     DirtyWindow::cell(35, 40),
                     DirtyWindow {

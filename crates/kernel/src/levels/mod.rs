@@ -3,6 +3,9 @@
 //!
 //! - [`surface`]: tensor-product subdivision of a control net of tangents
 //!   (docs/math.md §3); [`params`]: the parameter grids `s`, `t`, `σ` (§4).
+//!   The scheme types and one-direction steps are in `scheme.rs` and the
+//!   index ranges in `span.rs`, below `dirty_window.rs` (whose windowed step
+//!   `surface`'s whole-grid step runs); `surface` re-exports them.
 //! - [`design`]: a whole surface (net, parameters, scheme, initial curve) and
 //!   its full build; [`builder`]: the same build keeping its buffers;
 //!   [`presets`]: the paper's examples (Figs. 2, 8–11).
@@ -23,5 +26,7 @@ pub mod multires;
 mod oracle;
 pub mod params;
 pub mod presets;
+mod scheme;
+mod span;
 pub mod surface;
 pub mod tangent_interpolation;

@@ -3,7 +3,7 @@
 //! not part of the API (the integration tests write their own).
 
 use crate::grid::Grid;
-use crate::levels::surface::{BlendOrder, Refine, SurfaceScheme, refine_cols, refine_rows};
+use crate::levels::scheme::{BlendOrder, Refine, SurfaceScheme, refine_cols, refine_rows};
 
 /// One tensor-product step ([`crate::levels::surface::refine_grid`]) computed
 /// the plain way, curve by curve (columns gathered into buffers): the
