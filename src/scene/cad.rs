@@ -5,8 +5,7 @@
 //! fit gives them, and the fit checked one depth finer.
 
 use std::time::Instant;
-use streamline_kernel::grid::Grid;
-use streamline_kernel::levels::incremental::{place_rows_tuned, reference_levels};
+use streamline_kernel::levels::incremental::{reference_levels, tuned_points};
 use streamline_kernel::nurbs::{Fit, FitError, FitOptions, Samples, fit};
 
 use super::model::Scene;
@@ -17,16 +16,13 @@ pub fn samples(scene: &Scene, depth: u32) -> Result<Samples, FitError> {
     let design = scene.shown_design()?;
     let levels = reference_levels(&design, &scene.details, depth)?;
     let level = levels.last().expect("level 0 at least");
-    let (rows, cols) = (level.tangents.rows(), level.tangents.cols() + 1);
-    let mut data = Vec::with_capacity(rows * cols);
-    place_rows_tuned(
+    let points = tuned_points(
         design.initial(),
         &level.tangents,
         &level.params,
         scene.tuning.as_ref(),
-        &mut data,
     );
-    Samples::from_level(level, Grid::new(rows, cols, data)?)
+    Samples::from_level(level, points)
 }
 
 /// The most points the check grid of an export may have: the fit at depth

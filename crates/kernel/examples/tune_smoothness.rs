@@ -10,23 +10,15 @@ use std::time::Instant;
 use streamline_kernel::finetune::bspline::TensorBSpline;
 use streamline_kernel::finetune::{Constraint, SurfaceTuning};
 use streamline_kernel::grid::Grid;
-use streamline_kernel::levels::incremental::{place_rows_tuned, surface_rows};
+use streamline_kernel::levels::incremental::{surface_rows, tuned_points};
 use streamline_kernel::levels::presets;
 use streamline_kernel::nurbs::{FitOptions, Samples, fit};
 use streamline_kernel::{DVec3, Design, Level};
 
 fn points(design: &Design, depth: u32, tuning: Option<&SurfaceTuning>) -> (Grid<DVec3>, Level) {
     let level = design.level(depth).expect("depth within the cap");
-    let (rows, cols) = (level.tangents.rows(), level.tangents.cols() + 1);
-    let mut data = Vec::with_capacity(rows * cols);
-    place_rows_tuned(
-        design.initial(),
-        &level.tangents,
-        &level.params,
-        tuning,
-        &mut data,
-    );
-    (Grid::new(rows, cols, data).expect("rows × cols"), level)
+    let points = tuned_points(design.initial(), &level.tangents, &level.params, tuning);
+    (points, level)
 }
 
 /// The largest `|P[r−1][c] − 2 P[r][c] + P[r+1][c]|` and its row.

@@ -18,7 +18,7 @@ use proptest::prelude::*;
 use streamline_kernel::finetune::bspline::TensorBSpline;
 use streamline_kernel::finetune::{Constraint, SurfaceTuning, fine_tune_into};
 use streamline_kernel::grid::Grid;
-use streamline_kernel::levels::incremental::place_rows_tuned;
+use streamline_kernel::levels::incremental::tuned_points;
 use streamline_kernel::levels::presets;
 use streamline_kernel::streamline::initial_curve::InitialCurve;
 use streamline_kernel::{BlendOrder, Design, SurfaceScheme};
@@ -35,16 +35,7 @@ const CONSTRAINTS: [Constraint; 3] = [
 /// The streamline points of `design` at `depth`, fine-tuned by `tuning`.
 fn surface(design: &Design, depth: u32, tuning: Option<&SurfaceTuning>) -> Grid<DVec3> {
     let level = design.level(depth).unwrap();
-    let (rows, cols) = (level.tangents.rows(), level.tangents.cols() + 1);
-    let mut data = Vec::with_capacity(rows * cols);
-    place_rows_tuned(
-        design.initial(),
-        &level.tangents,
-        &level.params,
-        tuning,
-        &mut data,
-    );
-    Grid::new(rows, cols, data).unwrap()
+    tuned_points(design.initial(), &level.tangents, &level.params, tuning)
 }
 
 /// The largest `|P[r−1][c] − 2 P[r][c] + P[r+1][c]|` (across the streamlines).

@@ -235,11 +235,7 @@ fn view_menu(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut Sections) {
     if entry(ui, "Frame all", FRAME_ALL, true) {
         bar.frame.0 = Some(bar.bounds.all());
     }
-    let sel = p
-        .selection
-        .primary()
-        .and_then(|h| p.handles.find(h))
-        .copied();
+    let sel = p.selected_arrow();
     if entry(ui, "Frame selection", FRAME_SELECTION, sel.is_some())
         && let Some(a) = sel
     {

@@ -213,6 +213,15 @@ pub struct OpenedScene {
 pub struct SliderGroups(std::collections::HashMap<&'static str, u64>);
 
 impl PanelCtx<'_> {
+    /// The primary selected handle's arrow, where the framing buttons and
+    /// menu entries aim (`None` with nothing selected).
+    pub fn selected_arrow(&self) -> Option<super::interaction::Handle> {
+        self.selection
+            .primary()
+            .and_then(|h| self.handles.find(h))
+            .copied()
+    }
+
     /// Sends one edit.
     pub fn send(&mut self, edit: Edit) {
         self.edits.write(EditMessage::from(edit));
@@ -499,11 +508,7 @@ fn toolbar(ui: &mut egui::Ui, p: &mut PanelCtx, bar: &mut ToolbarSection) {
         {
             bar.frame.0 = Some(bar.bounds.all());
         }
-        let sel = p
-            .selection
-            .primary()
-            .and_then(|h| p.handles.find(h))
-            .copied();
+        let sel = p.selected_arrow();
         if ui
             .add_enabled(sel.is_some(), egui::Button::new("Frame selected"))
             .on_hover_text("Fit the selected handle in the view (F)")

@@ -353,6 +353,20 @@ pub fn place_rows_tuned(
     fine_tune_rows_into(surface_rows(tangents, params), &origins, tuning, out);
 }
 
+/// [`place_rows_tuned`] as a grid: the level's streamline points, one row per
+/// streamline, `cols + 1` points each.
+pub fn tuned_points(
+    initial: &InitialCurve,
+    tangents: &Grid<DVec3>,
+    params: &ParamGrid,
+    tuning: Option<&SurfaceTuning>,
+) -> Grid<DVec3> {
+    let (rows, cols) = (tangents.rows(), tangents.cols() + 1);
+    let mut data = Vec::with_capacity(rows * cols);
+    place_rows_tuned(initial, tangents, params, tuning, &mut data);
+    Grid::new(rows, cols, data).expect("every row has cols + 1 points")
+}
+
 /// A level's rows as fine tuning reads them.
 pub fn surface_rows<'a>(tangents: &'a Grid<DVec3>, params: &'a ParamGrid) -> SurfaceRows<'a> {
     SurfaceRows {
