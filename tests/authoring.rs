@@ -67,7 +67,11 @@ proptest! {
         let stats = app.world().resource::<Stats>().last.clone();
         prop_assert_eq!(stats.tangents_reblended, 0, "an initial-curve edit re-blends nothing");
         prop_assert!(!stats.full_rebuild);
-        prop_assert_eq!(stats.streamlines_replaced, before.rows(), "every streamline placed again");
+        // an edit that sets what is already there (the anchor or order it
+        // has) changes no component, so redoes nothing (issue 26)
+        let noop = bits(&scene(&app)) == start;
+        let placed = if noop { 0 } else { before.rows() };
+        prop_assert_eq!(stats.streamlines_replaced, placed, "every streamline placed again, unless nothing changed");
         let after = points(&app);
         for r in 0..after.rows() {
             let shift = after.get(r, 0) - before.get(r, 0);
@@ -179,7 +183,7 @@ fn new_design_replaces_the_scene_unsaved() {
         m.unsaved && m.path.is_none(),
         "a new design is unsaved and has no file"
     );
-    assert_eq!(m.scene.design.net().rows(), 3);
+    assert_eq!(ecs::patch::scene(app.world()).design.net().rows(), 3);
     assert_eq!(app.world().resource::<ecs::History>().undo_len(), 0);
     let p = points(&app);
     let [lo, hi] = streamline_kernel::streamline::surface_mesh::bounds(p.data().iter().copied());

@@ -459,7 +459,7 @@ fn the_fitted_points_are_the_edited_surface() {
         ] {
             ecs::apply(&mut app, edit).unwrap();
         }
-        let scene = app.world().resource::<ecs::Model>().scene.clone();
+        let scene = ecs::patch::scene(app.world());
         assert_eq!(scene.details.len(), 1, "{name}: one detail");
         let ecs_points = app.world().resource::<SurfaceData>().points.clone();
         let ours = cad::samples(&scene, 3).unwrap().points;

@@ -98,17 +98,13 @@ fn autosave_writer_child() {
     let Some(home) = std::env::var_os("STREAMLINE_AUTOSAVE_CHILD_HOME") else {
         return;
     };
-    use streamline_studio::ecs::Model;
     use streamline_studio::editor::autosave::write_recovery;
     use streamline_studio::editor::files::EditorDirs;
     let dirs = EditorDirs { home: home.into() };
     let (a, b) = two_large_scenes();
-    let mut models = [Model::new(a), Model::new(b)];
-    for m in &mut models {
-        m.path = Some(dirs.home.join("design.ron"));
-    }
+    let origin = dirs.home.join("design.ron");
     for i in 0.. {
-        write_recovery(&dirs, &models[i % 2]).unwrap();
+        write_recovery(&dirs, if i % 2 == 0 { &a } else { &b }, Some(&origin)).unwrap();
     }
 }
 

@@ -495,9 +495,11 @@ fn bad_edits_are_refused() {
 }
 
 /// Issue 19: an edit of the initial curve is "place every streamline again,
-/// re-blend nothing" ([`ecs::Dirty::replace_streamlines`]): no tangent is
-/// re-blended, every streamline is integrated again, and the surface has the
-/// very bits of a build from scratch of the new scene.
+/// re-blend nothing": no tangent is re-blended, every streamline is
+/// integrated again, and the surface has the very bits of a build from
+/// scratch of the new scene. The initial curve's length and start point are
+/// written into the patch's component directly: change detection alone
+/// decides what is redone (issue 26).
 #[test]
 fn replacing_the_streamlines_equals_a_fresh_build() {
     let mut app = car_app(0, 3);
@@ -511,10 +513,10 @@ fn replacing_the_streamlines_equals_a_fresh_build() {
     .expect("a valid initial curve");
     {
         let w = app.world_mut();
-        let mut m = w.resource_mut::<ecs::Model>();
-        m.scene.initial = streamline_studio::scene::format::InitialSpec::from_kernel(&moved);
-        m.scene.design.set_initial(moved);
-        w.resource_mut::<ecs::Dirty>().replace_streamlines();
+        let patch = ecs::patch::patch_entity(w).expect("a patch");
+        let mut p = w.get_mut::<ecs::patch::PatchPlacement>(patch).unwrap();
+        p.initial_length = moved.length();
+        p.initial_origin = moved.origin();
         w.resource_mut::<Stats>().last = Default::default();
     }
     app.update();

@@ -11,12 +11,12 @@ mod common;
 use bevy::prelude::*;
 use common::headless_editor::*;
 use streamline_kernel::{DQuat, DVec3};
-use streamline_studio::ecs::{Model, Stats};
+use streamline_studio::ecs::Stats;
 use streamline_studio::editor::interaction::{Drag, DragKind, HandleId, Handles, Selection};
 use streamline_studio::scene::Scene;
 
-fn scene(app: &App) -> &Scene {
-    &app.world().resource::<Model>().scene
+fn scene(app: &App) -> Scene {
+    streamline_studio::ecs::patch::scene(app.world())
 }
 
 fn hold(app: &mut App, k: KeyCode, down: bool) {
@@ -147,7 +147,8 @@ fn shift_click_selects_several_and_a_drag_turns_them_all_by_one_rotation() {
     }
     // the rotation that took the dragged tangent to its place, applied to all
     let q = DQuat::from_rotation_arc(start, steps[1]);
-    let net = scene(&app).design.net();
+    let now = scene(&app);
+    let net = now.design.net();
     for &(r, c) in &cells {
         let want = q * net_before.get(r, c);
         assert!(

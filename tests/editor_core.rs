@@ -11,14 +11,16 @@ mod common;
 use bevy::prelude::*;
 use common::headless_editor::*;
 use streamline_kernel::{DVec3, levels::presets};
-use streamline_studio::ecs::Model;
 use streamline_studio::editor::interaction::{
     Drag, DragKind, HandleId, HandleSettings, Handles, Selection,
 };
 use streamline_studio::scene::Scene;
 
 fn net(app: &App, (r, c): (usize, usize)) -> DVec3 {
-    app.world().resource::<Model>().scene.design.net().get(r, c)
+    streamline_studio::ecs::patch::scene(app.world())
+        .design
+        .net()
+        .get(r, c)
 }
 
 #[test]

@@ -188,7 +188,7 @@ fn depths_past_the_memory_cap_are_refused_before_building() {
     );
     // the model is as it was
     assert_eq!(
-        app.world().resource::<ecs::Model>().scene.display_depth,
+        ecs::patch::scene(app.world()).display_depth,
         builtin::scene("car1").unwrap().display_depth
     );
 }

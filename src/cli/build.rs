@@ -111,6 +111,8 @@ struct BuildReport {
     /// What the build blended about a fixed axis (antipodal neighbours,
     /// docs/math.md §1), one sentence each; empty when nothing.
     warnings: Vec<String>,
+    /// The world after the build, counted by queries over it.
+    entities: ecs::patch::census::Census,
 }
 
 /// Builds and prints the stats.
@@ -145,9 +147,11 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         }
     }
     let w = app.world_mut();
+    let entities = ecs::patch::census::census(w);
+    let scene = ecs::patch::try_scene(w).map_err(CliError::Usage)?;
     let mut per = Vec::new();
     let mut total = 0.0;
-    let depth = w.resource::<ecs::Model>().scene.display_depth;
+    let depth = scene.display_depth;
     let mut levels = w.query::<(&SubdivisionLevel, &LevelData)>();
     let mut q = w.query::<&ecs::components::Streamline>();
     let w = &*w;
@@ -175,14 +179,14 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         max_abs = max_abs.max(e);
         max_rel = max_rel.max(e / want.abs().max(f64::MIN_POSITIVE));
     }
-    let model = w.resource::<ecs::Model>();
     let stats = w.resource::<Stats>();
     let surface = w.resource::<SurfaceData>();
     let report = BuildReport {
-        scene: model.scene.name.clone(),
-        depth: model.scene.display_depth,
-        scheme: model.scene.design.scheme().name(),
-        blend_order: model.scene.design.order().name(),
+        scene: scene.name.clone(),
+        depth: scene.display_depth,
+        scheme: scene.design.scheme().name(),
+        blend_order: scene.design.order().name(),
+        entities,
         levels: stats.levels.clone(),
         streamlines: surface.points.rows(),
         points_per_streamline: surface.points.cols(),

@@ -1,13 +1,15 @@
 //! Authoring edits (`docs/math.md §9`): a new design, structure edits, the
 //! initial curve, the anchor and streamline lengths as handles, mirror
 //! symmetry. Each is computed on the scene by a kernel function on `Design`;
-//! this file only decides what the pipeline must redo ([`Effect`]):
+//! the edit stage writes the result into the patch's components, and what
+//! the pipeline redoes follows from which of them differ
+//! ([`super::patch::track`]):
 //! * a new net shape (insert, delete, mirror on or off): everything, and the
 //!   multiresolution details are dropped in the same undo step (a changed net
 //!   cannot keep their meaning), which the message says;
 //! * an initial-curve or anchor edit: every streamline is placed again, moved
-//!   rigidly (Eq. 1), and no tangent is re-blended (`Dirty::replace_streamlines`,
-//!   `σ` of every level from [`sigma_of_levels`]);
+//!   rigidly (Eq. 1), and no tangent is re-blended (`σ` of every level from
+//!   [`sigma_of_levels`]);
 //! * a streamline length: that row's `s`, through its handles.
 
 use super::components::{LevelData, SubdivisionLevel};
@@ -18,17 +20,14 @@ use bevy::prelude::*;
 use streamline_kernel::levels::incremental::check_params;
 use streamline_kernel::{DQuat, DVec3, Design, Tangent};
 
-/// What the pipeline must redo after an authoring edit.
+/// What an authoring edit did to the scene.
 #[derive(Debug)]
 pub(crate) enum Effect {
     /// A new scene replaces the old one (history cleared).
     NewScene(Box<Scene>),
-    /// The levels change shape or every tangent may change: rebuild in full.
-    Full,
-    /// Only the streamlines' placement changed: re-place them, re-blend nothing.
-    Place,
-    /// The `s` of this control row changed (new values in the scene).
-    Row(usize),
+    /// The scene was changed in place (what to redo follows from the
+    /// components that differ, [`super::patch::track`]).
+    Changed,
 }
 
 /// A kernel error as an edit's message.
@@ -113,7 +112,7 @@ pub(crate) fn apply(scene: &mut Scene, e: &AuthorEdit) -> Result<(String, Effect
                     s.design.net().rows(),
                     s.design.net().cols()
                 ),
-                Effect::Full,
+                Effect::Changed,
             )
         }
         AuthorEdit::SetInitialDirection { .. }
@@ -128,31 +127,21 @@ pub(crate) fn apply(scene: &mut Scene, e: &AuthorEdit) -> Result<(String, Effect
                 s.design = s.design.with_seam_in_plane().map_err(k)?;
                 (
                     format!("{label} (mirrored: seam re-projected)"),
-                    Effect::Full,
+                    Effect::Changed,
                 )
             } else {
-                (label.clone(), Effect::Place)
+                (label.clone(), Effect::Changed)
             }
         }
         AuthorEdit::SetAnchor(col) => {
             s.design = d.with_anchor(*col).map_err(k)?;
-            let eff = if s.mirror {
-                Effect::Full
-            } else {
-                Effect::Place
-            };
-            (label.clone(), eff)
+            (label.clone(), Effect::Changed)
         }
         AuthorEdit::SetStreamlineLength { row, length } => {
             s.design = d
                 .with_streamline_length(*row, *length)
                 .map_err(|x| format!("{label} refused: {x}"))?;
-            let eff = if s.mirror {
-                Effect::Full
-            } else {
-                Effect::Row(*row)
-            };
-            (label.clone(), eff)
+            (label.clone(), Effect::Changed)
         }
         AuthorEdit::SetMirror(on) => {
             if *on && s.edit_depth > 0 {
@@ -166,7 +155,7 @@ pub(crate) fn apply(scene: &mut Scene, e: &AuthorEdit) -> Result<(String, Effect
                 dropped = drop_details(&mut s);
             }
             s.mirror = *on;
-            (format!("{label}{dropped}"), Effect::Full)
+            (format!("{label}{dropped}"), Effect::Changed)
         }
     };
     check_scene(&s).map_err(|x| format!("{label} refused: {x}"))?;

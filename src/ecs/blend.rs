@@ -1,11 +1,15 @@
-//! The blend stage: takes what the edits marked [`Dirty`] and re-blends only
-//! the dirty window of each level
+//! The blend stage: takes what [`super::patch::track`] marked [`Dirty`] on
+//! the patch and re-blends only the dirty window of each level
 //! ([`streamline_kernel::levels::incremental::propagate`]), or builds everything
 //! afresh; rows of the display depth whose tangents changed, or every row
-//! when the initial curve changed, get new [`StreamlineTangents`].
+//! when the initial curve changed, get new [`StreamlineTangents`]. A level
+//! entity is marked changed only when its window was recomputed.
 
 use super::components::*;
+use super::patch::dirty::Dirty;
+use super::patch::{PatchKernel, PatchStructure};
 use super::resources::*;
+use crate::scene::model::shown_design;
 use bevy::prelude::*;
 use std::time::Instant;
 use streamline_kernel::levels::dirty_window::Span;
@@ -29,16 +33,22 @@ fn streamline_of(
 /// stage (the row's tangents and `s` are read from the level there, not
 /// copied: copying them was 9 % of an interior edit on the car at depth 5).
 /// Re-blending never changes the initial curve (an edit of it asks for
-/// [`Dirty::replace_streamlines`], which places every row again), so the
+/// `Dirty::replace_streamlines`, which places every row again), so the
 /// row's start point is kept unless its `t` moved (evaluating the initial
 /// curve, a QI curve under Gauss quadrature, was about 1.5 % of such an edit).
 /// `from` is the first column whose tangent may have changed, `0` when the
 /// parameters changed too.
-fn refresh(model: &Model, level: &LevelState, row: usize, from: usize, t: &mut StreamlineTangents) {
+fn refresh(
+    kernel: &PatchKernel,
+    level: &LevelState,
+    row: usize,
+    from: usize,
+    t: &mut StreamlineTangents,
+) {
     let p = &level.params;
     t.sigma = p.sigma[row];
     if t.t.to_bits() != p.t[row].to_bits() {
-        t.origin = model.scene.design.initial().point(p.t[row]);
+        t.origin = kernel.design.initial().point(p.t[row]);
         t.t = p.t[row];
     }
     t.changed_from = t.changed_from.min(from);
@@ -48,8 +58,7 @@ fn refresh(model: &Model, level: &LevelState, row: usize, from: usize, t: &mut S
 pub(crate) fn reblend(
     meter: Res<super::meter::CpuMeter>,
     mut commands: Commands,
-    model: Res<Model>,
-    mut dirty: ResMut<Dirty>,
+    mut patches: Query<(Entity, &PatchStructure, &PatchKernel, &mut Dirty)>,
     mut levels: Query<(Entity, &SubdivisionLevel, &mut LevelData)>,
     mut lines: Query<(Entity, &Streamline, &mut StreamlineTangents)>,
     mut stats: ResMut<Stats>,
@@ -57,122 +66,168 @@ pub(crate) fn reblend(
 ) {
     let _meter = meter.start();
     let t0 = Instant::now();
+    let Ok((patch, st, kernel, mut dirty)) = patches.single_mut() else {
+        return;
+    };
     if dirty.is_clean() {
         return;
     }
-    // interpolated control tangents depend on the whole net: any change of a
-    // control tangent rebuilds everything from the interpolated net
-    let interpolated = model.scene.interpolates_tangents();
-    if interpolated && dirty.touches(0) {
-        dirty.rebuild();
+    let (mut full, replace, mut sd) = dirty.take();
+    if !full && !sd.iter().all(Option::is_none) {
+        full = !reblend_windows(
+            kernel,
+            st,
+            &mut levels,
+            &mut lines,
+            &mut sd,
+            &mut stats,
+            &mut log,
+        );
     }
-    let (full, replace, mut sd) = dirty.take();
     if full {
-        for (e, ..) in &levels {
-            commands.entity(e).despawn();
-        }
-        for (e, ..) in &lines {
-            commands.entity(e).despawn();
-        }
-        let scene = &model.scene;
-        // mirrored: the doubled design (docs/math.md §9)
-        let design = match scene.shown_design() {
-            Ok(d) => d,
-            Err(e) => {
-                log.entries.push(Err(format!("rebuild failed: {e}")));
-                return;
-            }
-        };
-        let built = match build_levels(&design, &scene.details, scene.max_depth()) {
-            Ok(b) => b,
-            Err(e) => {
-                log.entries.push(Err(format!("rebuild failed: {e}")));
-                return;
-            }
-        };
-        let display = &built[scene.display_depth as usize];
-        let mut new_lines = Vec::with_capacity(display.shape().0);
-        for row in 0..display.shape().0 {
-            new_lines.push((
-                Streamline { row },
-                streamline_of(design.initial(), display, row),
-                StreamlineAlpha::default(),
-                StreamlinePoints::default(),
-            ));
-        }
-        commands.spawn_batch(new_lines);
-        stats.levels = built.iter().map(LevelState::shape).collect();
-        stats.tangents_total = stats.levels.iter().map(|(r, c)| r * c).sum();
-        stats.streamlines = display.shape().0;
-        stats.last.full_rebuild = true;
-        stats.last.tangents_reblended +=
-            stats.levels[1..].iter().map(|(r, c)| r * c).sum::<usize>();
-        for l in built {
-            commands.spawn((SubdivisionLevel(l.level), LevelData(l)));
-        }
-        stats.last.us_blend += t0.elapsed().as_secs_f64() * 1e6;
-        return;
-    }
-    if replace {
+        build_all(
+            &mut commands,
+            patch,
+            st,
+            kernel,
+            &levels,
+            &lines,
+            &mut stats,
+            &mut log,
+        );
+    } else if replace {
         // a new initial curve or anchor: every streamline starts elsewhere;
         // its tangents and `s` are as they were, and its `σ` is level 0's
         // taken down by the scheme's scalar step (the step a full build takes)
-        let sigma = super::authoring::sigma_of_levels(&model.scene.design, &mut levels);
-        let display = model.scene.display_depth as usize;
+        let sigma = super::authoring::sigma_of_levels(&kernel.design, &mut levels);
+        let display = st.display_depth as usize;
         let mut n = 0;
         for (_, line, mut t) in lines.iter_mut() {
             if let Some(&s) = sigma.get(display).and_then(|s| s.get(line.row)) {
                 t.sigma = s;
             }
-            t.origin = model.scene.design.initial().point(t.t);
+            t.origin = kernel.design.initial().point(t.t);
             t.changed_from = 0;
             n += 1;
         }
         stats.last.streamlines_replaced += n;
     }
-    if sd.iter().all(Option::is_none) {
-        stats.last.us_blend += t0.elapsed().as_secs_f64() * 1e6;
-        return;
+    stats.last.us_blend += t0.elapsed().as_secs_f64() * 1e6;
+}
+
+/// Builds the levels and streamlines afresh, as children of `patch`.
+#[allow(clippy::too_many_arguments)]
+fn build_all(
+    commands: &mut Commands,
+    patch: Entity,
+    st: &PatchStructure,
+    kernel: &PatchKernel,
+    levels: &Query<(Entity, &SubdivisionLevel, &mut LevelData)>,
+    lines: &Query<(Entity, &Streamline, &mut StreamlineTangents)>,
+    stats: &mut Stats,
+    log: &mut EditLog,
+) {
+    for (e, ..) in levels {
+        commands.entity(e).despawn();
     }
+    for (e, ..) in lines {
+        commands.entity(e).despawn();
+    }
+    // mirrored: the doubled design (docs/math.md §9)
+    let built =
+        shown_design(&kernel.design, st.interpolate_tangents, st.mirror).and_then(|design| {
+            build_levels(&design, &kernel.details, st.max_depth()).map(|b| (design, b))
+        });
+    let (design, built) = match built {
+        Ok(b) => b,
+        Err(e) => {
+            log.entries.push(Err(format!("rebuild failed: {e}")));
+            return;
+        }
+    };
+    let display = &built[st.display_depth as usize];
+    let mut new_lines = Vec::with_capacity(display.shape().0);
+    for row in 0..display.shape().0 {
+        new_lines.push((
+            Streamline { row },
+            streamline_of(design.initial(), display, row),
+            StreamlineAlpha::default(),
+            StreamlinePoints::default(),
+            ChildOf(patch),
+        ));
+    }
+    commands.spawn_batch(new_lines);
+    stats.levels = built.iter().map(LevelState::shape).collect();
+    stats.tangents_total = stats.levels.iter().map(|(r, c)| r * c).sum();
+    stats.streamlines = display.shape().0;
+    stats.last.full_rebuild = true;
+    stats.last.tangents_reblended += stats.levels[1..].iter().map(|(r, c)| r * c).sum::<usize>();
+    for l in built {
+        commands.spawn((SubdivisionLevel(l.level), LevelData(l), ChildOf(patch)));
+    }
+}
+
+/// Re-blends the dirty windows `sd` of the levels in place; a level is
+/// marked changed only when its window was recomputed. `false` when the
+/// kernel refused (then everything is built afresh).
+fn reblend_windows(
+    kernel: &PatchKernel,
+    st: &PatchStructure,
+    levels: &mut Query<(Entity, &SubdivisionLevel, &mut LevelData)>,
+    lines: &mut Query<(Entity, &Streamline, &mut StreamlineTangents)>,
+    sd: &mut Vec<Option<streamline_kernel::levels::dirty_window::DirtyWindow>>,
+    stats: &mut Stats,
+    log: &mut EditLog,
+) -> bool {
     let mut ls: Vec<_> = levels.iter_mut().map(|(_, l, d)| (l.0, d)).collect();
     ls.sort_by_key(|(l, _)| *l);
-    let mut refs: Vec<&mut LevelState> = ls.iter_mut().map(|(_, d)| &mut d.0).collect();
-    sd.resize(refs.len(), None);
+    sd.resize(ls.len(), None);
     // mirrored: the levels are the doubled net's (docs/math.md §9)
-    let doubled = match model.scene.mirror {
-        true => match model.scene.shown_design() {
+    let doubled = match st.mirror {
+        true => match shown_design(&kernel.design, st.interpolate_tangents, true) {
             Ok(d) => Some(d),
             Err(e) => {
                 log.entries.push(Err(format!("rebuild failed: {e}")));
-                return;
+                return true;
             }
         },
         false => None,
     };
-    let design = doubled.as_ref().unwrap_or(&model.scene.design);
-    let result = propagate(design, &model.scene.details, &mut refs, &sd);
+    let design = doubled.as_ref().unwrap_or(&kernel.design);
+    let result = {
+        let mut refs: Vec<&mut LevelState> = ls
+            .iter_mut()
+            .map(|(_, d)| &mut d.bypass_change_detection().0)
+            .collect();
+        propagate(design, &kernel.details, &mut refs, sd)
+    };
     match result {
         Ok(p) => {
+            for ((_, d), w) in ls.iter_mut().zip(&p.dirty) {
+                if w.is_some() {
+                    d.set_changed();
+                }
+            }
             stats.last.tangents_reblended += p.reblended;
             stats.last.details_reapplied += p.details;
-            let display = model.scene.display_depth as usize;
-            if let (Some(Some(w)), Some(level)) = (p.dirty.get(display), refs.get(display)) {
+            let display = st.display_depth as usize;
+            if let (Some(Some(w)), Some((_, level))) = (p.dirty.get(display), ls.get(display)) {
                 let rows: Span = w.rows;
                 // only tangents inside the window changed, unless parameters did
                 let from = if p.params { 0 } else { w.cols.lo };
                 for (_, line, mut t) in lines.iter_mut() {
                     if rows.lo <= line.row && line.row <= rows.hi {
-                        refresh(&model, level, line.row, from, &mut t);
+                        refresh(kernel, &level.0, line.row, from, &mut t);
                     }
                 }
             }
+            true
         }
         Err(e) => {
             log.entries.push(Err(format!(
                 "incremental update refused ({e}); rebuilding in full"
             )));
-            dirty.rebuild();
+            false
         }
     }
-    stats.last.us_blend += t0.elapsed().as_secs_f64() * 1e6;
 }

@@ -1,11 +1,13 @@
-//! The edit stage: the only system that changes the model. It applies each
-//! [`EditMessage`] to the scene, records undo steps, and marks in [`Dirty`]
-//! what the blend stage must redo: the cells an edit changed (only when a
-//! value really changed), or a full rebuild for edits that change the shape
-//! of the levels.
+//! The edit stage: the only system that changes the model. The frame's
+//! edits are applied one after another to the patch's scene, assembled from
+//! its entities ([`super::patch::scene_io`]); undo steps are recorded; then
+//! the scene is written back into the components, value by value, so that
+//! only what an edit really changed is marked changed. What to redo follows
+//! from those changes alone ([`super::patch::track`]).
 
 use super::components::{LevelData, SubdivisionLevel};
 use super::messages::{Edit, EditMessage};
+use super::patch::scene_io::PatchParts;
 use super::resources::*;
 use crate::scene::{Scene, io};
 use bevy::ecs::system::SystemParam;
@@ -22,7 +24,6 @@ pub(crate) struct EditCtx<'w, 's> {
     model: ResMut<'w, Model>,
     history: ResMut<'w, History>,
     config: Res<'w, ModelConfig>,
-    dirty: ResMut<'w, Dirty>,
     levels: Query<'w, 's, (&'static SubdivisionLevel, &'static LevelData)>,
 }
 
@@ -30,29 +31,39 @@ pub(crate) fn apply_edits(
     meter: Res<super::meter::CpuMeter>,
     mut reader: MessageReader<EditMessage>,
     mut ctx: EditCtx,
+    mut parts: PatchParts,
     mut log: ResMut<EditLog>,
     mut stats: ResMut<Stats>,
 ) {
     let _meter = meter.start();
     let t0 = Instant::now();
     let mut labels = Vec::new();
-    let mut any = false;
-    let mut mirrored_edit = false;
+    let mut work: Option<Scene> = None;
+    let mut changed = false;
     for msg in reader.read() {
-        if !any {
+        if labels.is_empty() {
             log.entries.clear();
             log.frame += 1;
-            any = true;
         }
         labels.push(msg.edit.label());
         if matches!(msg.edit, Edit::Save(_) | Edit::Export(_)) {
             continue; // the output stage, after the mesh is up to date
         }
-        let before_undoable = msg.edit.is_undoable();
-        let snapshot = before_undoable.then(|| ctx.model.scene.clone());
-        match apply(&mut ctx, &msg.edit) {
+        let scene = match &mut work {
+            Some(s) => s,
+            None => match parts.assemble() {
+                Ok(s) => work.insert(s),
+                Err(e) => {
+                    log.entries.push(Err(e));
+                    continue;
+                }
+            },
+        };
+        let undoable = msg.edit.is_undoable();
+        let snapshot = undoable.then(|| scene.clone());
+        match apply(&mut ctx, scene, &msg.edit) {
             Ok(done) => {
-                mirrored_edit |= ctx.model.scene.mirror && before_undoable;
+                changed = true;
                 if let Some(s) = snapshot {
                     let limit = ctx.config.history_limit;
                     let was = ctx.model.unsaved;
@@ -64,14 +75,10 @@ pub(crate) fn apply_edits(
             Err(e) => log.entries.push(Err(e)),
         }
     }
-    if mirrored_edit && ctx.model.scene.mirror {
-        // both halves come from the doubled net (docs/math.md §9): the cells
-        // the frame's edits marked are dirty in both copies (once a frame:
-        // the windows are in half rows until here)
-        let m = ctx.model.scene.design.net().rows();
-        ctx.dirty.mirror_rows(m);
+    if let (true, Some(scene)) = (changed, &work) {
+        parts.write(scene);
     }
-    if any {
+    if !labels.is_empty() {
         stats.last = EditStats {
             edit: labels.join("; "),
             us_edit: t0.elapsed().as_secs_f64() * 1e6,
@@ -81,9 +88,9 @@ pub(crate) fn apply_edits(
     }
 }
 
-fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
+fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, String> {
     match edit {
-        Edit::SetDirection { row, col, dir } => set_direction(ctx, *row, *col, *dir),
+        Edit::SetDirection { row, col, dir } => set_direction(ctx, scene, *row, *col, *dir),
         Edit::Rotate {
             row,
             col,
@@ -91,72 +98,67 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             radians,
         } => {
             let q = rotation(*axis, *radians)?;
-            let cur = current_direction(ctx, *row, *col)?;
+            let cur = current_direction(ctx, scene, *row, *col)?;
             let dir = q * cur;
-            set_direction(ctx, *row, *col, dir)
+            set_direction(ctx, scene, *row, *col, dir)
         }
         Edit::SetLength {
             row,
             col,
             coefficient,
-        } => set_length(ctx, *row, *col, *coefficient),
+        } => set_length(scene, *row, *col, *coefficient),
         Edit::ClearDetail { row, col } => {
-            let level = ctx.model.scene.edit_depth;
+            let level = scene.edit_depth;
             let key = (level, *row, *col);
-            if ctx.model.scene.details.remove(&key).is_none() {
+            if scene.details.remove(&key).is_none() {
                 return Err(format!(
                     "handle ({row}, {col}) at edit depth {level} has no detail to clear"
                 ));
             }
-            ctx.dirty.cell(level, *row, *col);
             Ok(format!("cleared detail ({row}, {col}) at level {level}"))
         }
         Edit::SetScheme(s) => {
             let s = s.validate().map_err(|e| e.to_string())?;
-            let mut d = ctx.model.scene.design.clone();
+            let mut d = scene.design.clone();
             d.set_scheme(s).map_err(|e| e.to_string())?;
-            check_design(&d, ctx.model.scene.max_depth(), ctx.model.scene.mirror)?;
-            ctx.model.scene.design = d;
-            let dropped = prune_details(&mut ctx.model.scene);
-            full(ctx);
+            check_design(&d, scene.max_depth(), scene.mirror)?;
+            scene.design = d;
+            let dropped = prune_details(scene);
             Ok(format!("scheme {}{dropped}", s.name()))
         }
         Edit::SetBlendOrder(o) => {
-            ctx.model.scene.design.set_order(*o);
-            full(ctx);
+            scene.design.set_order(*o);
             Ok(format!("blend order {}", o.name()))
         }
         Edit::SetDisplayDepth(n) => {
-            let depth = (*n).max(ctx.model.scene.edit_depth);
-            check_design(&ctx.model.scene.design, depth, ctx.model.scene.mirror)?;
-            ctx.model.scene.display_depth = *n;
-            full(ctx);
+            let depth = (*n).max(scene.edit_depth);
+            check_design(&scene.design, depth, scene.mirror)?;
+            scene.display_depth = *n;
             Ok(format!("display depth {n}"))
         }
         Edit::SetEditDepth(n) => {
-            if *n > 0 && ctx.model.scene.mirror {
+            if *n > 0 && scene.mirror {
                 return Err(super::authoring::mirror_depth_msg());
             }
-            let depth = (*n).max(ctx.model.scene.display_depth);
-            check_design(&ctx.model.scene.design, depth, ctx.model.scene.mirror)?;
-            ctx.model.scene.edit_depth = *n;
-            full(ctx);
+            let depth = (*n).max(scene.display_depth);
+            check_design(&scene.design, depth, scene.mirror)?;
+            scene.edit_depth = *n;
             Ok(format!("edit depth {n}"))
         }
         Edit::Undo | Edit::Redo => {
             let undo = matches!(edit, Edit::Undo);
-            let cur = ctx.model.scene.clone();
+            let cur = scene.clone();
             let target = ctx.history.step(undo, cur).ok_or(if undo {
                 "nothing to undo"
             } else {
                 "nothing to redo"
             })?;
-            restore(ctx, target);
+            *scene = target;
             ctx.model.unsaved = true;
             Ok(if undo { "undone" } else { "redone" }.into())
         }
         Edit::SetTuning(t) => {
-            ctx.model.scene.tuning = t.clone();
+            scene.tuning = t.clone();
             Ok(if t.is_some() {
                 "fine tuning on".into()
             } else {
@@ -164,11 +166,7 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             })
         }
         Edit::SetTuningValue { row, col, value } => {
-            let tuning = ctx
-                .model
-                .scene
-                .tuning
-                .get_or_insert_with(SurfaceTuning::identity);
+            let tuning = scene.tuning.get_or_insert_with(SurfaceTuning::identity);
             tuning
                 .function
                 .set(*row, *col, *value)
@@ -176,20 +174,18 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             Ok(format!("fine-tuning value ({row}, {col}) = {value}"))
         }
         Edit::SetTuningConstraint(c) => {
-            ctx.model
-                .scene
+            scene
                 .tuning
                 .get_or_insert_with(SurfaceTuning::identity)
                 .constraint = *c;
             Ok(format!("fine-tuning constraint {}", c.name()))
         }
         Edit::SetInterpolateTangents(on) => {
-            ctx.model.scene.interpolate_tangents = *on;
-            full(ctx);
+            scene.interpolate_tangents = *on;
             Ok(
                 if *on
                     && !streamline_kernel::levels::tangent_interpolation::applies(
-                        ctx.model.scene.design.scheme(),
+                        scene.design.scheme(),
                     )
                 {
                     "interpolate control tangents on (Kobbelt interpolates them already)".into()
@@ -203,26 +199,26 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
                 .history
                 .cancel(*g)
                 .ok_or_else(|| format!("drag {g} is not the last edit; nothing to cancel"))?;
-            restore(ctx, target);
+            *scene = target;
             ctx.model.unsaved = was_unsaved;
             Ok("drag cancelled".into())
         }
         Edit::Load(path) => {
-            let scene = io::load(path).map_err(|e| format!("{e} (the current scene is kept)"))?;
-            replace(ctx, scene);
+            let loaded = io::load(path).map_err(|e| format!("{e} (the current scene is kept)"))?;
+            replace(ctx, scene, loaded);
             ctx.model.path = Some(path.clone());
             Ok(format!("loaded {}", path.display()))
         }
-        Edit::Replace(scene) => {
-            replace(ctx, (**scene).clone());
+        Edit::Replace(new) => {
+            replace(ctx, scene, (**new).clone());
             ctx.model.path = None;
-            Ok(format!("opened {}", scene.name))
+            Ok(format!("opened {}", new.name))
         }
-        Edit::Recover { scene, origin } => {
-            replace(ctx, (**scene).clone());
+        Edit::Recover { scene: new, origin } => {
+            replace(ctx, scene, (**new).clone());
             ctx.model.path = origin.clone();
             ctx.model.unsaved = true;
-            Ok(format!("recovered {}", scene.name))
+            Ok(format!("recovered {}", new.name))
         }
         Edit::Save(_) | Edit::Export(_) => Ok(String::new()),
         Edit::RotateMany {
@@ -237,10 +233,10 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
             // every handle checked before any is turned: all or nothing
             let dirs = handles
                 .iter()
-                .map(|&(r, c)| current_direction(ctx, r, c).map(|d| q * d))
+                .map(|&(r, c)| current_direction(ctx, scene, r, c).map(|d| q * d))
                 .collect::<Result<Vec<_>, _>>()?;
             for (&(r, c), d) in handles.iter().zip(dirs) {
-                set_direction(ctx, r, c, d)?;
+                set_direction(ctx, scene, r, c, d)?;
             }
             Ok(format!(
                 "rotated {} handles by {:.3}°",
@@ -248,28 +244,22 @@ fn apply(ctx: &mut EditCtx, edit: &Edit) -> Result<String, String> {
                 radians.to_degrees()
             ))
         }
-        Edit::Author(a) => author(ctx, a),
+        Edit::Author(a) => author(ctx, scene, a),
     }
 }
 
-/// An authoring edit ([`super::authoring`]): the scene changes there; here
-/// the handles and the pipeline follow.
-fn author(ctx: &mut EditCtx, a: &super::authoring::AuthorEdit) -> Result<String, String> {
+/// An authoring edit ([`super::authoring`]): the scene changes there.
+fn author(
+    ctx: &mut EditCtx,
+    scene: &mut Scene,
+    a: &super::authoring::AuthorEdit,
+) -> Result<String, String> {
     use super::authoring::Effect;
-    let (msg, effect) = super::authoring::apply(&mut ctx.model.scene, a)?;
-    match effect {
-        Effect::NewScene(scene) => {
-            replace(ctx, *scene);
-            ctx.model.path = None;
-            ctx.model.unsaved = true;
-        }
-        Effect::Full => full(ctx),
-        Effect::Place => ctx.dirty.replace_streamlines(),
-        Effect::Row(row) => {
-            for col in 0..ctx.model.scene.design.net().cols() {
-                ctx.dirty.cell(0, row, col);
-            }
-        }
+    let (msg, effect) = super::authoring::apply(scene, a)?;
+    if let Effect::NewScene(new) = effect {
+        replace(ctx, scene, *new);
+        ctx.model.path = None;
+        ctx.model.unsaved = true;
     }
     Ok(msg)
 }
@@ -289,11 +279,6 @@ fn check_design(d: &Design, depth: u32, mirror: bool) -> Result<(), String> {
             .map_err(|e| format!("the mirrored surface: {e}"))?;
     }
     Ok(())
-}
-
-/// Asks for a full rebuild (the levels' shapes may change).
-fn full(ctx: &mut EditCtx) {
-    ctx.dirty.rebuild();
 }
 
 /// Drops details that no longer fit their level (after a scheme change).
@@ -340,10 +325,15 @@ fn check_cell(rows: usize, cols: usize, row: usize, col: usize, level: u32) -> R
     Ok(())
 }
 
-fn current_direction(ctx: &EditCtx, row: usize, col: usize) -> Result<DVec3, String> {
-    let level = ctx.model.scene.edit_depth;
+fn current_direction(
+    ctx: &EditCtx,
+    scene: &Scene,
+    row: usize,
+    col: usize,
+) -> Result<DVec3, String> {
+    let level = scene.edit_depth;
     if level == 0 {
-        let net = ctx.model.scene.design.net();
+        let net = scene.design.net();
         check_cell(net.rows(), net.cols(), row, col, 0)?;
         return Ok(net.get(row, col));
     }
@@ -353,7 +343,13 @@ fn current_direction(ctx: &EditCtx, row: usize, col: usize) -> Result<DVec3, Str
     Ok(l.tangents.get(row, col))
 }
 
-fn set_direction(ctx: &mut EditCtx, row: usize, col: usize, dir: DVec3) -> Result<String, String> {
+fn set_direction(
+    ctx: &mut EditCtx,
+    scene: &mut Scene,
+    row: usize,
+    col: usize,
+    dir: DVec3,
+) -> Result<String, String> {
     let dir = Tangent::new(dir)
         .map_err(|_| {
             format!(
@@ -362,27 +358,25 @@ fn set_direction(ctx: &mut EditCtx, row: usize, col: usize, dir: DVec3) -> Resul
             )
         })?
         .get();
-    let level = ctx.model.scene.edit_depth;
-    if ctx.model.scene.mirror && level > 0 {
+    let level = scene.edit_depth;
+    if scene.mirror && level > 0 {
         return Err(super::authoring::mirror_depth_msg());
     }
     if level == 0 {
-        let net = ctx.model.scene.design.net();
+        let net = scene.design.net();
         check_cell(net.rows(), net.cols(), row, col, 0)?;
         // mirrored: a seam (row 0) tangent stays in the mirror plane
-        let dir = if ctx.model.scene.mirror && row == 0 {
-            let plane = ctx.model.scene.design.mirror_plane();
+        let dir = if scene.mirror && row == 0 {
+            let plane = scene.design.mirror_plane();
             plane.project_dir(dir, col).map_err(|e| e.to_string())?
         } else {
             dir
         };
         if net.get(row, col) != dir {
-            ctx.model
-                .scene
+            scene
                 .design
                 .set_tangent(row, col, dir)
                 .map_err(|e| e.to_string())?;
-            ctx.dirty.cell(0, row, col);
         }
         return Ok(format!(
             "control ({row}, {col}) set to ({:.4}, {:.4}, {:.4})",
@@ -393,9 +387,7 @@ fn set_direction(ctx: &mut EditCtx, row: usize, col: usize, dir: DVec3) -> Resul
     let (rows, cols) = l.shape();
     check_cell(rows, cols, row, col, level)?;
     let local = multires::to_local(l.base(), row, col, dir);
-    if ctx.model.scene.details.insert((level, row, col), local) != Some(local) {
-        ctx.dirty.cell(level, row, col);
-    }
+    scene.details.insert((level, row, col), local);
     Ok(format!("detail ({row}, {col}) at level {level}"))
 }
 
@@ -410,15 +402,15 @@ fn rotation(axis: DVec3, radians: f64) -> Result<DQuat, String> {
     Ok(DQuat::from_axis_angle(axis, radians))
 }
 
-fn set_length(ctx: &mut EditCtx, row: usize, col: usize, k: f64) -> Result<String, String> {
+fn set_length(scene: &mut Scene, row: usize, col: usize, k: f64) -> Result<String, String> {
     if !(k.is_finite() && k > 0.0) {
         return Err(format!(
             "length coefficient {k} must be a positive finite number (1 keeps the length)"
         ));
     }
-    let net = ctx.model.scene.design.net();
+    let net = scene.design.net();
     check_cell(net.rows(), net.cols(), row, col, 0)?;
-    let mut d = ctx.model.scene.design.clone();
+    let mut d = scene.design.clone();
     let old = d.params().s.row(row).to_vec();
     let mut s = old.clone();
     for i in 1..s.len() {
@@ -432,61 +424,17 @@ fn set_length(ctx: &mut EditCtx, row: usize, col: usize, k: f64) -> Result<Strin
     }
     d.set_s_row(row, &s)
         .map_err(|e| format!("length coefficient {k} at ({row}, {col}) refused: {e}"))?;
-    check_design(&d, ctx.model.scene.max_depth(), ctx.model.scene.mirror)
+    check_design(&d, scene.max_depth(), scene.mirror)
         .map_err(|e| format!("length coefficient {k} at ({row}, {col}) refused: {e}"))?;
-    for (c, (a, b)) in old.iter().zip(d.params().s.row(row)).enumerate() {
-        if a != b {
-            ctx.dirty.cell(0, row, c);
-        }
-    }
-    ctx.model.scene.design = d;
+    scene.design = d;
     Ok(format!("length coefficient {k} at ({row}, {col})"))
 }
 
-fn replace(ctx: &mut EditCtx, scene: Scene) {
-    ctx.model.scene = scene;
+/// A scene from elsewhere (a file, a new design, a recovery) replaces the
+/// current one, and the history starts afresh. Written back like any edit:
+/// what differs from the current scene is what is rebuilt.
+fn replace(ctx: &mut EditCtx, scene: &mut Scene, new: Scene) {
+    *scene = new;
     ctx.model.unsaved = false;
     ctx.history.clear();
-    full(ctx);
-}
-
-/// Restores a scene from history: cells that differ are marked dirty (so
-/// only they are rebuilt); a different shape or setting rebuilds everything.
-fn restore(ctx: &mut EditCtx, target: Scene) {
-    let cur = &ctx.model.scene;
-    let (a, b) = (&cur.design, &target.design);
-    let same = a.net().rows() == b.net().rows()
-        && a.net().cols() == b.net().cols()
-        && a.scheme() == b.scheme()
-        && a.order() == b.order()
-        && a.anchor() == b.anchor()
-        && a.params().t == b.params().t
-        && cur.interpolate_tangents == target.interpolate_tangents
-        && !cur.mirror
-        && !target.mirror
-        && cur.initial == target.initial
-        && cur.display_depth == target.display_depth
-        && cur.edit_depth == target.edit_depth;
-    if !same {
-        ctx.model.scene = target;
-        full(ctx);
-        return;
-    }
-    for row in 0..a.net().rows() {
-        for col in 0..a.net().cols() {
-            if a.net().get(row, col) != b.net().get(row, col)
-                || a.params().s.get(row, col) != b.params().s.get(row, col)
-            {
-                ctx.dirty.cell(0, row, col);
-            }
-        }
-    }
-    let (old, new) = (&cur.details, &target.details);
-    for key in old.keys().chain(new.keys()) {
-        if old.get(key) != new.get(key) {
-            let &(level, row, col) = key;
-            ctx.dirty.cell(level, row, col);
-        }
-    }
-    ctx.model.scene = target;
 }

@@ -4,7 +4,8 @@
 //! points ([`SurfaceData`]).
 
 use super::components::*;
-use super::resources::{Model, Stats, SurfaceData};
+use super::patch::PatchRef;
+use super::resources::{Stats, SurfaceData};
 use bevy::prelude::*;
 use std::time::Instant;
 use streamline_kernel::finetune::{Constraint, SurfaceTuning, fine_tune_into};
@@ -22,23 +23,31 @@ use streamline_kernel::{DVec3, Grid};
 /// as it is (`Constraint::Free`).
 pub(crate) fn retune(
     meter: Res<super::meter::CpuMeter>,
-    model: Res<Model>,
-    levels: Query<(&SubdivisionLevel, &LevelData)>,
+    patch: PatchRef,
+    levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
     mut lines: Query<(&Streamline, &StreamlineTangents, &mut StreamlineAlpha)>,
     added: Query<(), Added<Streamline>>,
 ) {
     let _meter = meter.start();
-    if !model.is_changed() && added.is_empty() {
+    let depth = patch.structure().display_depth;
+    // under a constraint the functions follow the display level's tangents
+    let shown_changed = || levels.iter().any(|(l, d)| l.0 == depth && d.is_changed());
+    if !patch.tuning_changed()
+        && added.is_empty()
+        && !(patch
+            .tuning()
+            .is_some_and(|t| t.constraint != Constraint::Free)
+            && shown_changed())
+    {
         return;
     }
-    let Some(tuning) = &model.scene.tuning else {
+    let Some(tuning) = patch.tuning() else {
         for (_, _, mut a) in &mut lines {
             a.set_if_neq(StreamlineAlpha(None));
         }
         return;
     };
     if tuning.constraint != Constraint::Free {
-        let depth = model.scene.display_depth;
         if let Some((_, level)) = levels.iter().find(|(l, _)| l.0 == depth) {
             let fs = tuning.row_functions(surface_rows(&level.0.tangents, &level.0.params));
             for (line, _, mut a) in &mut lines {
@@ -76,7 +85,7 @@ type ChangedLines<'w, 's> = Query<
 
 pub(crate) fn integrate(
     meter: Res<super::meter::CpuMeter>,
-    model: Res<Model>,
+    patch: PatchRef,
     levels: Query<(&SubdivisionLevel, &LevelData)>,
     mut lines: ChangedLines,
     mut surface: ResMut<SurfaceData>,
@@ -85,7 +94,7 @@ pub(crate) fn integrate(
 ) {
     let _meter = meter.start();
     let t0 = Instant::now();
-    let depth = model.scene.display_depth;
+    let depth = patch.structure().display_depth;
     let Some((_, level)) = levels.iter().find(|(l, _)| l.0 == depth) else {
         return;
     };

@@ -1,13 +1,14 @@
-//! The ECS layer (docs/architecture.md, "The shape in one picture"): subdivision levels
-//! and streamlines are entities; edits arrive as [`EditMessage`]s and change
-//! the scene ([`Model`]); systems in named, ordered sets carry a change down
-//! (edit → blend → integrate → mesh → output), recomputing only what an edit
-//! made dirty. One path records what changed: the edit stage writes
-//! [`Dirty`] (cells of a level, every streamline's start, or everything),
-//! the blend stage takes it; below it, changed components mark the
-//! streamlines to integrate, and the mesh stage announces each change of
-//! the surface as a [`SurfaceChanged`] message, which every reader follows
-//! with its own cursor ([`SurfaceChanges`]). Runs headless under
+//! The ECS layer (docs/architecture.md, "The shape in one picture"): a
+//! patch entity owns its tangent handles (one entity per control tangent of
+//! the net, per detail, per control tangent of the initial curve), its
+//! subdivision levels and its streamlines ([`patch`]). Edits arrive as
+//! [`EditMessage`]s; the edit stage writes the handles' and the patch's
+//! components, and only what differs; change detection does the rest:
+//! [`patch::track`] turns the changed components into the dirty windows of
+//! each level, the blend stage re-blends them, changed streamline
+//! components mark what to integrate, and the mesh stage announces each
+//! change of the surface as a [`SurfaceChanged`] message, which every reader
+//! follows with its own cursor ([`SurfaceChanges`]). Runs headless under
 //! `MinimalPlugins` ([`headless_app`]).
 
 pub mod authoring;
@@ -20,6 +21,7 @@ mod mesh;
 pub mod messages;
 pub mod meter;
 mod output;
+pub mod patch;
 pub mod playback;
 pub mod resources;
 pub mod runner;
@@ -33,9 +35,10 @@ pub use resources::*;
 /// The pipeline's phases, run in this order in `Update`.
 #[derive(SystemSet, Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ModelSet {
-    /// Edit messages change the scene and mark what is [`Dirty`].
+    /// Edit messages write the patch's and its handles' components.
     Edit,
-    /// Dirty windows of the levels are re-blended.
+    /// Changed components become dirty windows ([`patch::track`]), which
+    /// are re-blended.
     Blend,
     /// Changed streamlines are re-integrated.
     Integrate,
@@ -67,14 +70,13 @@ impl Plugin for ModelPlugin {
     fn build(&self, app: &mut App) {
         app.add_message::<EditMessage>()
             .add_message::<SurfaceChanged>()
-            .insert_resource(Model::new(self.scene.clone()))
+            .init_resource::<Model>()
             .insert_resource(self.config.clone())
             .init_resource::<History>()
             .init_resource::<Stats>()
             .init_resource::<meter::CpuMeter>()
             .init_resource::<EditLog>()
             .init_resource::<SurfaceData>()
-            .init_resource::<Dirty>()
             .init_resource::<warnings::BuildWarnings>()
             .init_resource::<exchange::ExportSettings>()
             .init_resource::<exchange::LastExport>()
@@ -92,7 +94,11 @@ impl Plugin for ModelPlugin {
             .add_systems(Update, edit::apply_edits.in_set(ModelSet::Edit))
             .add_systems(
                 Update,
-                (blend::reblend, warnings::find_antipodal_blends)
+                (
+                    patch::track::track_handles,
+                    blend::reblend,
+                    warnings::find_antipodal_blends,
+                )
                     .chain()
                     .in_set(ModelSet::Blend),
             )
@@ -104,6 +110,7 @@ impl Plugin for ModelPlugin {
             )
             .add_systems(Update, mesh::patch_mesh.in_set(ModelSet::Mesh))
             .add_systems(Update, output::write_files.in_set(ModelSet::Output));
+        patch::spawn_patch(app.world_mut(), &self.scene);
     }
 }
 

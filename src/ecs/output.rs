@@ -11,15 +11,30 @@ pub(crate) fn write_files(
     meter: Res<super::meter::CpuMeter>,
     mut reader: MessageReader<EditMessage>,
     mut model: ResMut<Model>,
+    patch: super::patch::PatchRef,
     surface: Res<SurfaceData>,
     mut log: ResMut<EditLog>,
     settings: Res<ExportSettings>,
     mut last: ResMut<LastExport>,
 ) {
     let _meter = meter.start();
+    let mut scene = None;
     for msg in reader.read() {
+        if !matches!(msg.edit, Edit::Save(_) | Edit::Export(_)) {
+            continue;
+        }
+        let scene = match &scene {
+            Some(s) => s,
+            None => match patch.scene() {
+                Ok(s) => scene.insert(s),
+                Err(e) => {
+                    log.entries.push(Err(e));
+                    continue;
+                }
+            },
+        };
         match &msg.edit {
-            Edit::Save(path) => match io::save(&model.scene, path) {
+            Edit::Save(path) => match io::save(scene, path) {
                 Ok(()) => {
                     model.path = Some(path.clone());
                     model.unsaved = false;
@@ -37,8 +52,8 @@ pub(crate) fn write_files(
                     fit: settings.fit,
                     colors,
                 };
-                let depth = model.scene.display_depth;
-                match export_scene(&model.scene, &mesh, depth, path, &opts) {
+                let depth = scene.display_depth;
+                match export_scene(scene, &mesh, depth, path, &opts) {
                     Ok(out) => {
                         let what = match &out.fit {
                             Some(f) => {

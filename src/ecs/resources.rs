@@ -5,37 +5,18 @@ use bevy::prelude::*;
 use std::collections::VecDeque;
 use std::path::PathBuf;
 use streamline_kernel::levels::dirty_window::DirtyWindow;
-use streamline_kernel::levels::multires::Details;
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 use streamline_kernel::{DVec3, Grid};
 
-/// The scene being edited: the edit stage is the only writer, and it records
-/// what each edit changed in [`Dirty`].
-#[derive(Resource, Debug)]
+/// The document: the file the patch was loaded from or saved to, and
+/// whether it changed since. The design itself lives in the patch entity
+/// and its handles ([`super::patch`]); [`super::patch::scene`] assembles it.
+#[derive(Resource, Debug, Default)]
 pub struct Model {
-    /// The current scene.
-    pub scene: Scene,
     /// The file it was loaded from or saved to.
     pub path: Option<PathBuf>,
     /// Changed since the last save or load.
     pub unsaved: bool,
-}
-
-impl Model {
-    /// A model of `scene` (built in full on the first update: [`Dirty`]
-    /// starts out asking for it).
-    pub fn new(scene: Scene) -> Self {
-        Model {
-            scene,
-            path: None,
-            unsaved: false,
-        }
-    }
-
-    /// The details.
-    pub fn details(&self) -> &Details {
-        &self.scene.details
-    }
 }
 
 /// Settings of the model layer.
@@ -238,95 +219,6 @@ impl SurfaceData {
             .iter()
             .copied()
             .reduce(|[a, b], [c, d]| [a.min(c), b.max(d)])
-    }
-}
-
-/// What the edits since the last blend stage changed, and so what the
-/// pipeline must redo: the one record of "what changed" (docs/architecture.md,
-/// "Incremental rebuild, exactly"). The edit stage writes it, the blend
-/// stage takes it. Three kinds of change:
-/// - cells of a level (a control tangent or its `s`, a detail): the blend
-///   stage re-blends the window they make dirty, level by level;
-/// - every streamline's start point (an edit of the initial curve): each
-///   streamline is placed again, nothing is re-blended;
-/// - everything (a new net shape, scheme, depth or scene): the levels and
-///   streamlines are built afresh.
-#[derive(Resource, Debug)]
-pub struct Dirty {
-    full: bool,
-    replace: bool,
-    windows: Vec<Option<DirtyWindow>>,
-}
-
-impl Default for Dirty {
-    /// Asks for a full build (nothing is built yet).
-    fn default() -> Self {
-        Dirty {
-            full: true,
-            replace: false,
-            windows: Vec::new(),
-        }
-    }
-}
-
-impl Dirty {
-    /// Cell `(row, col)` of level `level` changed.
-    pub fn cell(&mut self, level: u32, row: usize, col: usize) {
-        let l = level as usize;
-        if self.windows.len() <= l {
-            self.windows.resize(l + 1, None);
-        }
-        self.windows[l] = Some(DirtyWindow::merge(
-            self.windows[l],
-            DirtyWindow::cell(row, col),
-        ));
-    }
-
-    /// Every streamline must be placed again on the initial curve (its
-    /// tangents, `s` and `σ` are as they were).
-    pub fn replace_streamlines(&mut self) {
-        self.replace = true;
-    }
-
-    /// Everything must be built afresh (the levels' shapes may change).
-    pub fn rebuild(&mut self) {
-        self.full = true;
-    }
-
-    /// Whether a full build is pending.
-    pub fn is_full(&self) -> bool {
-        self.full
-    }
-
-    /// Whether nothing is pending.
-    pub fn is_clean(&self) -> bool {
-        !self.full && !self.replace && self.windows.iter().all(Option::is_none)
-    }
-
-    /// Whether cells of level `level` changed.
-    pub fn touches(&self, level: u32) -> bool {
-        self.windows
-            .get(level as usize)
-            .is_some_and(Option::is_some)
-    }
-
-    /// Mirror symmetry (`docs/math.md §9`): the level-0 cells marked so far
-    /// are rows of the half, whose `m` rows are rows `m − 1 ..` of the
-    /// doubled net the levels are built from, and whose reflections are rows
-    /// `.. m − 1`: a window of half rows `lo ..= hi` becomes doubled rows
-    /// `m − 1 − hi ..= m − 1 + hi` (both copies and the rows between).
-    pub fn mirror_rows(&mut self, m: usize) {
-        if let Some(Some(w)) = self.windows.first_mut() {
-            let (lo, hi) = (m - 1 - w.rows.hi.min(m - 1), m - 1 + w.rows.hi);
-            w.rows = streamline_kernel::levels::dirty_window::Span::new(lo, hi);
-        }
-    }
-
-    /// Takes what is pending, leaving nothing: `(full, replace, windows)`.
-    pub(crate) fn take(&mut self) -> (bool, bool, Vec<Option<DirtyWindow>>) {
-        let full = std::mem::take(&mut self.full);
-        let replace = std::mem::take(&mut self.replace);
-        (full, replace, std::mem::take(&mut self.windows))
     }
 }
 

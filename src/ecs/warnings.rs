@@ -6,7 +6,7 @@
 //! [`BuildWarnings`].
 
 use super::components::{LevelData, SubdivisionLevel};
-use super::resources::Model;
+use super::patch::PatchRef;
 use bevy::prelude::*;
 use streamline_kernel::sphere::antipodal::{AntipodalPair, antipodal_legs, antipodal_pairs};
 
@@ -29,11 +29,11 @@ pub struct BuildWarnings {
 /// a mirrored scene is the doubled net (docs/math.md §9), whose rows `m − 1 ±
 /// j` are the scene's row `j`: its pairs are named by the scene's cells.
 pub(crate) fn find_antipodal_blends(
-    model: Res<Model>,
+    patch: PatchRef,
     levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
     mut warnings: ResMut<BuildWarnings>,
 ) {
-    if !levels.iter().any(|(_, d)| d.is_changed()) && !model.is_changed() {
+    if !levels.iter().any(|(_, d)| d.is_changed()) && !patch.design_changed() {
         return;
     }
     let finest = levels.iter().map(|(l, _)| l.0).max().unwrap_or(0);
@@ -43,8 +43,8 @@ pub(crate) fn find_antipodal_blends(
     for (l, d) in sorted {
         antipodal_pairs(l.0, &d.0.tangents, &mut pairs);
     }
-    if model.scene.mirror {
-        let m = model.scene.design.net().rows();
+    if patch.structure().mirror {
+        let m = patch.structure().rows;
         fold_mirror(&mut pairs, m);
     }
     let mut lines: Vec<String> = pairs
@@ -58,7 +58,7 @@ pub(crate) fn find_antipodal_blends(
             pairs.len() - MAX_LISTED
         ));
     }
-    for k in antipodal_legs(model.scene.design.initial().qi().tangents()) {
+    for k in antipodal_legs(patch.design().initial().qi().tangents()) {
         lines.push(format!(
             "antipodal blend between initial-curve tangents {k} and {}: they point in opposite directions, so the initial curve between them turns about a fixed axis; turn one of them",
             k + 1

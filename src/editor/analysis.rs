@@ -11,7 +11,7 @@ use super::interaction::{EditorSet, MainCamera, OrbitCamera, SceneBounds};
 use super::surface::{ShadedMaterial, SurfaceEntity};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::exchange::ExportSettings;
-use crate::ecs::{Model, SurfaceChanges, SurfaceData};
+use crate::ecs::{SurfaceChanges, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
 use bevy::prelude::*;
@@ -223,7 +223,7 @@ fn apply_mode(
     mut field: ResMut<CurvatureField>,
     (mut deviation, model, mut export, mouse): (
         ResMut<DeviationField>,
-        Res<Model>,
+        crate::ecs::patch::PatchRef,
         ResMut<ExportSettings>,
         Res<ButtonInput<MouseButton>>,
     ),
@@ -305,7 +305,10 @@ fn apply_mode(
         SurfaceMode::Zebra => zebra_uv(&data, &settings, eye),
         SurfaceMode::Deviation => {
             if deviation.stale || (deviation.values.is_none() && deviation.error.is_none()) {
-                deviation.refit(&model.scene, &export.fit);
+                match model.scene() {
+                    Ok(scene) => deviation.refit(&scene, &export.fit),
+                    Err(e) => deviation.error = Some(e),
+                }
             }
             let Some(v) = deviation.values.as_ref() else {
                 return;
@@ -377,7 +380,7 @@ fn draw_combs(
     meter: Res<crate::ecs::meter::CpuMeter>,
     settings: Res<AnalysisSettings>,
     bounds: Res<SceneBounds>,
-    model: Res<Model>,
+    patch: crate::ecs::patch::PatchRef,
     levels: Query<(&SubdivisionLevel, &LevelData)>,
     data: Res<SurfaceData>,
     mut gizmos: Gizmos,
@@ -386,7 +389,7 @@ fn draw_combs(
     if !settings.comb {
         return;
     }
-    let depth = model.scene.display_depth;
+    let depth = patch.structure().display_depth;
     let Some((_, level)) = levels.iter().find(|(l, _)| l.0 == depth) else {
         return;
     };

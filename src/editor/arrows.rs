@@ -56,7 +56,7 @@ const GROUP: Color = Color::srgb(0.75, 0.8, 1.0);
 #[allow(clippy::too_many_arguments)]
 fn draw(
     meter: Res<crate::ecs::meter::CpuMeter>,
-    model: Res<crate::ecs::Model>,
+    patch: crate::ecs::patch::PatchRef,
     arrows: Res<Handles>,
     settings: Res<HandleSettings>,
     selection: Res<Selection>,
@@ -94,7 +94,7 @@ fn draw(
         }
     }
     if settings.initial {
-        let curve = model.scene.design.initial();
+        let curve = patch.design().initial();
         let line: Vec<Vec3> = curve.polyline(96).into_iter().map(to_view).collect();
         initial.linestrip(line, CYAN.with_alpha(0.6));
         for a in &arrows.initial {

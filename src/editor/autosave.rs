@@ -6,7 +6,8 @@
 use super::files::{Dialog, EditorDirs, FileUi};
 use super::screenshot::ScreenshotRequest;
 use crate::ecs::Model;
-use crate::scene::io;
+use crate::ecs::patch::PatchRef;
+use crate::scene::{Scene, io};
 use bevy::prelude::*;
 use std::path::PathBuf;
 use std::time::{Duration, Instant, SystemTime};
@@ -60,15 +61,16 @@ impl Plugin for AutosavePlugin {
     }
 }
 
-/// Writes the recovery file (and where the scene came from).
-pub fn write_recovery(dirs: &EditorDirs, model: &Model) -> Result<(), String> {
+/// Writes the recovery file of `scene` (and `origin`, the file it came from).
+pub fn write_recovery(
+    dirs: &EditorDirs,
+    scene: &Scene,
+    origin: Option<&std::path::Path>,
+) -> Result<(), String> {
     std::fs::create_dir_all(&dirs.home).map_err(|e| format!("{}: {e}", dirs.home.display()))?;
-    io::save(&model.scene, &dirs.recovery_file()).map_err(|e| e.to_string())?;
+    io::save(scene, &dirs.recovery_file()).map_err(|e| e.to_string())?;
     let meta = RecoveryMeta {
-        origin: model
-            .path
-            .as_ref()
-            .map(|p| std::path::absolute(p).unwrap_or(p.clone())),
+        origin: origin.map(|p| std::path::absolute(p).unwrap_or(p.to_path_buf())),
     };
     let text = serde_json::to_string(&meta).map_err(|e| e.to_string())?;
     io::write_atomic(&dirs.recovery_meta(), text.as_bytes(), |_| Ok(())).map_err(|e| e.to_string())
@@ -117,6 +119,7 @@ fn tick(
     dirs: Res<EditorDirs>,
     config: Res<AutosaveConfig>,
     model: Res<Model>,
+    patch: PatchRef,
     mut state: ResMut<AutosaveState>,
     mut ui: ResMut<FileUi>,
 ) {
@@ -133,7 +136,9 @@ fn tick(
     if state.dirty && state.last.elapsed() >= config.interval {
         state.last = Instant::now();
         state.dirty = false;
-        if let Err(e) = write_recovery(&dirs, &model) {
+        let written =
+            (patch.scene()).and_then(|s| write_recovery(&dirs, &s, model.path.as_deref()));
+        if let Err(e) = written {
             ui.errors.push(format!("autosave failed: {e}"));
         }
     }
@@ -143,6 +148,7 @@ fn on_exit(
     mut exits: MessageReader<AppExit>,
     dirs: Res<EditorDirs>,
     model: Res<Model>,
+    patch: PatchRef,
     ui: Res<FileUi>,
 ) {
     if exits.read().count() == 0 {
@@ -150,7 +156,8 @@ fn on_exit(
     }
     if model.unsaved
         && !ui.discarded
-        && let Err(e) = write_recovery(&dirs, &model)
+        && let Err(e) =
+            (patch.scene()).and_then(|s| write_recovery(&dirs, &s, model.path.as_deref()))
     {
         error!("autosave on quit failed: {e}");
     }
@@ -174,10 +181,8 @@ mod tests {
         assert!(pending_recovery(&d, None).is_none(), "nothing saved yet");
         let mut scene = builtin::default_scene();
         scene.name = "edited car".into();
-        let mut model = Model::new(scene);
         let origin = d.home.join("car.ron");
-        model.path = Some(origin.clone());
-        write_recovery(&d, &model).unwrap();
+        write_recovery(&d, &scene, Some(&origin)).unwrap();
         // the scene file does not exist: the autosave is newer
         match pending_recovery(&d, Some(&origin)) {
             Some(Dialog::Recover {
@@ -188,10 +193,10 @@ mod tests {
         // the recovered scene is the saved one
         let back = io::load(&d.recovery_file()).unwrap();
         assert_eq!(back.name, "edited car");
-        assert_eq!(back.to_file(), model.scene.to_file());
+        assert_eq!(back.to_file(), scene.to_file());
         // a scene saved after the autosave: no offer
         std::thread::sleep(Duration::from_millis(20));
-        io::save(&model.scene, &origin).unwrap();
+        io::save(&scene, &origin).unwrap();
         assert!(pending_recovery(&d, Some(&origin)).is_none());
         // a built-in scene (no file): always offered
         assert!(pending_recovery(&d, None).is_some());

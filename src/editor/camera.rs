@@ -7,7 +7,8 @@
 use super::interaction::{
     EditorSet, FrameRequest, Handles, MainCamera, OrbitCamera, SceneBounds, Selection, ViewArea,
 };
-use crate::ecs::{Model, SurfaceChanges, SurfaceData};
+use crate::ecs::patch::PatchRef;
+use crate::ecs::{SurfaceChanges, SurfaceData};
 use crate::scene::format::ViewSpec;
 use bevy::camera::Viewport;
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
@@ -39,8 +40,8 @@ impl Plugin for OrbitCameraPlugin {
     }
 }
 
-fn spawn(mut commands: Commands, model: Res<Model>) {
-    let cam = OrbitCamera::from_view(&model.scene.view);
+fn spawn(mut commands: Commands, patch: PatchRef) {
+    let cam = OrbitCamera::from_view(&patch.view());
     commands.spawn((
         Camera3d::default(),
         Camera {
@@ -74,12 +75,12 @@ fn bounds(
 /// A newly opened scene brings its own view (edits never change the view).
 fn follow_scene_view(
     meter: Res<crate::ecs::meter::CpuMeter>,
-    model: Res<Model>,
+    patch: PatchRef,
     mut shown: Local<Option<ViewSpec>>,
     mut q: Query<&mut OrbitCamera, With<MainCamera>>,
 ) {
     let _meter = meter.start();
-    let v = model.scene.view;
+    let v = patch.view();
     if *shown == Some(v) {
         return;
     }

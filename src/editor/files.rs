@@ -5,6 +5,7 @@
 //! native file dialog, which would need GTK or a desktop portal on Linux);
 //! this file asks it for one with [`browse`].
 
+use crate::ecs::patch::PatchRef;
 use crate::ecs::{Edit, EditLog, EditMessage, Model};
 use crate::scene::builtin;
 use crate::scene::export::Format;
@@ -264,13 +265,13 @@ fn run_pending(
     }
 }
 
-/// Saves to the scene's file, or asks for one.
-pub fn save(model: &Model, ui: &mut FileUi, edits: &mut MessageWriter<EditMessage>) {
+/// Saves to the scene's file, or asks for one (named after `name`).
+pub fn save(model: &Model, name: &str, ui: &mut FileUi, edits: &mut MessageWriter<EditMessage>) {
     match &model.path {
         Some(p) => {
             edits.write(EditMessage::from(Edit::Save(p.clone())));
         }
-        None => browse(ui, PathAction::SaveAs, suggested(model, "ron"), None),
+        None => browse(ui, PathAction::SaveAs, suggested(model, name, "ron"), None),
     }
 }
 
@@ -299,13 +300,13 @@ pub fn save_as(
     ui.after_save = then;
 }
 
-/// A path for a new file: next to the scene, named after it.
-pub fn suggested(model: &Model, ext: &str) -> String {
-    suggested_path(model, ext).display().to_string()
+/// A path for a new file: next to the scene, named after it (`name`).
+pub fn suggested(model: &Model, name: &str, ext: &str) -> String {
+    suggested_path(model, name, ext).display().to_string()
 }
 
 /// [`suggested`] as a path.
-pub fn suggested_path(model: &Model, ext: &str) -> PathBuf {
+pub fn suggested_path(model: &Model, name: &str, ext: &str) -> PathBuf {
     let dir = model
         .path
         .as_ref()
@@ -313,9 +314,7 @@ pub fn suggested_path(model: &Model, ext: &str) -> PathBuf {
         .map(Path::to_path_buf)
         .or_else(|| std::env::current_dir().ok())
         .unwrap_or_default();
-    let stem: String = model
-        .scene
-        .name
+    let stem: String = name
         .chars()
         .map(|c| {
             if c.is_alphanumeric() || c == '-' || c == '_' {
@@ -345,6 +344,7 @@ fn shortcuts(
     meter: Res<crate::ecs::meter::CpuMeter>,
     keys: Res<ButtonInput<KeyCode>>,
     model: Res<Model>,
+    patch: PatchRef,
     mut ui: ResMut<FileUi>,
     mut edits: MessageWriter<EditMessage>,
     mut exit: MessageWriter<AppExit>,
@@ -371,11 +371,11 @@ fn shortcuts(
             browse(
                 &mut ui,
                 PathAction::SaveAs,
-                suggested_path(&model, "ron"),
+                suggested_path(&model, patch.name(), "ron"),
                 None,
             );
         } else {
-            save(&model, &mut ui, &mut edits);
+            save(&model, patch.name(), &mut ui, &mut edits);
         }
     } else if keys.just_pressed(KeyCode::KeyO) {
         browse(&mut ui, PathAction::Open, scene_folder(&model), None);
@@ -450,6 +450,7 @@ fn dialogs(
     meter: Res<crate::ecs::meter::CpuMeter>,
     mut contexts: EguiContexts,
     model: Res<Model>,
+    patch: PatchRef,
     dirs: Res<EditorDirs>,
     mut ui: ResMut<FileUi>,
     mut edits: MessageWriter<EditMessage>,
@@ -486,7 +487,7 @@ fn dialogs(
                 m.heading("Unsaved changes");
                 m.label(format!(
                     "“{}” has changes that are not saved. Save them first?",
-                    model.scene.name
+                    patch.name()
                 ));
                 m.horizontal(|h| {
                     if h.button("Save").on_hover_text("Save, then go on").clicked() {
@@ -500,7 +501,7 @@ fn dialogs(
                                 browse(
                                     &mut ui,
                                     PathAction::SaveAs,
-                                    suggested_path(&model, "ron"),
+                                    suggested_path(&model, patch.name(), "ron"),
                                     Some(p.clone()),
                                 );
                                 close = true;

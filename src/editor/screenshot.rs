@@ -148,7 +148,7 @@ fn set_up_view(
     mut analysis: ResMut<AnalysisSettings>,
     mut selection: ResMut<Selection>,
     mut script: ResMut<crate::ecs::runner::ScriptRun>,
-    model: Res<Model>,
+    patch: crate::ecs::patch::PatchRef,
 ) {
     if let Some(path) = &req.script {
         script.input = path.display().to_string();
@@ -163,7 +163,7 @@ fn set_up_view(
     }
     analysis.comb |= req.comb;
     if let Some((row, col)) = req.select {
-        selection.select(HandleId::tangent(model.scene.edit_depth, row, col));
+        selection.select(HandleId::tangent(patch.structure().edit_depth, row, col));
     }
     if let Some(b) = req.mesh_boundary {
         mesh.settings.boundary = b;
@@ -274,7 +274,7 @@ fn drive(
     shown: Res<ShownSurface>,
     mut p: ResMut<ShotProgress>,
     mut exit: MessageWriter<AppExit>,
-    model: Res<Model>,
+    (model, patch): (Res<Model>, crate::ecs::patch::PatchRef),
     history: Res<History>,
     stats: Res<Stats>,
     timing: Res<super::frame_timing::FrameTiming>,
@@ -330,12 +330,13 @@ fn drive(
         && p.frame > at + 2
     {
         if let Some(path) = &req.report {
-            let net = model.scene.design.net();
+            // the control net, read from its handle entities
+            let net = patch.net();
             write_report(
                 path,
                 &Report {
                     path: model.path.clone(),
-                    scene: model.scene.name.clone(),
+                    scene: patch.name().to_string(),
                     undo: history.undo_len(),
                     redo: history.redo_len(),
                     unsaved: model.unsaved,
@@ -343,9 +344,8 @@ fn drive(
                     last_edit: stats.last.edit.clone(),
                     net: net.data().iter().map(|v| v.to_array()).collect(),
                     cols: net.cols(),
-                    initial: model
-                        .scene
-                        .design
+                    initial: patch
+                        .design()
                         .initial()
                         .qi()
                         .tangents()
@@ -354,7 +354,7 @@ fn drive(
                         .collect(),
                     model_ms: (timing.last_ms, timing.max_ms),
                     ours_ms: (timing.ours_last_ms, timing.ours_max_ms),
-                    depth: model.scene.display_depth,
+                    depth: patch.structure().display_depth,
                     detail: timing
                         .detail
                         .iter()
@@ -383,7 +383,7 @@ fn drive(
 fn measure_shown_gap(
     req: Res<ScreenshotRequest>,
     mut p: ResMut<ShotProgress>,
-    model: Res<Model>,
+    patch: crate::ecs::patch::PatchRef,
     data: Res<SurfaceData>,
     meshes: Res<Assets<Mesh>>,
     surface: Query<&Mesh3d, With<SurfaceEntity>>,
@@ -405,7 +405,7 @@ fn measure_shown_gap(
         worst = worst.max(gap(pos, data.points.data().iter().map(|q| q.as_vec3())));
         worst = worst.max(gap(nrm, data.normals.iter().map(|q| q.as_vec3())));
     }
-    let depth = model.scene.display_depth;
+    let depth = patch.structure().display_depth;
     if let (Ok(m), Some((_, level))) = (points.single(), levels.iter().find(|(l, _)| l.0 == depth))
         && let Some(pos) = attr(m, Mesh::ATTRIBUTE_POSITION)
     {

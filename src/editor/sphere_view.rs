@@ -11,7 +11,8 @@ use super::interaction::{
     MainCamera, OrbitCamera, Selection, SphereArea, ViewArea,
 };
 use crate::ecs::components::{LevelData, SubdivisionLevel};
-use crate::ecs::{Model, SurfaceChange, SurfaceChanges};
+use crate::ecs::patch::PatchRef;
+use crate::ecs::{SurfaceChange, SurfaceChanges};
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::Viewport;
 use bevy::camera::visibility::RenderLayers;
@@ -197,7 +198,7 @@ fn place_camera(
 #[allow(clippy::too_many_arguments)]
 fn update_points(
     meter: Res<crate::ecs::meter::CpuMeter>,
-    model: Res<Model>,
+    patch: PatchRef,
     settings: Res<SphereSettings>,
     levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
     points: Single<(&Mesh3d, &mut Visibility), With<SubdividedPoints>>,
@@ -218,7 +219,7 @@ fn update_points(
     // an edit of the display level moves its streamlines too: the rows the
     // mesh stage rewrote since the last run hold every row whose tangents changed
     let changed = surface.take();
-    let depth = model.scene.display_depth;
+    let depth = patch.structure().display_depth;
     let Some((_, data)) = levels.iter().find(|(l, _)| l.0 == depth) else {
         return;
     };
@@ -263,7 +264,7 @@ fn update_points(
 #[allow(clippy::too_many_arguments)]
 fn draw(
     meter: Res<crate::ecs::meter::CpuMeter>,
-    model: Res<Model>,
+    patch: PatchRef,
     arrows: Res<Handles>,
     handle_settings: Res<HandleSettings>,
     selection: Res<Selection>,
@@ -297,7 +298,8 @@ fn draw(
         to_view(DVec3::Y) * 1.15,
         Color::srgb(0.2, 0.85, 0.3),
     );
-    let net = model.scene.design.net();
+    // the control net, read from its handle entities
+    let net = patch.net();
     let blue = Color::srgb(0.3, 0.5, 1.0);
     for r in 0..net.rows() {
         for c in 0..net.cols() {

@@ -8,7 +8,8 @@
 
 use super::interaction::{EditorMode, EditorSet, HandleId, HandleKind, Handles, Selection};
 use crate::ecs::authoring::AuthorEdit;
-use crate::ecs::{Edit, EditMessage, Model};
+use crate::ecs::patch::PatchRef;
+use crate::ecs::{Edit, EditMessage};
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use bevy_egui::input::{egui_wants_any_keyboard_input, egui_wants_any_pointer_input};
@@ -130,12 +131,11 @@ pub fn control_cell(id: HandleId) -> Option<(usize, usize)> {
 pub fn apply(
     action: StructureAction,
     cell: (usize, usize),
-    model: &Model,
+    shape: (usize, usize),
     edits: &mut MessageWriter<EditMessage>,
     selection: &mut Selection,
 ) {
-    let net = model.scene.design.net();
-    let (edit, next) = action.edit(cell, (net.rows(), net.cols()));
+    let (edit, next) = action.edit(cell, shape);
     edits.write(EditMessage::from(Edit::Author(edit)));
     selection.select(HandleId::tangent(0, next.0, next.1));
 }
@@ -208,7 +208,7 @@ fn right_click(
 /// The structure keys on the selected control arrow.
 fn keys(
     keys: Res<ButtonInput<KeyCode>>,
-    model: Res<Model>,
+    patch: PatchRef,
     mut selection: ResMut<Selection>,
     mut edits: MessageWriter<EditMessage>,
 ) {
@@ -243,14 +243,15 @@ fn keys(
     let (Some(action), Some(cell)) = (action, selection.primary().and_then(control_cell)) else {
         return;
     };
-    apply(action, cell, &model, &mut edits, &mut selection);
+    let st = patch.structure();
+    apply(action, cell, (st.rows, st.cols), &mut edits, &mut selection);
 }
 
 /// Draws the right-click menu; a click on an entry sends its edit, a click
 /// elsewhere or Esc closes it.
 fn menu(
     mut contexts: EguiContexts,
-    model: Res<Model>,
+    patch: PatchRef,
     handles: Res<Handles>,
     mut menu: ResMut<ArrowMenu>,
     mut selection: ResMut<Selection>,
@@ -260,13 +261,12 @@ fn menu(
         return Ok(());
     };
     // the net changed shape under it (an undo, a load): close
-    let net = model.scene.design.net();
-    if cell.0 >= net.rows() || cell.1 >= net.cols() || handles.edit_depth != 0 {
+    let shape = (patch.structure().rows, patch.structure().cols);
+    if cell.0 >= shape.0 || cell.1 >= shape.1 || handles.edit_depth != 0 {
         menu.open = None;
         return Ok(());
     }
     let ctx = contexts.ctx_mut()?;
-    let shape = (net.rows(), net.cols());
     let mut chosen = None;
     let area = egui::Area::new(egui::Id::new("arrow_menu"))
         .order(egui::Order::Foreground)
@@ -302,7 +302,7 @@ fn menu(
         menu.open = None;
     }
     if let Some(a) = chosen {
-        apply(a, cell, &model, &mut edits, &mut selection);
+        apply(a, cell, shape, &mut edits, &mut selection);
         menu.open = None;
     }
     Ok(())

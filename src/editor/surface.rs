@@ -3,7 +3,8 @@
 //! are patched in place, anything else rebuilds the Bevy mesh. Lights.
 
 use super::interaction::EditorSet;
-use crate::ecs::{Model, SurfaceChange, SurfaceChanges, SurfaceData};
+use crate::ecs::patch::PatchRef;
+use crate::ecs::{SurfaceChange, SurfaceChanges, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
@@ -80,7 +81,7 @@ fn setup(
 fn sync_mesh(
     meter: Res<crate::ecs::meter::CpuMeter>,
     data: Res<SurfaceData>,
-    model: Res<Model>,
+    patch: PatchRef,
     mut changes: SurfaceChanges,
     mut shown: ResMut<ShownSurface>,
     mut meshes: ResMut<Assets<Mesh>>,
@@ -128,7 +129,7 @@ fn sync_mesh(
         return;
     }
     *mesh = to_bevy_mesh(points, &data.normals, &data.indices);
-    if model.scene.mirror {
+    if patch.structure().mirror {
         mesh.insert_attribute(
             Mesh::ATTRIBUTE_COLOR,
             mirror_shades(data.points.rows(), cols),

@@ -240,35 +240,20 @@ impl Scene {
     /// Whether the control tangents are interpolated (the option is on and
     /// the scheme approximates: Catmull–Clark or Doo–Sabin).
     pub fn interpolates_tangents(&self) -> bool {
-        self.interpolate_tangents
-            && streamline_kernel::levels::tangent_interpolation::applies(self.design.scheme())
+        interpolates(&self.design, self.interpolate_tangents)
     }
 
     /// The design the levels are built from: the designer's, or with
     /// [`Scene::interpolate_tangents`] the net whose limit passes through the
     /// designer's interior tangents (within 1e-12 rad).
     pub fn effective_design(&self) -> Design {
-        let mut d = self.design.clone();
-        if self.interpolates_tangents() {
-            let net = streamline_kernel::levels::tangent_interpolation::interpolate_net(
-                d.scheme(),
-                d.order(),
-                self.design.net(),
-                1e-12,
-                2000,
-            )
-            .net;
-            d.set_net(&net)
-                .expect("the interpolated net has the design's shape, and unit tangents");
-        }
-        d
+        effective_design(&self.design, self.interpolate_tangents)
     }
 
     /// The design the levels are built from: [`Scene::effective_design`],
     /// doubled when mirrored (`docs/math.md §9`).
     pub fn shown_design(&self) -> Result<Design, KernelError> {
-        let d = self.effective_design();
-        if self.mirror { d.mirrored() } else { Ok(d) }
+        shown_design(&self.design, self.interpolate_tangents, self.mirror)
     }
 
     /// The deepest level the scene needs.
@@ -514,4 +499,40 @@ impl Scene {
             .indentor("    ".to_string());
         ron::ser::to_string_pretty(&self.to_file(), cfg).expect("scene serialises")
     }
+}
+
+/// Whether `design`'s control tangents are interpolated: `interpolate` is on
+/// and the scheme approximates (Catmull–Clark or Doo–Sabin, docs/math.md §7).
+pub fn interpolates(design: &Design, interpolate: bool) -> bool {
+    interpolate && streamline_kernel::levels::tangent_interpolation::applies(design.scheme())
+}
+
+/// The design the levels are built from: `design`, or when it
+/// [`interpolates`] the net whose limit passes through its interior tangents
+/// (within 1e-12 rad, docs/math.md §7).
+pub fn effective_design(design: &Design, interpolate: bool) -> Design {
+    let mut d = design.clone();
+    if interpolates(design, interpolate) {
+        let net = streamline_kernel::levels::tangent_interpolation::interpolate_net(
+            d.scheme(),
+            d.order(),
+            design.net(),
+            1e-12,
+            2000,
+        )
+        .net;
+        d.set_net(&net)
+            .expect("the interpolated net has the design's shape, and unit tangents");
+    }
+    d
+}
+
+/// [`effective_design`], doubled when `mirror` is on (`docs/math.md §9`).
+pub fn shown_design(
+    design: &Design,
+    interpolate: bool,
+    mirror: bool,
+) -> Result<Design, KernelError> {
+    let d = effective_design(design, interpolate);
+    if mirror { d.mirrored() } else { Ok(d) }
 }

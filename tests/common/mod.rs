@@ -15,7 +15,7 @@ pub fn points(app: &App) -> Grid<DVec3> {
 
 /// The model's scene.
 pub fn scene(app: &App) -> Scene {
-    app.world().resource::<ecs::Model>().scene.clone()
+    ecs::patch::scene(app.world())
 }
 
 /// The largest distance between two grids of the same shape.

@@ -17,7 +17,7 @@ pub(super) type Marks = HashMap<String, Grid<DVec3>>;
 /// What the expectations read in the app.
 struct Now<'w> {
     surface: &'w SurfaceData,
-    model: &'w Model,
+    scene: crate::scene::Scene,
     stats: &'w Stats,
     history: &'w History,
 }
@@ -34,7 +34,7 @@ pub(super) fn check(
     let w = app.world();
     let now = Now {
         surface: w.resource::<SurfaceData>(),
-        model: w.resource::<Model>(),
+        scene: crate::ecs::patch::try_scene(w)?,
         stats: w.resource::<Stats>(),
         history: w.resource::<History>(),
     };
@@ -71,7 +71,7 @@ pub(super) fn check(
             row,
             length,
             tolerance,
-        } => streamline_length(now.model, *row, length, tolerance),
+        } => streamline_length(&now.scene, *row, length, tolerance),
         Expect::ExpectMirrorSymmetric { tolerance } => mirror_symmetric(&now, tolerance),
         Expect::ExpectShifted {
             mark,
@@ -261,7 +261,7 @@ fn scene(now: &Now, x: &Expect) -> Result<String, String> {
     else {
         unreachable!("scene is called for ExpectScene only")
     };
-    let s = &now.model.scene;
+    let s = &now.scene;
     let d = &s.design;
     Fields(Vec::new())
         .shown("display depth", display_depth, s.display_depth)
@@ -381,12 +381,12 @@ fn shifted(
 
 /// `ExpectStreamlineLength`: control row `row`'s streamline length.
 fn streamline_length(
-    model: &Model,
+    scene: &crate::scene::Scene,
     row: usize,
     length: &Finite,
     tolerance: &Finite,
 ) -> Result<String, String> {
-    let d = &model.scene.design;
+    let d = &scene.design;
     let got = d
         .streamline_length(row)
         .ok_or_else(|| format!("no control row {row}: the net has {} rows", d.net().rows()))?;
@@ -400,7 +400,7 @@ fn streamline_length(
 
 /// `ExpectMirrorSymmetric`: the surface shown equals its reflection.
 fn mirror_symmetric(now: &Now, tolerance: &Finite) -> Result<String, String> {
-    let scene = &now.model.scene;
+    let scene = &now.scene;
     if !scene.mirror {
         return Err("the mirror is off".into());
     }

@@ -9,7 +9,8 @@
 
 use crate::ecs::authoring::AuthorEdit;
 use crate::ecs::components::{LevelData, SubdivisionLevel};
-use crate::ecs::{Edit, Model, SurfaceChanges};
+use crate::ecs::patch::PatchRef;
+use crate::ecs::{Edit, SurfaceChanges};
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
 use streamline_kernel::finetune::streamline::point_by_fraction;
@@ -312,14 +313,14 @@ pub fn segment_distance(p: Vec2, a: Vec2, b: Vec2) -> f32 {
 /// the mirror on (level 0 of the doubled net, `docs/math.md §9`) its first
 /// `reflected` rows are the reflected copies, returned apart.
 fn level_handles(
-    model: &Model,
+    patch: &PatchRef,
     l: &LevelState,
     scale: f64,
     initial: &streamline_kernel::streamline::initial_curve::InitialCurve,
     reflected: usize,
 ) -> (Vec<Handle>, Vec<Handle>) {
     let (rows, cols) = l.shape();
-    let tuning = model.scene.tuning.as_ref();
+    let tuning = patch.tuning();
     let s = &l.params.s;
     let span: f64 = (0..rows)
         .map(|r| (s.get(r, cols - 1) - s.get(r, 0)) / (cols.max(2) - 1) as f64)
@@ -330,7 +331,7 @@ fn level_handles(
     place_rows_tuned(initial, &l.tangents, &l.params, tuning, &mut all);
     let mut out = Vec::with_capacity(rows * cols);
     let mut copies = Vec::with_capacity(reflected * cols);
-    let net = model.scene.design.net();
+    let net = patch.design().net();
     for r in 0..rows {
         let pts = &all[r * (cols + 1)..(r + 1) * (cols + 1)];
         for c in 0..cols {
@@ -367,8 +368,8 @@ fn level_handles(
 /// The initial curve's control tangents, each at the curve's point at its
 /// Greville abscissa `ξ_i = (u_{i+1} + … + u_{i+k−1}) / (k − 1)` of the QI
 /// knot vector (where the QI curve's tangent is nearest `t_i`), drawn `length` long.
-fn initial_handles(model: &Model, length: f64) -> Vec<Handle> {
-    let curve = model.scene.design.initial();
+fn initial_handles(patch: &PatchRef, length: f64) -> Vec<Handle> {
+    let curve = patch.design().initial();
     let qi = curve.qi();
     let (k, u) = (qi.order(), qi.knots());
     qi.tangents()
@@ -390,13 +391,13 @@ fn initial_handles(model: &Model, length: f64) -> Vec<Handle> {
 /// surface moves their base points: fine tuning, the initial curve).
 pub(super) fn rebuild(
     meter: Res<crate::ecs::meter::CpuMeter>,
-    model: Res<Model>,
+    patch: PatchRef,
     levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
     mut surface: SurfaceChanges,
     mut handles: ResMut<Handles>,
 ) {
     let _meter = meter.start();
-    let edit = model.scene.edit_depth;
+    let edit = patch.structure().edit_depth;
     let moved = surface.take().any();
     let changed = levels
         .iter()
@@ -410,8 +411,9 @@ pub(super) fn rebuild(
     };
     // mirrored: the levels are the doubled design's, placed on its initial
     // curve (the scene's own, reflected for the other half)
-    let shown = if model.scene.mirror {
-        match model.scene.shown_design() {
+    let st = patch.structure();
+    let shown = if st.mirror {
+        match crate::scene::model::shown_design(patch.design(), st.interpolate_tangents, true) {
             Ok(d) => Some(d),
             Err(_) => return,
         }
@@ -420,12 +422,12 @@ pub(super) fn rebuild(
     };
     let initial = shown
         .as_ref()
-        .map_or(model.scene.design.initial(), |d| d.initial());
+        .map_or(patch.design().initial(), |d| d.initial());
     let reflected = match &shown {
-        Some(_) => model.scene.design.net().rows().saturating_sub(1),
+        Some(_) => st.rows.saturating_sub(1),
         None => 0,
     };
-    let (mut controls, mut mirrored) = level_handles(&model, &base.0, 0.7, initial, reflected);
+    let (mut controls, mut mirrored) = level_handles(&patch, &base.0, 0.7, initial, reflected);
     // long intervals (a 3×3 net) would give arrows as large as the scene: cap
     // them at a tenth of the control points' extent
     let [lo, hi] = streamline_kernel::streamline::surface_mesh::bounds(
@@ -444,7 +446,7 @@ pub(super) fn rebuild(
     } else {
         match find(edit) {
             Some(d) => {
-                let (mut h, _) = level_handles(&model, &d.0, 0.8, initial, 0);
+                let (mut h, _) = level_handles(&patch, &d.0, 0.8, initial, 0);
                 clamp(&mut h);
                 h
             }
@@ -453,9 +455,9 @@ pub(super) fn rebuild(
     };
     // the initial curve's arrows: a good part of its spacing between
     // tangents, so they stand out of the column of control arrows there
-    let curve = model.scene.design.initial();
+    let curve = patch.design().initial();
     let spacing = curve.length() / (curve.qi().tangents().len().max(2) - 1) as f64;
-    let initial = initial_handles(&model, (0.6 * spacing).min(2.0 * cap).max(1e-6));
+    let initial = initial_handles(&patch, (0.6 * spacing).min(2.0 * cap).max(1e-6));
     *handles = Handles {
         controls,
         editable,

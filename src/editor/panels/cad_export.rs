@@ -40,7 +40,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut CadExportSection, files
             format: Format::Step,
             relative: 1e-4,
             degree: 3,
-            path: files::suggested(&p.model, "step"),
+            path: files::suggested(&p.model, p.patch.name(), "step"),
         });
     egui::CollapsingHeader::new("CAD export")
         .default_open(true)
@@ -57,7 +57,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut CadExportSection, files
                         .clicked()
                     {
                         f.format = format;
-                        f.path = files::suggested(&p.model, ext);
+                        f.path = files::suggested(&p.model, p.patch.name(), ext);
                     }
                 }
             });

@@ -39,7 +39,10 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, c: &CurvatureSection) {
         return;
     };
     let level = |d: u32| c.levels.iter().find(|(l, _)| l.0 == d).map(|(_, d)| d);
-    let (edit, depth) = (p.model.scene.edit_depth, p.model.scene.display_depth);
+    let (edit, depth) = (
+        p.patch.structure().edit_depth,
+        p.patch.structure().display_depth,
+    );
     let (Some(e), Some(d)) = (level(edit), level(depth)) else {
         return;
     };

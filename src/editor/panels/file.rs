@@ -77,14 +77,14 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
             .on_hover_text("Save to the scene's file (Ctrl+S); atomic and verified")
             .clicked()
         {
-            files::save(&p.model, &mut s.files, &mut p.edits);
+            files::save(&p.model, p.patch.name(), &mut s.files, &mut p.edits);
         }
         if ui
             .button("Save as…")
             .on_hover_text("Save under a new name (Ctrl+Shift+S)")
             .clicked()
         {
-            let start = files::suggested_path(&p.model, "ron");
+            let start = files::suggested_path(&p.model, p.patch.name(), "ron");
             files::browse(&mut s.files, PathAction::SaveAs, start, None);
         }
     });
@@ -104,7 +104,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
             ),
         ] {
             if ui.button(label).on_hover_text(tip).clicked() {
-                let start = files::suggested_path(&p.model, ext);
+                let start = files::suggested_path(&p.model, p.patch.name(), ext);
                 files::browse(&mut s.files, PathAction::Export(format), start, None);
             }
         }

@@ -16,7 +16,7 @@ use streamline_kernel::DVec3;
 const MAX_ORDER: usize = 8;
 
 pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
-    let design = &p.model.scene.design;
+    let design = &p.patch.design();
     let curve = design.initial();
     let n = curve.qi().tangents().len();
     let (cur_order, cur_length, cur_origin) = (curve.qi().order(), curve.length(), curve.origin());

@@ -39,7 +39,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
 }
 
 fn body(ui: &mut egui::Ui, p: &mut PanelCtx) {
-    let design = &p.model.scene.design;
+    let design = &p.patch.design();
     let rows = design.net().rows();
     let lengths: Vec<f64> = (0..rows)
         .map(|r| design.streamline_length(r).unwrap_or(0.0))
@@ -146,7 +146,7 @@ fn body(ui: &mut egui::Ui, p: &mut PanelCtx) {
             }
             if selected_row != Some(d.row) {
                 let col = p.selection.primary().map_or(0, |h| h.col);
-                p.select_cell((d.row, col.min(p.model.scene.design.net().cols() - 1)));
+                p.select_cell((d.row, col.min(p.patch.structure().cols - 1)));
             }
         }
         _ => ui.data_mut(|m| m.remove::<PointDrag>(drag_id)),
@@ -159,7 +159,7 @@ fn body(ui: &mut egui::Ui, p: &mut PanelCtx) {
                 let label = ui.selectable_label(selected_row == Some(row), format!("row {row}"));
                 if label.clicked() {
                     let col = p.selection.primary().map_or(0, |h| h.col);
-                    p.select_cell((row, col.min(p.model.scene.design.net().cols() - 1)));
+                    p.select_cell((row, col.min(p.patch.structure().cols - 1)));
                 }
                 let f = ui
                     .add(

@@ -156,10 +156,10 @@ fn file_menu(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut Sections) {
     });
     ui.separator();
     if entry(ui, "Save", SAVE, true) {
-        files::save(&p.model, &mut f.files, &mut p.edits);
+        files::save(&p.model, p.patch.name(), &mut f.files, &mut p.edits);
     }
     if entry(ui, "Save as…", SAVE_AS, true) {
-        let start = files::suggested_path(&p.model, "ron");
+        let start = files::suggested_path(&p.model, p.patch.name(), "ron");
         files::browse(&mut f.files, PathAction::SaveAs, start, None);
     }
     ui.menu_button("Export", |ui| {
@@ -171,7 +171,7 @@ fn file_menu(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut Sections) {
             (Format::Iges, "igs", "IGES B-spline surface…"),
         ] {
             if entry(ui, what, "", true) {
-                let start = files::suggested_path(&p.model, ext);
+                let start = files::suggested_path(&p.model, p.patch.name(), ext);
                 files::browse(&mut f.files, PathAction::Export(format), start, None);
             }
         }
@@ -206,7 +206,7 @@ fn edit_menu(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut Sections) {
     }
     ui.separator();
     let (rows, cols) = {
-        let net = p.model.scene.design.net();
+        let net = p.patch.design().net();
         (net.rows(), net.cols())
     };
     let cell = p.selection.primary().and_then(structure::control_cell);

@@ -165,8 +165,9 @@ impl Default for UiState {
 
 /// What every section reads, and how sections send edits.
 #[derive(SystemParam)]
-pub struct PanelCtx<'w> {
+pub struct PanelCtx<'w, 's> {
     pub model: Res<'w, Model>,
+    pub patch: crate::ecs::patch::PatchRef<'w, 's>,
     pub handles: Res<'w, Handles>,
     pub selection: ResMut<'w, Selection>,
     pub edits: MessageWriter<'w, EditMessage>,
@@ -212,7 +213,7 @@ pub struct OpenedScene {
 #[derive(Resource, Debug, Default)]
 pub struct SliderGroups(std::collections::HashMap<&'static str, u64>);
 
-impl PanelCtx<'_> {
+impl PanelCtx<'_, '_> {
     /// The primary selected handle's arrow, where the framing buttons and
     /// menu entries aim (`None` with nothing selected).
     pub fn selected_arrow(&self) -> Option<super::interaction::Handle> {
@@ -308,7 +309,7 @@ fn spawn_ui_camera(mut commands: Commands, mut settings: ResMut<bevy_egui::EguiG
 
 fn track_opened(
     meter: Res<crate::ecs::meter::CpuMeter>,
-    model: Res<Model>,
+    patch: crate::ecs::patch::PatchRef,
     log: Res<EditLog>,
     mut o: ResMut<OpenedScene>,
 ) {
@@ -320,7 +321,7 @@ fn track_opened(
             })
         });
     if o.net.is_none() || opened {
-        o.net = Some(model.scene.design.net().clone());
+        o.net = Some(patch.design().net().clone());
     }
     o.seen = log.frame;
 }
@@ -473,7 +474,7 @@ fn toolbar(ui: &mut egui::Ui, p: &mut PanelCtx, bar: &mut ToolbarSection) {
         ui.strong("Streamline Studio");
         let name = format!(
             "{}{}",
-            p.model.scene.name,
+            p.patch.name(),
             if p.model.unsaved { " •" } else { "" }
         );
         ui.label(egui::RichText::new(name).weak())

@@ -173,7 +173,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
     .header_response
     .on_hover_text("Turn the tangent about any axis by an angle; scale the length of its intervals");
     ui.data_mut(|d| d.insert_temp(id, input));
-    let has_detail = p.model.scene.details.contains_key(&(depth, row, col));
+    let has_detail = p.patch.details().contains_key(&(depth, row, col));
     if depth > 0 {
         if ui
             .add_enabled(has_detail, egui::Button::new("Reset (clear detail)"))

@@ -18,7 +18,7 @@ pub struct StatsSection<'w> {
 
 /// The section's rows: name, figure, tooltip.
 pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, &'static str)> {
-    let net = p.model.scene.design.net();
+    let net = p.patch.design().net();
     let s = &section.stats;
     let mut rows: Vec<(&'static str, String, &'static str)> = Vec::with_capacity(17);
     {

@@ -25,7 +25,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
 
 fn body(ui: &mut egui::Ui, p: &mut PanelCtx, fields: &mut IndexFields) {
     let (rows, cols) = {
-        let net = p.model.scene.design.net();
+        let net = p.patch.design().net();
         (net.rows(), net.cols())
     };
     ui.label(format!("Control net: {rows} rows × {cols} columns"))
@@ -112,7 +112,7 @@ fn body(ui: &mut egui::Ui, p: &mut PanelCtx, fields: &mut IndexFields) {
         });
     }
     ui.separator();
-    let mut mirror = p.model.scene.mirror;
+    let mut mirror = p.patch.structure().mirror;
     if ui
         .checkbox(&mut mirror, "Mirror symmetry")
         .on_hover_text(
@@ -125,7 +125,7 @@ fn body(ui: &mut egui::Ui, p: &mut PanelCtx, fields: &mut IndexFields) {
     {
         p.send(Edit::Author(AuthorEdit::SetMirror(mirror)));
     }
-    if p.model.scene.mirror {
+    if p.patch.structure().mirror {
         ui.label(
             egui::RichText::new("Mirrored: row 0 is the seam; the dimmed half follows the design.")
                 .weak()

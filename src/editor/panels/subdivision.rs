@@ -10,7 +10,7 @@ use streamline_kernel::{BlendOrder, SurfaceScheme};
 const MAX_DEPTH: u32 = 7;
 
 pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
-    let (cur_scheme, cur_order) = (p.model.scene.design.scheme(), p.model.scene.design.order());
+    let (cur_scheme, cur_order) = (p.patch.design().scheme(), p.patch.design().order());
     let mut scheme = cur_scheme;
     let omega = match scheme {
         SurfaceScheme::Kobbelt { omega } => omega,
@@ -52,7 +52,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
     if order != cur_order {
         p.send(Edit::SetBlendOrder(order));
     }
-    let mut depth = p.model.scene.display_depth;
+    let mut depth = p.patch.structure().display_depth;
     if ui
         .add(egui::Slider::new(&mut depth, 0..=MAX_DEPTH).text("display depth"))
         .on_hover_text(
@@ -62,7 +62,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
     {
         p.send(Edit::SetDisplayDepth(depth));
     }
-    let mut edit = p.model.scene.edit_depth;
+    let mut edit = p.patch.structure().edit_depth;
     if ui
         .add(egui::Slider::new(&mut edit, 0..=MAX_DEPTH).text("edit depth"))
         .on_hover_text("The level whose tangents the arrows edit: 0 moves control tangents; deeper levels add multiresolution details (docs/math.md §5)")
@@ -70,9 +70,9 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
     {
         p.send(Edit::SetEditDepth(edit));
     }
-    let mut interp = p.model.scene.interpolate_tangents;
+    let mut interp = p.patch.structure().interpolate_tangents;
     let approximating =
-        streamline_kernel::levels::tangent_interpolation::applies(p.model.scene.design.scheme());
+        streamline_kernel::levels::tangent_interpolation::applies(p.patch.design().scheme());
     if ui
         .add_enabled(
             approximating,
@@ -84,7 +84,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
     {
         p.send(Edit::SetInterpolateTangents(interp));
     }
-    let details = p.model.scene.details.len();
+    let details = p.patch.details().len();
     ui.label(egui::RichText::new(format!("{details} multiresolution details")).weak())
         .on_hover_text(
             "Tangents turned at deeper levels, kept in the frame of the subdivided tangent",

@@ -27,7 +27,7 @@ fn identity(along: usize, across: usize, constraint: Constraint) -> SurfaceTunin
 }
 
 pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
-    let tuning = p.model.scene.tuning.clone();
+    let tuning = p.patch.tuning().cloned();
     let mut on = tuning.is_some();
     if ui
         .checkbox(&mut on, "scale the derivative by α(s, t)")
@@ -130,10 +130,10 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
 
 /// `α` along one streamline, `v` from the selected handle's row (or the middle).
 fn plot(ui: &mut egui::Ui, p: &PanelCtx, t: &SurfaceTuning) {
-    let rows = p.model.scene.design.net().rows();
+    let rows = p.patch.design().net().rows();
     let v = match p.selection.cell() {
         Some((row, _)) if p.handles.edit_depth == 0 => {
-            let ts = &p.model.scene.design.params().t;
+            let ts = &p.patch.design().params().t;
             let (lo, hi) = ts
                 .iter()
                 .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
