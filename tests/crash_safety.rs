@@ -100,7 +100,7 @@ fn autosave_writer_child() {
     };
     use streamline_studio::ecs::Model;
     use streamline_studio::editor::autosave::write_recovery;
-    use streamline_studio::editor::files::EditorDirs;
+    use streamline_studio::editor::document::files::EditorDirs;
     let dirs = EditorDirs { home: home.into() };
     let (a, b) = two_large_scenes();
     let mut models = [Model::new(a), Model::new(b)];
@@ -133,7 +133,7 @@ fn two_large_scenes() -> (Scene, Scene) {
 #[test]
 fn autosave_survives_sigkill() {
     use streamline_studio::editor::autosave::pending_recovery;
-    use streamline_studio::editor::files::{Dialog, EditorDirs};
+    use streamline_studio::editor::document::files::{Dialog, EditorDirs};
     let home =
         std::env::temp_dir().join(format!("streamline-autosave-kill-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&home);

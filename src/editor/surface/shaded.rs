@@ -2,14 +2,14 @@
 //! the surface's changes rewrote since the last copy ([`SurfaceChanges`])
 //! are patched in place, anything else rebuilds the Bevy mesh. Lights.
 
-use super::interaction::EditorSet;
+use super::super::interaction::EditorSet;
 use crate::ecs::{Model, SurfaceChange, SurfaceChanges, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
 
-use super::coords::kernel_to_view;
+use super::super::coords::kernel_to_view;
 
 /// Marks the surface mesh entity.
 #[derive(Component)]
