@@ -23,7 +23,7 @@ pub struct Cli {
     /// 2, 4 or 8, or the nearest the graphics adapter offers [default: off on
     /// a software renderer such as llvmpipe, which then draws about four times
     /// as many frames; 4 on a GPU].
-    #[arg(long, value_parser = crate::editor::antialias::parse_samples)]
+    #[arg(long, value_parser = crate::editor::view::antialias::parse_samples)]
     pub msaa: Option<u32>,
 }
 

@@ -71,7 +71,7 @@ pub struct ScreenshotArgs {
     /// Multisample anti-aliasing of the 3D views: 1 (off), 2, 4 or 8, or the
     /// nearest the adapter offers [default: off on a software renderer, 4 on a
     /// GPU, as the editor].
-    #[arg(long, value_parser = editor::antialias::parse_samples)]
+    #[arg(long, value_parser = editor::view::antialias::parse_samples)]
     msaa: Option<u32>,
 }
 

@@ -3,7 +3,7 @@
 //! start the editor offers to recover it when it is newer than the scene's
 //! file. A save removes it; so does discarding changes on quit.
 
-use super::files::{Dialog, EditorDirs, FileUi};
+use super::document::files::{Dialog, EditorDirs, FileUi};
 use super::screenshot::ScreenshotRequest;
 use crate::ecs::Model;
 use crate::ecs::patch::PatchRef;

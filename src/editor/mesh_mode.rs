@@ -9,7 +9,7 @@
 
 use super::coords::kernel_to_view;
 use super::interaction::{EditorMode, FrameRequest};
-use super::surface::SurfaceEntity;
+use super::surface::shaded::SurfaceEntity;
 use crate::scene::job::{Job, Poll, Progress};
 use crate::scene::obj;
 use bevy::asset::RenderAssetUsages;

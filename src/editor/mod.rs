@@ -4,40 +4,37 @@
 //! top-level [`EditorPlugin`] only composes one plugin per feature, around
 //! the [`interaction`] core that owns handles, selection, the drag and the
 //! editor's mode, and whose [`interaction::EditorSet`]s order the rest.
+//!
+//! The features stand in rooms by concern, each importing only the rooms
+//! below it (no circle: `tests/module_graph.rs`). From the ground up: `coords`
+//! (the kernel's axes and Bevy's) and the [`interaction`] core; `surface`
+//! (the shaded surface and its analysis displays); [`mesh_mode`] (the Loop
+//! mesh); [`document`] (files, new design, the file browser); `handles`
+//! (arrows, picking, box selection, the sphere view, structure edits) and
+//! [`view`] (camera, pacing, anti-aliasing, frame timing, overlay); `panels`;
+//! then the screenshot run (`screenshot`) and [`autosave`], which read the rest.
 
-mod analysis;
-pub mod antialias;
-mod arrows;
 pub mod autosave;
-mod box_select;
-mod camera;
 mod coords;
-mod deviation;
-mod file_browser;
-pub mod files;
-mod frame_timing;
+pub mod document;
+mod handles;
 pub mod interaction;
 pub mod mesh_mode;
-pub mod new_design;
-mod overlay;
-pub mod pacing;
 mod panels;
-mod picking;
 mod screenshot;
-mod sphere_view;
-mod structure;
 mod surface;
+pub mod view;
 
 use crate::ecs::{Model, ModelPlugin};
 use crate::scene::Scene;
-pub use analysis::{AnalysisSettings, SurfaceMode};
 use bevy::prelude::*;
 use bevy::window::WindowResolution;
-pub use files::EditorDirs;
+pub use document::files::EditorDirs;
 pub use interaction::Selection;
 pub use panels::{PanelName, UiState};
 pub use screenshot::ScreenshotRequest;
 use std::path::PathBuf;
+pub use surface::analysis::{AnalysisSettings, SurfaceMode};
 
 /// How to open the editor.
 pub struct EditorOptions {
@@ -62,26 +59,26 @@ impl Plugin for EditorPlugin {
     fn build(&self, app: &mut App) {
         app.add_plugins((
             interaction::InteractionPlugin,
-            surface::SurfacePlugin,
-            overlay::OverlayPlugin,
-            arrows::ArrowsPlugin,
-            picking::PickingPlugin,
-            sphere_view::SphereViewPlugin,
-            camera::OrbitCameraPlugin,
-            analysis::AnalysisPlugin,
-            antialias::AntiAliasPlugin,
-            frame_timing::FrameTimingPlugin,
+            surface::shaded::SurfacePlugin,
+            view::overlay::OverlayPlugin,
+            handles::arrows::ArrowsPlugin,
+            handles::picking::PickingPlugin,
+            handles::sphere_view::SphereViewPlugin,
+            view::camera::OrbitCameraPlugin,
+            surface::analysis::AnalysisPlugin,
+            view::antialias::AntiAliasPlugin,
+            view::frame_timing::FrameTimingPlugin,
             panels::PanelPlugin,
-            files::FilesPlugin,
+            document::files::FilesPlugin,
             autosave::AutosavePlugin,
             mesh_mode::MeshModePlugin,
             screenshot::ScreenshotPlugin,
         ))
         .add_plugins((
-            new_design::NewDesignPlugin,
-            structure::StructurePlugin,
-            box_select::BoxSelectPlugin,
-            file_browser::FileBrowserPlugin,
+            document::new_design::NewDesignPlugin,
+            handles::structure::StructurePlugin,
+            handles::box_select::BoxSelectPlugin,
+            document::file_browser::FileBrowserPlugin,
         ));
     }
 }
@@ -163,7 +160,7 @@ pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
             resolution: WindowResolution::new(opts.size.0, opts.size.1),
             ..default()
         }),
-        // closing asks about unsaved changes first (files.rs)
+        // closing asks about unsaved changes first (document/files.rs)
         close_when_requested: false,
         ..default()
     }))
@@ -172,8 +169,8 @@ pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
     .add_plugins(ModelPlugin::new(opts.scene))
     .add_plugins(crate::ecs::runner::ScriptRunPlugin)
     .insert_resource(opts.dirs)
-    .insert_resource(antialias::AntiAliasing::new(opts.msaa))
-    .add_plugins(pacing::PacingPlugin {
+    .insert_resource(view::antialias::AntiAliasing::new(opts.msaa))
+    .add_plugins(view::pacing::PacingPlugin {
         continuous: opts.screenshot.is_some(),
     })
     .add_plugins(EditorPlugin);

@@ -2,12 +2,12 @@
 //! display, a selected handle), render a few frames after the first build,
 //! save the primary window to a PNG, exit.
 
-use super::analysis::{AnalysisSettings, SurfaceMode};
 use super::coords::to_view;
+use super::handles::sphere_view::{SphereCamera, SubdividedPoints};
 use super::interaction::{HandleId, Handles, MainCamera, Selection};
 use super::panels::{PanelName, UiState};
-use super::sphere_view::{SphereCamera, SubdividedPoints};
-use super::surface::{ShownSurface, SurfaceEntity};
+use super::surface::analysis::{AnalysisSettings, SurfaceMode};
+use super::surface::shaded::{ShownSurface, SurfaceEntity};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::{History, Model, Stats, SurfaceData};
 use bevy::mesh::VertexAttributeValues;
@@ -277,7 +277,7 @@ fn drive(
     (model, patch): (Res<Model>, crate::ecs::patch::PatchRef),
     history: Res<History>,
     stats: Res<Stats>,
-    timing: Res<super::frame_timing::FrameTiming>,
+    timing: Res<super::view::frame_timing::FrameTiming>,
     selection: Res<Selection>,
     arrows: Res<Handles>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,

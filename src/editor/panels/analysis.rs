@@ -1,8 +1,8 @@
 //! Analysis: curvature comb, Gaussian and mean curvature maps (with legend and
 //! range), zebra stripes, the deviation map (with its fit's figures).
 
-use crate::editor::analysis::{AnalysisSettings, CurvatureField, SurfaceMode, diverging};
-use crate::editor::deviation::{BANDS, DeviationField, FRAME_BUDGET_S};
+use crate::editor::surface::analysis::{AnalysisSettings, CurvatureField, SurfaceMode, diverging};
+use crate::editor::surface::deviation::{BANDS, DeviationField, FRAME_BUDGET_S};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::egui;

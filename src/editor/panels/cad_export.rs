@@ -6,7 +6,7 @@
 
 use super::PanelCtx;
 use crate::ecs::Edit;
-use crate::editor::files::{self, FileUi, PathAction};
+use crate::editor::document::files::{self, FileUi, PathAction};
 use crate::scene::export::Format;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;

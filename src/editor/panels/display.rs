@@ -1,9 +1,9 @@
 //! Display: which arrows, labels, lines and views are drawn.
 
-use crate::editor::antialias::AntiAliasing;
+use crate::editor::handles::sphere_view::SphereSettings;
 use crate::editor::interaction::HandleSettings;
-use crate::editor::overlay::OverlaySettings;
-use crate::editor::sphere_view::SphereSettings;
+use crate::editor::view::antialias::AntiAliasing;
+use crate::editor::view::overlay::OverlaySettings;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::egui;

@@ -2,8 +2,8 @@
 
 use super::PanelCtx;
 use crate::ecs::runner::ScriptRun;
-use crate::editor::files::{self, FileUi, PathAction, Pending};
-use crate::editor::new_design::NewDesignForm;
+use crate::editor::document::files::{self, FileUi, PathAction, Pending};
+use crate::editor::document::new_design::NewDesignForm;
 use crate::scene::builtin;
 use crate::scene::export::Format;
 use bevy::ecs::system::SystemParam;

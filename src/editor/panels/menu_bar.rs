@@ -6,9 +6,9 @@
 
 use super::{PanelCtx, Sections};
 use crate::ecs::Edit;
-use crate::editor::analysis::SurfaceMode;
-use crate::editor::files::{self, PathAction, Pending};
-use crate::editor::structure::{self, StructureAction};
+use crate::editor::document::files::{self, PathAction, Pending};
+use crate::editor::handles::structure::{self, StructureAction};
+use crate::editor::surface::analysis::SurfaceMode;
 use crate::scene::builtin;
 use crate::scene::export::Format;
 use bevy::prelude::*;

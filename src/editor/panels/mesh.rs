@@ -2,7 +2,7 @@
 //! surface (method, tolerance, depth shown), read the iteration count and the
 //! errors, export the surface or its control mesh, close.
 
-use crate::editor::files::{self, FileUi, PathAction};
+use crate::editor::document::files::{self, FileUi, PathAction};
 use crate::editor::mesh_mode::MeshView;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;

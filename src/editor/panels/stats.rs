@@ -3,7 +3,7 @@
 use super::PanelCtx;
 use crate::ecs::Stats;
 use crate::ecs::warnings::BuildWarnings;
-use crate::editor::frame_timing::FrameTiming;
+use crate::editor::view::frame_timing::FrameTiming;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::egui;

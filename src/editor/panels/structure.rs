@@ -5,7 +5,7 @@
 use super::PanelCtx;
 use crate::ecs::Edit;
 use crate::ecs::authoring::AuthorEdit;
-use crate::editor::structure::{self, KEYS, StructureAction};
+use crate::editor::handles::structure::{self, KEYS, StructureAction};
 use bevy_egui::egui;
 use streamline_kernel::authoring::Axis;
 

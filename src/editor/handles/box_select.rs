@@ -4,8 +4,8 @@
 //! selection. Dragging one of the selected arrows then turns them all by the
 //! same rotation (the interaction core's drag), one undo step.
 
-use super::coords::to_view;
-use super::interaction::{
+use super::super::coords::to_view;
+use super::super::interaction::{
     Drag, EditorMode, EditorSet, HandleSettings, Handles, MainCamera, Selection, SphereArea,
 };
 use bevy::prelude::*;

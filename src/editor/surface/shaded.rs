@@ -2,7 +2,7 @@
 //! the surface's changes rewrote since the last copy ([`SurfaceChanges`])
 //! are patched in place, anything else rebuilds the Bevy mesh. Lights.
 
-use super::interaction::EditorSet;
+use super::super::interaction::EditorSet;
 use crate::ecs::patch::PatchRef;
 use crate::ecs::{SurfaceChange, SurfaceChanges, SurfaceData};
 use bevy::asset::RenderAssetUsages;
@@ -10,7 +10,7 @@ use bevy::mesh::{Indices, PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
 
-use super::coords::kernel_to_view;
+use super::super::coords::kernel_to_view;
 
 /// Marks the surface mesh entity.
 #[derive(Component)]

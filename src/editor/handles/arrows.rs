@@ -7,8 +7,8 @@
 //! (cone, ball, cross, ring, repeating, as the paper's prototype gives each
 //! index its own head), and a number label names it.
 
-use super::coords::to_view;
-use super::interaction::{
+use super::super::coords::to_view;
+use super::super::interaction::{
     Drag, EditorMode, EditorSet, Handle, HandleSettings, Handles, MainCamera, Selection,
 };
 use bevy::prelude::*;

@@ -4,7 +4,7 @@
 //! everything, `F` frames the selected handle. Viewport input is ignored while
 //! the pointer is over an egui panel.
 
-use super::interaction::{
+use super::super::interaction::{
     EditorSet, FrameRequest, Handles, MainCamera, OrbitCamera, SceneBounds, Selection, ViewArea,
 };
 use crate::ecs::patch::PatchRef;
@@ -29,7 +29,8 @@ impl Plugin for OrbitCameraPlugin {
                     follow_scene_view,
                     orbit.run_if(not(egui_wants_any_pointer_input)),
                     keys.run_if(
-                        not(egui_wants_any_keyboard_input).and_then(super::files::no_file_dialog),
+                        not(egui_wants_any_keyboard_input)
+                            .and_then(super::super::document::files::no_file_dialog),
                     ),
                     apply_frame_and_view,
                 )

@@ -10,8 +10,8 @@
 //! (after the unsaved-changes question; a failed open keeps the current
 //! scene), a script to the script runner, a mesh to the Loop mesh view.
 
+use super::super::mesh_mode::MeshView;
 use super::files::{self, Browse, FileUi, PathAction, Pending};
-use super::mesh_mode::MeshView;
 use crate::ecs::runner::ScriptRun;
 use crate::ecs::{Edit, EditMessage, Model};
 use bevy::ecs::system::SystemParam;

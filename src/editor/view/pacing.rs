@@ -6,8 +6,8 @@
 //! a drag, a mesh being opened or a script is under way. Screenshot runs (and
 //! the GUI tests built on them) draw continuously, as they count frames.
 
-use super::interaction::Drag;
-use super::mesh_mode::MeshView;
+use super::super::interaction::Drag;
+use super::super::mesh_mode::MeshView;
 use crate::ecs::EditLog;
 use crate::ecs::runner::ScriptRun;
 use bevy::input::keyboard::KeyboardInput;

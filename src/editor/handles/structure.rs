@@ -6,7 +6,7 @@
 //! control arrow ([`KEYS`]). Each sends one `Insert`/`Delete` edit: one undo
 //! step, and the new row or column is selected.
 
-use super::interaction::{EditorMode, EditorSet, HandleId, HandleKind, Handles, Selection};
+use super::super::interaction::{EditorMode, EditorSet, HandleId, HandleKind, Handles, Selection};
 use crate::ecs::authoring::AuthorEdit;
 use crate::ecs::patch::PatchRef;
 use crate::ecs::{Edit, EditMessage};
@@ -164,7 +164,7 @@ impl Plugin for StructurePlugin {
                     keys.run_if(
                         not(egui_wants_any_keyboard_input)
                             .and_then(in_state(EditorMode::Streamline))
-                            .and_then(super::files::no_file_dialog),
+                            .and_then(super::super::document::files::no_file_dialog),
                     ),
                 )
                     .in_set(EditorSet::Input),

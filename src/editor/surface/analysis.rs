@@ -5,10 +5,10 @@
 //! in a texture through the vertex's `u` coordinate, so stripes and colour bands
 //! stay crisp inside large triangles.
 
-use super::coords::to_view;
+use super::super::coords::to_view;
+use super::super::interaction::{EditorSet, MainCamera, OrbitCamera, SceneBounds};
 use super::deviation::{BANDS, DeviationField, band_u};
-use super::interaction::{EditorSet, MainCamera, OrbitCamera, SceneBounds};
-use super::surface::{ShadedMaterial, SurfaceEntity};
+use super::shaded::{ShadedMaterial, SurfaceEntity};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::exchange::ExportSettings;
 use crate::ecs::{SurfaceChanges, SurfaceData};

@@ -1,7 +1,7 @@
 //! Lines over the 3D view: streamlines, red x and green y axes, a ground grid.
 
-use super::coords::to_view;
-use super::interaction::{EditorMode, EditorSet, SceneBounds};
+use super::super::coords::to_view;
+use super::super::interaction::{EditorMode, EditorSet, SceneBounds};
 use crate::ecs::SurfaceData;
 use bevy::prelude::*;
 use bevy_state::prelude::in_state;

@@ -7,8 +7,8 @@
 //! each step into an edit of the drag's undo group (one undo step, the
 //! surface following in the same frame) and Esc into `CancelGroup`.
 
-use super::coords::{from_view, to_view};
-use super::interaction::{
+use super::super::coords::{from_view, to_view};
+use super::super::interaction::{
     Drag, DragKind, DragTo, EditorMode, EditorSet, HandlePressed, HandleSettings, Handles,
     MainCamera, Selection, SphereArea,
 };

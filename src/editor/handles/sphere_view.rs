@@ -5,8 +5,8 @@
 //! depth in red, and the subdivided tangents of the display depth as small
 //! points. Dragging a point moves that tangent to the point under the pointer.
 
-use super::coords::{from_view, to_view};
-use super::interaction::{
+use super::super::coords::{from_view, to_view};
+use super::super::interaction::{
     Drag, DragKind, DragTo, EditorMode, EditorSet, HandlePressed, HandleSettings, Handles,
     MainCamera, OrbitCamera, Selection, SphereArea, ViewArea,
 };
