@@ -165,3 +165,40 @@ fn picking_finds_the_nearest_shown_handle() {
     let back = handles.pick_on_sphere(&settings, at, -a.dir, sphere, 10.0);
     assert!(back.is_none_or(|g| g.dir.dot(-a.dir) >= 0.0));
 }
+
+/// Issue 26: the selected handles' entities carry the `Selected` marker, and
+/// only they.
+#[test]
+fn the_selected_handle_entity_is_marked() {
+    use streamline_studio::ecs::patch::{InitialHandle, SurfaceHandle};
+    use streamline_studio::editor::interaction::Selected;
+    let mut app = app();
+    let marked = |app: &mut App| {
+        let w = app.world_mut();
+        let mut q =
+            w.query_filtered::<(Option<&SurfaceHandle>, Option<&InitialHandle>), With<Selected>>();
+        let mut v: Vec<String> = q
+            .iter(w)
+            .map(|(s, i)| match (s, i) {
+                (Some(s), _) => format!("net {} {}", s.row, s.col),
+                (_, Some(i)) => format!("initial {}", i.index),
+                _ => "other".into(),
+            })
+            .collect();
+        v.sort();
+        v
+    };
+    assert!(marked(&mut app).is_empty());
+    press(&mut app, Some(HandleId::tangent(0, 4, 2)), None);
+    release(&mut app);
+    frame(&mut app);
+    assert_eq!(marked(&mut app), ["net 4 2"]);
+    app.world_mut()
+        .resource_mut::<Selection>()
+        .extend([HandleId::initial(1)]);
+    frame(&mut app);
+    assert_eq!(marked(&mut app), ["initial 1", "net 4 2"]);
+    key(&mut app, KeyCode::Escape);
+    frame(&mut app);
+    assert!(marked(&mut app).is_empty());
+}

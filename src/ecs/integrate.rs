@@ -47,16 +47,16 @@ pub(crate) fn retune(
         }
         return;
     };
-    if tuning.constraint != Constraint::Free {
-        if let Some((_, level)) = levels.iter().find(|(l, _)| l.0 == depth) {
-            let fs = tuning.row_functions(surface_rows(&level.0.tangents, &level.0.params));
-            for (line, _, mut a) in &mut lines {
-                if let Some(f) = fs.get(line.row) {
-                    a.set_if_neq(StreamlineAlpha(Some((f.clone(), Constraint::Free))));
-                }
+    if tuning.constraint != Constraint::Free
+        && let Some((_, level)) = levels.iter().find(|(l, _)| l.0 == depth)
+    {
+        let fs = tuning.row_functions(surface_rows(&level.0.tangents, &level.0.params));
+        for (line, _, mut a) in &mut lines {
+            if let Some(f) = fs.get(line.row) {
+                a.set_if_neq(StreamlineAlpha(Some((f.clone(), Constraint::Free))));
             }
-            return;
         }
+        return;
     }
     let (lo, hi) = lines
         .iter()

@@ -7,6 +7,7 @@ use crate::scene::export::{ExportOptions, export_scene};
 use crate::scene::io;
 use bevy::prelude::*;
 
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn write_files(
     meter: Res<super::meter::CpuMeter>,
     mut reader: MessageReader<EditMessage>,

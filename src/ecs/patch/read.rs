@@ -9,36 +9,35 @@ use streamline_kernel::Design;
 use streamline_kernel::finetune::SurfaceTuning;
 use streamline_kernel::levels::multires::Details;
 
+/// The patch's own components, read.
+type PatchData = (
+    Entity,
+    &'static PatchName,
+    Ref<'static, PatchStructure>,
+    Ref<'static, PatchPlacement>,
+    Ref<'static, PatchTuning>,
+    &'static PatchView,
+    &'static PatchIndex,
+    Ref<'static, PatchKernel>,
+);
+
+/// A handle's values, whichever kind it is.
+type HandleValues = (
+    Option<&'static Direction>,
+    Option<&'static ArcParam>,
+    Option<&'static DetailRotation>,
+);
+
+/// Any handle entity.
+type AnyHandle = Or<(With<SurfaceHandle>, With<InitialHandle>, With<DetailHandle>)>;
+
 /// The patch, read: its components, the derived kernel design, and its
 /// scene assembled from the handles on demand. A system that takes it runs
 /// only while the world has its patch.
 #[derive(SystemParam)]
 pub struct PatchRef<'w, 's> {
-    patch: Single<
-        'w,
-        's,
-        (
-            Entity,
-            &'static PatchName,
-            Ref<'static, PatchStructure>,
-            Ref<'static, PatchPlacement>,
-            Ref<'static, PatchTuning>,
-            &'static PatchView,
-            &'static PatchIndex,
-            Ref<'static, PatchKernel>,
-        ),
-        With<Patch>,
-    >,
-    handles: Query<
-        'w,
-        's,
-        (
-            Option<&'static Direction>,
-            Option<&'static ArcParam>,
-            Option<&'static DetailRotation>,
-        ),
-        Or<(With<SurfaceHandle>, With<InitialHandle>, With<DetailHandle>)>,
-    >,
+    patch: Single<'w, 's, PatchData, With<Patch>>,
+    handles: Query<'w, 's, HandleValues, AnyHandle>,
 }
 
 impl PatchRef<'_, '_> {

@@ -222,31 +222,27 @@ pub fn patch_entity(world: &World) -> Option<Entity> {
     q.iter(world).next()
 }
 
+/// The patch's own components, writable.
+type PatchDataMut = (
+    Entity,
+    &'static mut PatchName,
+    &'static mut PatchStructure,
+    &'static mut PatchPlacement,
+    &'static mut PatchTuning,
+    &'static mut PatchView,
+    &'static mut PatchIndex,
+    &'static PatchKernel,
+);
+
+/// A net handle's values, writable.
+type NetValuesMut = (&'static mut Direction, &'static mut ArcParam);
+
 /// The patch and its handles, writable: what the edit stage reads a scene
 /// from and writes one back into.
 #[derive(SystemParam)]
 pub(crate) struct PatchParts<'w, 's> {
-    patches: Query<
-        'w,
-        's,
-        (
-            Entity,
-            &'static mut PatchName,
-            &'static mut PatchStructure,
-            &'static mut PatchPlacement,
-            &'static mut PatchTuning,
-            &'static mut PatchView,
-            &'static mut PatchIndex,
-            &'static PatchKernel,
-        ),
-        With<Patch>,
-    >,
-    surface: Query<
-        'w,
-        's,
-        (&'static mut Direction, &'static mut ArcParam),
-        (With<SurfaceHandle>, Without<InitialHandle>),
-    >,
+    patches: Query<'w, 's, PatchDataMut, With<Patch>>,
+    surface: Query<'w, 's, NetValuesMut, (With<SurfaceHandle>, Without<InitialHandle>)>,
     initial: Query<'w, 's, &'static mut Direction, (With<InitialHandle>, Without<SurfaceHandle>)>,
     details: Query<'w, 's, &'static mut DetailRotation, With<DetailHandle>>,
     commands: Commands<'w, 's>,
@@ -260,12 +256,12 @@ impl PatchParts<'_, '_> {
             .single()
             .map_err(|_| "the world has no patch".to_string())?;
         assemble_with(
-            &name,
-            &st,
-            &pl,
-            &tu,
-            &vw,
-            &index,
+            name,
+            st,
+            pl,
+            tu,
+            vw,
+            index,
             Some(kernel),
             |h| {
                 self.surface

@@ -34,21 +34,21 @@ type ChangedNet<'w, 's> = Query<
     Or<(Changed<Direction>, Changed<ArcParam>)>,
 >;
 
+/// The patch's components `track_handles` reads and writes.
+type PatchWork = (
+    Ref<'static, PatchStructure>,
+    Ref<'static, PatchPlacement>,
+    &'static PatchIndex,
+    &'static mut PatchKernel,
+    &'static mut Dirty,
+);
+
 /// Turns the changes of the patch's and its handles' components into dirty
 /// windows ([`Dirty`]) and brings [`PatchKernel`] up to date.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn track_handles(
     meter: Res<crate::ecs::meter::CpuMeter>,
-    mut patches: Query<
-        (
-            Ref<PatchStructure>,
-            Ref<PatchPlacement>,
-            &PatchIndex,
-            &mut PatchKernel,
-            &mut Dirty,
-        ),
-        With<Patch>,
-    >,
+    mut patches: Query<PatchWork, With<Patch>>,
     net_changed: ChangedNet,
     net: Query<(&Direction, &ArcParam), With<SurfaceHandle>>,
     initial_changed: Query<(), (With<InitialHandle>, Changed<Direction>)>,

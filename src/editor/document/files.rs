@@ -449,8 +449,7 @@ fn continue_after_save(
 fn dialogs(
     meter: Res<crate::ecs::meter::CpuMeter>,
     mut contexts: EguiContexts,
-    model: Res<Model>,
-    patch: PatchRef,
+    (model, patch): (Res<Model>, PatchRef),
     dirs: Res<EditorDirs>,
     mut ui: ResMut<FileUi>,
     mut edits: MessageWriter<EditMessage>,

@@ -19,7 +19,7 @@ use bevy_state::app::{AppExtStates, StatesPlugin};
 pub use drag::{ActiveDrag, Drag, DragGroups, DragKind, DragTo, HandlePressed};
 pub use handles::{Handle, HandleId, HandleKind, HandleSettings, Handles, segment_distance};
 pub use mode::EditorMode;
-pub use selection::Selection;
+pub use selection::{Selected, Selection};
 pub use view::{FrameRequest, MainCamera, OrbitCamera, SceneBounds, SphereArea, ViewArea};
 
 /// The editor's phases in `Update`, in this order around the model's
@@ -73,7 +73,11 @@ impl Plugin for InteractionPlugin {
             .add_systems(Update, drag::run.in_set(EditorSet::Drag))
             .add_systems(
                 Update,
-                (handles::rebuild, selection::keep_valid)
+                (
+                    handles::rebuild,
+                    selection::keep_valid,
+                    selection::mark_selected,
+                )
                     .chain()
                     .in_set(EditorSet::Sync),
             );

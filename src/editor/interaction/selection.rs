@@ -2,6 +2,7 @@
 //! and a Shift box add to it) and the one under the pointer.
 
 use super::handles::{HandleId, HandleKind, Handles};
+use crate::ecs::patch::PatchRef;
 use bevy::prelude::*;
 
 /// The selected handles and the hovered one.
@@ -120,5 +121,51 @@ pub(super) fn keep_valid(
     }
     if selection.iter().any(|h| handles.find(h).is_none()) {
         selection.follow(&handles);
+    }
+}
+
+/// Marks a handle entity that is selected: a control tangent of the net or
+/// of the initial curve, or a detail (a tangent of a deeper level that has
+/// no detail yet has no entity to mark).
+#[derive(Component, Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Selected;
+
+/// The handle entity of `id`, if it has one.
+fn entity_of(patch: &PatchRef, id: HandleId) -> Option<Entity> {
+    let index = patch.index();
+    match id.kind {
+        HandleKind::SurfaceTangent { level: 0 } => (id.row < index.surface.rows()
+            && id.col < index.surface.cols())
+        .then(|| index.surface.get(id.row, id.col)),
+        HandleKind::SurfaceTangent { level } => {
+            index.details.get(&(level, id.row, id.col)).copied()
+        }
+        HandleKind::InitialTangent => index.initial.get(id.col).copied(),
+    }
+}
+
+/// Keeps the [`Selected`] marker on exactly the selected handles' entities.
+pub(super) fn mark_selected(
+    mut commands: Commands,
+    selection: Res<Selection>,
+    patch: PatchRef,
+    marked: Query<Entity, With<Selected>>,
+) {
+    if !selection.is_changed() && !patch.design_changed() {
+        return;
+    }
+    let want: Vec<Entity> = selection
+        .iter()
+        .filter_map(|h| entity_of(&patch, h))
+        .collect();
+    for e in &marked {
+        if !want.contains(&e) {
+            commands.entity(e).remove::<Selected>();
+        }
+    }
+    for e in want {
+        if !marked.contains(e) {
+            commands.entity(e).try_insert(Selected);
+        }
     }
 }

@@ -197,7 +197,7 @@ pub struct Sections<'w, 's> {
     display: display::DisplaySection<'w>,
     analysis: analysis::AnalysisSection<'w>,
     mesh: mesh::MeshSection<'w>,
-    stats: stats::StatsSection<'w>,
+    stats: stats::StatsSection<'w, 's>,
     curvature: curvature::CurvatureSection<'w, 's>,
     help: ResMut<'w, menu_bar::HelpWindows>,
 }

@@ -10,8 +10,10 @@ use bevy_egui::egui;
 
 /// What only the Stats section reads.
 #[derive(SystemParam)]
-pub struct StatsSection<'w> {
+pub struct StatsSection<'w, 's> {
     pub stats: Res<'w, Stats>,
+    /// The world's entities, counted by queries (the census of `build --json`).
+    pub census: crate::ecs::patch::census::CensusQuery<'w, 's>,
     pub timing: Res<'w, FrameTiming>,
     pub warnings: Res<'w, BuildWarnings>,
 }
@@ -20,7 +22,7 @@ pub struct StatsSection<'w> {
 pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, &'static str)> {
     let net = p.patch.design().net();
     let s = &section.stats;
-    let mut rows: Vec<(&'static str, String, &'static str)> = Vec::with_capacity(17);
+    let mut rows: Vec<(&'static str, String, &'static str)> = Vec::with_capacity(19);
     {
         let mut row = |k: &'static str, v: String, tip: &'static str| rows.push((k, v, tip));
         row(
@@ -46,6 +48,23 @@ pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, 
             "streamlines",
             s.streamlines.to_string(),
             "Streamlines at the display depth",
+        );
+        let c = section.census.count();
+        row(
+            "handles",
+            format!(
+                "{} net · {} curve · {} detail",
+                c.handles.surface, c.handles.initial, c.handles.detail
+            ),
+            "Tangent handle entities: control tangents of the net, of the initial curve, and multiresolution details",
+        );
+        row(
+            "entities",
+            format!(
+                "{} patch · {} levels · {} streamlines",
+                c.patches, c.levels, c.streamlines
+            ),
+            "The patch entity and its subdivision-level and streamline entities, counted in the world",
         );
         let l = &s.last;
         let mut edit: String = l.edit.chars().take(26).collect();
