@@ -202,3 +202,37 @@ fn the_selected_handle_entity_is_marked() {
     frame(&mut app);
     assert!(marked(&mut app).is_empty());
 }
+
+/// Issue 26: turning a control tangent moves only its row's handles (a
+/// streamline is a running sum along its row), and they are where a full
+/// placement of every handle puts them, bit for bit.
+#[test]
+fn a_turn_moves_only_its_rows_handles() {
+    let mut app = app();
+    let cols = app.world().resource::<Handles>().shape().1;
+    let h = HandleId::tangent(0, 3, 2);
+    press(&mut app, Some(h), Some(DragKind::Sphere));
+    steer(&mut app, DVec3::new(0.9, 0.35, 0.25).normalize());
+    let moved = app.world().resource::<Handles>().moved;
+    assert_eq!(moved, cols, "one row of handles moved");
+    release(&mut app);
+    frame(&mut app);
+    // a fresh editor on the edited scene places every handle afresh
+    let scene = streamline_studio::ecs::patch::scene(app.world());
+    let mut fresh = App::new();
+    fresh
+        .add_plugins(MinimalPlugins)
+        .init_resource::<ButtonInput<MouseButton>>()
+        .init_resource::<ButtonInput<KeyCode>>()
+        .add_plugins(streamline_studio::ecs::ModelPlugin::new(scene))
+        .add_plugins(streamline_studio::editor::interaction::InteractionPlugin);
+    frame(&mut fresh);
+    let (a, b) = (
+        app.world().resource::<Handles>(),
+        fresh.world().resource::<Handles>(),
+    );
+    assert!(b.moved > cols, "the fresh editor placed all of them");
+    assert_eq!(a.controls, b.controls);
+    assert_eq!(a.editable, b.editable);
+    assert_eq!(a.initial, b.initial);
+}

@@ -66,6 +66,11 @@ impl PatchRef<'_, '_> {
         &self.patch.3
     }
 
+    /// Whether the placement changed since the reading system last ran.
+    pub fn placement_changed(&self) -> bool {
+        self.patch.3.is_changed()
+    }
+
     /// Its fine tuning, if on.
     pub fn tuning(&self) -> Option<&SurfaceTuning> {
         self.patch.4.0.as_ref()

@@ -7,14 +7,15 @@
 //! answered here for every kind, so the views never need to know how many
 //! kinds there are.
 
+use crate::ecs::Edit;
 use crate::ecs::authoring::AuthorEdit;
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::patch::PatchRef;
-use crate::ecs::{Edit, SurfaceChanges};
+use crate::ecs::patch::{ArcParam, Direction, InitialHandle, SurfaceHandle};
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
 use streamline_kernel::finetune::streamline::point_by_fraction;
-use streamline_kernel::levels::incremental::{LevelState, place_rows_tuned};
+use streamline_kernel::levels::incremental::{LevelState, place_row_tuned, place_rows_tuned};
 
 /// What a handle is a handle of.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -210,6 +211,11 @@ pub struct Handles {
     pub mirrored: Vec<Handle>,
     /// The initial curve's control tangents, along the initial curve.
     pub initial: Vec<Handle>,
+    /// Handles placed again by the last update (all of them, or the rows
+    /// of the control tangents whose handle entities changed).
+    pub moved: usize,
+    /// The cap on the arrows' length the handles were drawn with.
+    cap: f64,
 }
 
 impl Handles {
@@ -387,31 +393,64 @@ fn initial_handles(patch: &PatchRef, length: f64) -> Vec<Handle> {
         .collect()
 }
 
-/// Places the handles again when their level or the surface changed (the
-/// surface moves their base points: fine tuning, the initial curve).
+/// Control tangents whose handle entity's direction changed.
+type TurnedNet<'w, 's> = Query<'w, 's, &'static SurfaceHandle, Changed<Direction>>;
+
+/// What else moves every handle: a new `s`, a new initial curve.
+#[derive(bevy::ecs::system::SystemParam)]
+pub(super) struct MovesAll<'w, 's> {
+    s: Query<'w, 's, (), (With<SurfaceHandle>, Changed<ArcParam>)>,
+    curve: Query<'w, 's, (), (With<InitialHandle>, Changed<Direction>)>,
+}
+
+/// Places the handles again when what they are drawn from changed. A turn
+/// of control tangents at edit depth 0 moves only their rows' handles (a
+/// streamline is a running sum along its row, Eq. 65); a new shape, `s`,
+/// initial curve, tuning under a constraint or mirror moves every handle.
 pub(super) fn rebuild(
     meter: Res<crate::ecs::meter::CpuMeter>,
     patch: PatchRef,
     levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
-    mut surface: SurfaceChanges,
+    turned: TurnedNet,
+    all: MovesAll,
     mut handles: ResMut<Handles>,
 ) {
     let _meter = meter.start();
-    let edit = patch.structure().edit_depth;
-    let moved = surface.take().any();
+    let st = patch.structure();
+    let edit = st.edit_depth;
+    let whole = patch.structure_changed()
+        || patch.placement_changed()
+        || patch.tuning_changed()
+        || !all.s.is_empty()
+        || !all.curve.is_empty()
+        || handles.edit_depth != edit
+        || handles.controls.is_empty();
     let changed = levels
         .iter()
         .any(|(l, d)| (l.0 == 0 || l.0 == edit) && d.is_changed());
-    if !changed && !moved && handles.edit_depth == edit && !handles.controls.is_empty() {
+    if !whole && !changed {
         return;
     }
     let find = |level: u32| levels.iter().find(|(l, _)| l.0 == level).map(|(_, d)| d);
     let Some(base) = find(0) else {
         return;
     };
+    let by_rows = !whole
+        && edit == 0
+        && !st.mirror
+        && patch.tuning().is_none()
+        && !crate::scene::model::interpolates(patch.design(), st.interpolate_tangents);
+    if by_rows && !turned.is_empty() {
+        let mut rows: Vec<usize> = turned.iter().map(|h| h.row).collect();
+        rows.sort_unstable();
+        rows.dedup();
+        if let Some(n) = move_rows(&patch, &base.0, &rows, &mut handles) {
+            handles.moved = n;
+            return;
+        }
+    }
     // mirrored: the levels are the doubled design's, placed on its initial
     // curve (the scene's own, reflected for the other half)
-    let st = patch.structure();
     let shown = if st.mirror {
         match crate::scene::model::shown_design(patch.design(), st.interpolate_tangents, true) {
             Ok(d) => Some(d),
@@ -429,11 +468,8 @@ pub(super) fn rebuild(
     };
     let (mut controls, mut mirrored) = level_handles(&patch, &base.0, 0.7, initial, reflected);
     // long intervals (a 3×3 net) would give arrows as large as the scene: cap
-    // them at a tenth of the control points' extent
-    let [lo, hi] = streamline_kernel::streamline::surface_mesh::bounds(
-        controls.iter().chain(&mirrored).map(|a| a.base),
-    );
-    let cap = ((hi - lo).length() * 0.1).max(1e-6);
+    // them at a tenth of the surface's size
+    let cap = length_cap(&base.0, initial);
     let clamp = |v: &mut Vec<Handle>| {
         for a in v.iter_mut() {
             a.length = a.length.min(cap);
@@ -458,13 +494,71 @@ pub(super) fn rebuild(
     let curve = patch.design().initial();
     let spacing = curve.length() / (curve.qi().tangents().len().max(2) - 1) as f64;
     let initial = initial_handles(&patch, (0.6 * spacing).min(2.0 * cap).max(1e-6));
+    let moved =
+        controls.len() + mirrored.len() + initial.len() + (edit > 0) as usize * editable.len();
     *handles = Handles {
         controls,
         editable,
         edit_depth: edit,
         mirrored,
         initial,
+        moved,
+        cap,
     };
+}
+
+/// The longest an arrow is drawn: a tenth of the surface's size, taken as
+/// the diagonal of its longest streamline (`s` at level 0) and its initial
+/// curve, which no turn of a tangent changes (so a turn moves only its row's
+/// handles, [`move_rows`]).
+fn length_cap(
+    level: &LevelState,
+    initial: &streamline_kernel::streamline::initial_curve::InitialCurve,
+) -> f64 {
+    let s = &level.params.s;
+    let longest = (0..s.rows())
+        .map(|r| s.get(r, s.cols() - 1) - s.get(r, 0))
+        .fold(0.0, f64::max);
+    (longest.hypot(initial.length()) * 0.1).max(1e-6)
+}
+
+/// Places the control handles of `rows` again (edit depth 0, no mirror, no
+/// fine tuning), their directions read from the handle entities;
+/// `None` when the arrows' length cap moved, so that every handle must be
+/// drawn afresh. Returns how many handles moved.
+fn move_rows(
+    patch: &PatchRef,
+    level: &LevelState,
+    rows: &[usize],
+    handles: &mut Handles,
+) -> Option<usize> {
+    let (nr, cols) = level.shape();
+    if handles.controls.len() != nr * cols || handles.editable.len() != nr * cols {
+        return None;
+    }
+    let initial = patch.design().initial();
+    let tuning = patch.tuning();
+    let index = &patch.index().surface;
+    let s = &level.params.s;
+    let mut pts = Vec::new();
+    for &r in rows.iter().filter(|&&r| r < nr) {
+        place_row_tuned(initial, &level.tangents, &level.params, r, tuning, &mut pts);
+        for c in 0..cols {
+            let a = &mut handles.controls[r * cols + c];
+            a.base = point_by_fraction(&pts, s.row(r), s.get(r, c));
+            a.dir = patch.direction(index.get(r, c))?;
+        }
+    }
+    if length_cap(level, initial).to_bits() != handles.cap.to_bits() {
+        return None;
+    }
+    for &r in rows.iter().filter(|&&r| r < nr) {
+        let span = r * cols..(r + 1) * cols;
+        let (src, dst) = (&handles.controls[span.clone()], span);
+        let src = src.to_vec();
+        handles.editable[dst].copy_from_slice(&src);
+    }
+    Some(rows.len() * cols)
 }
 
 #[cfg(test)]
