@@ -18,7 +18,7 @@ fn car(depth: u32) -> bevy::prelude::App {
     ecs::headless_app(Scene::from_design("car", presets::car1(), depth))
 }
 
-fn author(app: &mut bevy::prelude::App, e: AuthorEdit) -> Result<String, String> {
+fn author(app: &mut bevy::prelude::App, e: AuthorEdit) -> Result<String, ecs::EditError> {
     ecs::apply(app, Edit::Author(e))
 }
 

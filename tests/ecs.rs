@@ -339,7 +339,7 @@ fn undo_history_is_bounded() {
     for _ in 0..3 {
         ecs::apply(&mut app, Edit::Undo).unwrap();
     }
-    let e = ecs::apply(&mut app, Edit::Undo).unwrap_err();
+    let e = ecs::apply(&mut app, Edit::Undo).unwrap_err().to_string();
     assert!(e.contains("nothing to undo"), "{e}");
 }
 
@@ -483,7 +483,9 @@ fn bad_edits_are_refused() {
             "the current scene is kept",
         ),
     ] {
-        let e = ecs::apply(&mut app, edit.clone()).expect_err(&format!("{edit:?} must be refused"));
+        let e = ecs::apply(&mut app, edit.clone())
+            .expect_err(&format!("{edit:?} must be refused"))
+            .to_string();
         assert!(e.contains(text), "{edit:?}: {e}");
         assert_eq!(
             max_diff(&points(&app), &start),

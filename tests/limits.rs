@@ -181,7 +181,9 @@ fn a_million_step_script_runs_a_batch_a_frame_and_cancels() {
 #[test]
 fn depths_past_the_memory_cap_are_refused_before_building() {
     let mut app = headless_app(builtin::scene("car1").unwrap());
-    let e = ecs::apply(&mut app, Edit::SetDisplayDepth(12)).unwrap_err();
+    let e = ecs::apply(&mut app, Edit::SetDisplayDepth(12))
+        .unwrap_err()
+        .to_string();
     assert!(
         e.contains("depth 12 would produce") && e.contains("2048 MB memory cap"),
         "{e}"

@@ -143,7 +143,7 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         ecs::send(&mut app, Edit::Export(out.clone()));
         app.update();
         if let Some(Err(e)) = app.world().resource::<EditLog>().entries.first() {
-            return Err(CliError::Usage(e.clone()));
+            return Err(CliError::Usage(e.to_string()));
         }
     }
     let w = app.world_mut();

@@ -13,12 +13,13 @@
 //! * a streamline length: that row's `s`, through its handles.
 
 use super::components::{LevelData, SubdivisionLevel};
+use super::edit_error::EditError;
 use crate::scene::Scene;
 pub use crate::scene::edit::AuthorEdit;
 use crate::scene::format::InitialSpec;
 use bevy::prelude::*;
 use streamline_kernel::levels::incremental::check_params;
-use streamline_kernel::{DQuat, DVec3, Design, Tangent};
+use streamline_kernel::{DQuat, DVec3, Design, KernelError, Tangent};
 
 /// What an authoring edit did to the scene.
 #[derive(Debug)]
@@ -30,24 +31,18 @@ pub(crate) enum Effect {
     Changed,
 }
 
-/// A kernel error as an edit's message.
-fn k(e: streamline_kernel::KernelError) -> String {
-    e.to_string()
-}
-
 /// Checks a scene after an authoring edit: its design (and with the mirror
 /// on, the doubled one) can be built to the scene's depth.
-pub(crate) fn check_scene(scene: &Scene) -> Result<(), String> {
+pub(crate) fn check_scene(scene: &Scene) -> Result<(), EditError> {
     let depth = scene.max_depth();
-    let check = |d: &Design| -> Result<(), String> {
+    let check = |d: &Design| -> Result<(), KernelError> {
         d.scheme()
-            .check_depth(d.net().rows(), d.net().cols(), depth)
-            .map_err(k)?;
-        check_params(d, depth).map_err(k)
+            .check_depth(d.net().rows(), d.net().cols(), depth)?;
+        check_params(d, depth)
     };
     check(&scene.design)?;
     if let Some(m) = scene.mirrored_design() {
-        check(&m.map_err(k)?).map_err(|e| format!("the mirrored surface: {e}"))?;
+        check(&m?).map_err(EditError::MirroredSurface)?;
     }
     Ok(())
 }
@@ -68,10 +63,14 @@ fn drop_details(scene: &mut Scene) -> String {
 
 /// Applies `e` to a copy of `scene`; on success the copy replaces it and
 /// the effect says what to redo. On failure the scene is unchanged.
-pub(crate) fn apply(scene: &mut Scene, e: &AuthorEdit) -> Result<(String, Effect), String> {
+pub(crate) fn apply(scene: &mut Scene, e: &AuthorEdit) -> Result<(String, Effect), EditError> {
     let mut s = scene.clone();
     let d = &scene.design;
     let label = e.label();
+    let refused = |what: &str, reason: EditError| EditError::Refused {
+        what: what.to_string(),
+        reason: Box::new(reason),
+    };
     let (msg, effect) = match e {
         AuthorEdit::NewDesign {
             rows,
@@ -80,7 +79,7 @@ pub(crate) fn apply(scene: &mut Scene, e: &AuthorEdit) -> Result<(String, Effect
             template,
             scheme,
         } => {
-            let new = Scene::new_design(*rows, *cols, *length, *template, *scheme).map_err(k)?;
+            let new = Scene::new_design(*rows, *cols, *length, *template, *scheme)?;
             let msg = format!(
                 "new {rows} × {cols} design, display depth {}",
                 new.display_depth
@@ -92,7 +91,7 @@ pub(crate) fn apply(scene: &mut Scene, e: &AuthorEdit) -> Result<(String, Effect
         | AuthorEdit::DeleteRow(_)
         | AuthorEdit::DeleteColumn(_) => {
             if s.mirror && s.edit_depth > 0 {
-                return Err(mirror_depth_msg());
+                return Err(EditError::MirrorDepth);
             }
             let (axis, at) = e.structure().expect("a structure edit");
             s.design = match e {
@@ -101,9 +100,9 @@ pub(crate) fn apply(scene: &mut Scene, e: &AuthorEdit) -> Result<(String, Effect
                 }
                 _ => d.deleted(axis, at),
             }
-            .map_err(|x| format!("{label} refused: {x}"))?;
+            .map_err(|x| refused(&label, x.into()))?;
             if s.mirror {
-                s.design = s.design.with_seam_in_plane().map_err(k)?;
+                s.design = s.design.with_seam_in_plane()?;
             }
             let dropped = drop_details(&mut s);
             (
@@ -124,7 +123,7 @@ pub(crate) fn apply(scene: &mut Scene, e: &AuthorEdit) -> Result<(String, Effect
             s.initial = InitialSpec::from_kernel(s.design.initial());
             if s.mirror {
                 // the mirror plane follows the curve: the seam is projected again
-                s.design = s.design.with_seam_in_plane().map_err(k)?;
+                s.design = s.design.with_seam_in_plane()?;
                 (
                     format!("{label} (mirrored: seam re-projected)"),
                     Effect::Changed,
@@ -134,79 +133,68 @@ pub(crate) fn apply(scene: &mut Scene, e: &AuthorEdit) -> Result<(String, Effect
             }
         }
         AuthorEdit::SetAnchor(col) => {
-            s.design = d.with_anchor(*col).map_err(k)?;
+            s.design = d.with_anchor(*col)?;
             (label.clone(), Effect::Changed)
         }
         AuthorEdit::SetStreamlineLength { row, length } => {
             s.design = d
                 .with_streamline_length(*row, *length)
-                .map_err(|x| format!("{label} refused: {x}"))?;
+                .map_err(|x| refused(&label, x.into()))?;
             (label.clone(), Effect::Changed)
         }
         AuthorEdit::SetMirror(on) => {
             if *on && s.edit_depth > 0 {
-                return Err(mirror_depth_msg());
+                return Err(EditError::MirrorDepth);
             }
             let mut dropped = String::new();
             if *on {
                 s.design = d
                     .with_seam_in_plane()
-                    .map_err(|x| format!("mirror refused: {x}"))?;
+                    .map_err(|x| refused("mirror", x.into()))?;
                 dropped = drop_details(&mut s);
             }
             s.mirror = *on;
             (format!("{label}{dropped}"), Effect::Changed)
         }
     };
-    check_scene(&s).map_err(|x| format!("{label} refused: {x}"))?;
+    check_scene(&s).map_err(|x| refused(&label, x))?;
     *scene = s;
     Ok((msg, effect))
 }
 
-/// The message for an edit at depth > 0 with the mirror on.
-pub(crate) fn mirror_depth_msg() -> String {
-    "with the mirror on, the handles are the control tangents: set the edit depth to 0 first".into()
+/// `v` as a unit vector, or `bad` when it is zero or not finite.
+fn unit(v: DVec3, bad: impl FnOnce(DVec3) -> EditError) -> Result<DVec3, EditError> {
+    Tangent::new(v).map(Tangent::get).map_err(|_| bad(v))
 }
 
-fn unit(v: DVec3, what: &str) -> Result<DVec3, String> {
-    Tangent::new(v).map(Tangent::get).map_err(|_| {
-        format!(
-            "{what} ({}, {}, {}) is zero or not finite; give a non-zero direction",
-            v.x, v.y, v.z
-        )
-    })
-}
-
-fn initial_edit(d: &Design, e: &AuthorEdit) -> Result<Design, String> {
-    match *e {
-        AuthorEdit::SetInitialDirection { index, dir } => d
-            .with_initial_direction(index, unit(dir, "direction")?)
-            .map_err(k),
+fn initial_edit(d: &Design, e: &AuthorEdit) -> Result<Design, EditError> {
+    let dir = |dir| EditError::BadDirection { dir };
+    let axis = |axis| EditError::BadInitialAxis { axis };
+    Ok(match *e {
+        AuthorEdit::SetInitialDirection { index, dir: v } => {
+            d.with_initial_direction(index, unit(v, dir)?)?
+        }
         AuthorEdit::RotateInitial {
             index,
-            axis,
+            axis: a,
             radians,
         } => {
-            let axis = unit(axis, "the rotation axis")?;
+            let a = unit(a, axis)?;
             if !radians.is_finite() {
-                return Err("the rotation angle is not finite; give a number of degrees".into());
+                return Err(EditError::BadAngle);
             }
             let ts = d.initial().qi().tangents();
-            let cur = *ts.get(index).ok_or_else(|| {
-                format!(
-                    "initial curve tangent {index} is out of range (there are {}); use 0 to {}",
-                    ts.len(),
-                    ts.len() - 1
-                )
+            let cur = *ts.get(index).ok_or(EditError::InitialIndex {
+                index,
+                len: ts.len(),
             })?;
-            d.with_initial_direction(index, DQuat::from_axis_angle(axis, radians) * cur)
-                .map_err(k)
+            d.with_initial_direction(index, DQuat::from_axis_angle(a, radians) * cur)?
         }
-        AuthorEdit::SetInitialLength(l) => d.with_initial_length(l).map_err(k),
-        AuthorEdit::SetInitialOrigin(o) => d.with_initial_origin(o).map_err(k),
-        AuthorEdit::SetInitialOrder(o) => d.with_initial_order(o).map_err(k),
+        AuthorEdit::SetInitialLength(l) => d.with_initial_length(l)?,
+        AuthorEdit::SetInitialOrigin(o) => d.with_initial_origin(o)?,
+        AuthorEdit::SetInitialOrder(o) => d.with_initial_order(o)?,
         _ => unreachable!("initial_edit is called for initial-curve edits only"),
-    }
+    })
 }
 
 /// `σ` of every level after an initial-curve or anchor edit: level 0's

@@ -6,6 +6,7 @@
 //! entity is marked changed only when its window was recomputed.
 
 use super::components::*;
+use super::edit_error::EditError;
 use super::patch::dirty::Dirty;
 use super::patch::{PatchKernel, PatchStructure};
 use super::resources::*;
@@ -141,7 +142,7 @@ fn build_all(
     let (design, built) = match built {
         Ok(b) => b,
         Err(e) => {
-            log.entries.push(Err(format!("rebuild failed: {e}")));
+            log.entries.push(Err(EditError::RebuildFailed(e)));
             return;
         }
     };
@@ -187,7 +188,7 @@ fn reblend_windows(
         true => match shown_design(&kernel.design, st.interpolate_tangents, true) {
             Ok(d) => Some(d),
             Err(e) => {
-                log.entries.push(Err(format!("rebuild failed: {e}")));
+                log.entries.push(Err(EditError::RebuildFailed(e)));
                 return true;
             }
         },
@@ -224,9 +225,7 @@ fn reblend_windows(
             true
         }
         Err(e) => {
-            log.entries.push(Err(format!(
-                "incremental update refused ({e}); rebuilding in full"
-            )));
+            log.entries.push(Err(EditError::IncrementalRefused(e)));
             false
         }
     }

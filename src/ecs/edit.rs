@@ -6,6 +6,7 @@
 //! from those changes alone ([`super::patch::track`]).
 
 use super::components::{LevelData, SubdivisionLevel};
+use super::edit_error::EditError;
 use super::messages::{Edit, EditMessage};
 use super::patch::scene_io::PatchParts;
 use super::resources::*;
@@ -54,7 +55,7 @@ pub(crate) fn apply_edits(
             None => match parts.assemble() {
                 Ok(s) => work.insert(s),
                 Err(e) => {
-                    log.entries.push(Err(e));
+                    log.entries.push(Err(EditError::Assemble(e)));
                     continue;
                 }
             },
@@ -88,7 +89,7 @@ pub(crate) fn apply_edits(
     }
 }
 
-fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, String> {
+fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, EditError> {
     match edit {
         Edit::SetDirection { row, col, dir } => set_direction(ctx, scene, *row, *col, *dir),
         Edit::Rotate {
@@ -111,16 +112,18 @@ fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, St
             let level = scene.edit_depth;
             let key = (level, *row, *col);
             if scene.details.remove(&key).is_none() {
-                return Err(format!(
-                    "handle ({row}, {col}) at edit depth {level} has no detail to clear"
-                ));
+                return Err(EditError::NoDetail {
+                    row: *row,
+                    col: *col,
+                    level,
+                });
             }
             Ok(format!("cleared detail ({row}, {col}) at level {level}"))
         }
         Edit::SetScheme(s) => {
-            let s = s.validate().map_err(|e| e.to_string())?;
+            let s = s.validate()?;
             let mut d = scene.design.clone();
-            d.set_scheme(s).map_err(|e| e.to_string())?;
+            d.set_scheme(s)?;
             check_design(&d, scene.max_depth(), scene.mirror)?;
             scene.design = d;
             let dropped = prune_details(scene);
@@ -138,7 +141,7 @@ fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, St
         }
         Edit::SetEditDepth(n) => {
             if *n > 0 && scene.mirror {
-                return Err(super::authoring::mirror_depth_msg());
+                return Err(EditError::MirrorDepth);
             }
             let depth = (*n).max(scene.display_depth);
             check_design(&scene.design, depth, scene.mirror)?;
@@ -149,9 +152,9 @@ fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, St
             let undo = matches!(edit, Edit::Undo);
             let cur = scene.clone();
             let target = ctx.history.step(undo, cur).ok_or(if undo {
-                "nothing to undo"
+                EditError::NothingToUndo
             } else {
-                "nothing to redo"
+                EditError::NothingToRedo
             })?;
             *scene = target;
             ctx.model.unsaved = true;
@@ -170,7 +173,7 @@ fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, St
             tuning
                 .function
                 .set(*row, *col, *value)
-                .map_err(|e| format!("{e}; the fine-tuning values are unchanged"))?;
+                .map_err(EditError::TuningValue)?;
             Ok(format!("fine-tuning value ({row}, {col}) = {value}"))
         }
         Edit::SetTuningConstraint(c) => {
@@ -198,13 +201,13 @@ fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, St
             let (target, was_unsaved) = ctx
                 .history
                 .cancel(*g)
-                .ok_or_else(|| format!("drag {g} is not the last edit; nothing to cancel"))?;
+                .ok_or(EditError::NotLastDrag { group: *g })?;
             *scene = target;
             ctx.model.unsaved = was_unsaved;
             Ok("drag cancelled".into())
         }
         Edit::Load(path) => {
-            let loaded = io::load(path).map_err(|e| format!("{e} (the current scene is kept)"))?;
+            let loaded = io::load(path).map_err(EditError::Load)?;
             replace(ctx, scene, loaded);
             ctx.model.path = Some(path.clone());
             Ok(format!("loaded {}", path.display()))
@@ -228,7 +231,7 @@ fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, St
         } => {
             let q = rotation(*axis, *radians)?;
             if handles.is_empty() {
-                return Err("no handles to rotate; give at least one (row, col)".into());
+                return Err(EditError::NoHandles);
             }
             // every handle checked before any is turned: all or nothing
             let dirs = handles
@@ -253,7 +256,7 @@ fn author(
     ctx: &mut EditCtx,
     scene: &mut Scene,
     a: &super::authoring::AuthorEdit,
-) -> Result<String, String> {
+) -> Result<String, EditError> {
     use super::authoring::Effect;
     let (msg, effect) = super::authoring::apply(scene, a)?;
     if let Effect::NewScene(new) = effect {
@@ -266,17 +269,16 @@ fn author(
 
 /// `d` can be built to `depth`; mirrored, its doubled design too
 /// (`docs/math.md §9`: the levels are the doubled net's).
-fn check_design(d: &Design, depth: u32, mirror: bool) -> Result<(), String> {
+fn check_design(d: &Design, depth: u32, mirror: bool) -> Result<(), EditError> {
     d.scheme()
-        .check_depth(d.net().rows(), d.net().cols(), depth)
-        .map_err(|e| e.to_string())?;
-    check_params(d, depth).map_err(|e| e.to_string())?;
+        .check_depth(d.net().rows(), d.net().cols(), depth)?;
+    check_params(d, depth)?;
     if mirror {
-        let m = d.mirrored().map_err(|e| e.to_string())?;
+        let m = d.mirrored()?;
         m.scheme()
             .check_depth(m.net().rows(), m.net().cols(), depth)
             .and_then(|_| check_params(&m, depth))
-            .map_err(|e| format!("the mirrored surface: {e}"))?;
+            .map_err(EditError::MirroredSurface)?;
     }
     Ok(())
 }
@@ -306,21 +308,29 @@ fn prune_details(scene: &mut Scene) -> String {
     }
 }
 
-fn level_data<'a>(ctx: &'a EditCtx, level: u32) -> Result<&'a LevelData, String> {
+fn level_data<'a>(ctx: &'a EditCtx, level: u32) -> Result<&'a LevelData, EditError> {
     ctx.levels
         .iter()
         .find(|(l, _)| l.0 == level)
         .map(|(_, d)| d)
-        .ok_or_else(|| format!("level {level} is not built yet; try again after the next update"))
+        .ok_or(EditError::LevelNotBuilt { level })
 }
 
-fn check_cell(rows: usize, cols: usize, row: usize, col: usize, level: u32) -> Result<(), String> {
+fn check_cell(
+    rows: usize,
+    cols: usize,
+    row: usize,
+    col: usize,
+    level: u32,
+) -> Result<(), EditError> {
     if row >= rows || col >= cols {
-        return Err(format!(
-            "handle ({row}, {col}) is outside level {level}, which has {rows} rows of {cols} tangents; use row 0..{} and column 0..{}",
-            rows - 1,
-            cols - 1
-        ));
+        return Err(EditError::OutsideLevel {
+            row,
+            col,
+            level,
+            rows,
+            cols,
+        });
     }
     Ok(())
 }
@@ -330,7 +340,7 @@ fn current_direction(
     scene: &Scene,
     row: usize,
     col: usize,
-) -> Result<DVec3, String> {
+) -> Result<DVec3, EditError> {
     let level = scene.edit_depth;
     if level == 0 {
         let net = scene.design.net();
@@ -349,18 +359,13 @@ fn set_direction(
     row: usize,
     col: usize,
     dir: DVec3,
-) -> Result<String, String> {
+) -> Result<String, EditError> {
     let dir = Tangent::new(dir)
-        .map_err(|_| {
-            format!(
-                "direction ({}, {}, {}) is zero or not finite; give a non-zero direction",
-                dir.x, dir.y, dir.z
-            )
-        })?
+        .map_err(|_| EditError::BadDirection { dir })?
         .get();
     let level = scene.edit_depth;
     if scene.mirror && level > 0 {
-        return Err(super::authoring::mirror_depth_msg());
+        return Err(EditError::MirrorDepth);
     }
     if level == 0 {
         let net = scene.design.net();
@@ -368,15 +373,12 @@ fn set_direction(
         // mirrored: a seam (row 0) tangent stays in the mirror plane
         let dir = if scene.mirror && row == 0 {
             let plane = scene.design.mirror_plane();
-            plane.project_dir(dir, col).map_err(|e| e.to_string())?
+            plane.project_dir(dir, col)?
         } else {
             dir
         };
         if net.get(row, col) != dir {
-            scene
-                .design
-                .set_tangent(row, col, dir)
-                .map_err(|e| e.to_string())?;
+            scene.design.set_tangent(row, col, dir)?;
         }
         return Ok(format!(
             "control ({row}, {col}) set to ({:.4}, {:.4}, {:.4})",
@@ -392,21 +394,17 @@ fn set_direction(
 }
 
 /// The rotation of a `Rotate` or `RotateMany` edit, its axis and angle checked.
-fn rotation(axis: DVec3, radians: f64) -> Result<DQuat, String> {
-    let axis = Tangent::new(axis)
-        .map_err(|_| "the rotation axis is zero or not finite; give a non-zero axis".to_string())?
-        .get();
+fn rotation(axis: DVec3, radians: f64) -> Result<DQuat, EditError> {
+    let axis = Tangent::new(axis).map_err(|_| EditError::BadAxis)?.get();
     if !radians.is_finite() {
-        return Err("the rotation angle is not finite; give a number of degrees".into());
+        return Err(EditError::BadAngle);
     }
     Ok(DQuat::from_axis_angle(axis, radians))
 }
 
-fn set_length(scene: &mut Scene, row: usize, col: usize, k: f64) -> Result<String, String> {
+fn set_length(scene: &mut Scene, row: usize, col: usize, k: f64) -> Result<String, EditError> {
     if !(k.is_finite() && k > 0.0) {
-        return Err(format!(
-            "length coefficient {k} must be a positive finite number (1 keeps the length)"
-        ));
+        return Err(EditError::BadLength { k });
     }
     let net = scene.design.net();
     check_cell(net.rows(), net.cols(), row, col, 0)?;
@@ -418,14 +416,16 @@ fn set_length(scene: &mut Scene, row: usize, col: usize, k: f64) -> Result<Strin
         s[i] = s[i - 1] + (old[i] - old[i - 1]) * f;
     }
     if s.iter().any(|v| !v.is_finite()) {
-        return Err(format!(
-            "length coefficient {k} makes s overflow; use a smaller one"
-        ));
+        return Err(EditError::LengthOverflow { k });
     }
-    d.set_s_row(row, &s)
-        .map_err(|e| format!("length coefficient {k} at ({row}, {col}) refused: {e}"))?;
-    check_design(&d, scene.max_depth(), scene.mirror)
-        .map_err(|e| format!("length coefficient {k} at ({row}, {col}) refused: {e}"))?;
+    let refused = |e: EditError| EditError::LengthRefused {
+        k,
+        row,
+        col,
+        reason: Box::new(e),
+    };
+    d.set_s_row(row, &s).map_err(|e| refused(e.into()))?;
+    check_design(&d, scene.max_depth(), scene.mirror).map_err(refused)?;
     scene.design = d;
     Ok(format!("length coefficient {k} at ({row}, {col})"))
 }

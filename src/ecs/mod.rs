@@ -15,6 +15,7 @@ pub mod authoring;
 mod blend;
 pub mod components;
 mod edit;
+mod edit_error;
 pub mod exchange;
 mod integrate;
 mod mesh;
@@ -29,6 +30,7 @@ pub mod warnings;
 
 use crate::scene::Scene;
 use bevy::prelude::*;
+pub use edit_error::EditError;
 pub use messages::{Edit, EditMessage};
 pub use resources::*;
 
@@ -134,7 +136,7 @@ pub fn headless_app_with(scene: Scene, config: ModelConfig) -> App {
 }
 
 /// Sends one edit and runs one update; returns the edit's outcome.
-pub fn apply(app: &mut App, edit: Edit) -> Result<String, String> {
+pub fn apply(app: &mut App, edit: Edit) -> Result<String, EditError> {
     send(app, edit);
     app.update();
     let log = app.world().resource::<EditLog>();

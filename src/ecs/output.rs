@@ -1,5 +1,6 @@
 //! The output stage: saving and exporting, after the mesh is up to date.
 
+use super::edit_error::EditError;
 use super::exchange::{ExportSettings, LastExport};
 use super::messages::{Edit, EditMessage};
 use super::resources::*;
@@ -29,7 +30,7 @@ pub(crate) fn write_files(
             None => match patch.scene() {
                 Ok(s) => scene.insert(s),
                 Err(e) => {
-                    log.entries.push(Err(e));
+                    log.entries.push(Err(EditError::Assemble(e)));
                     continue;
                 }
             },
@@ -41,7 +42,7 @@ pub(crate) fn write_files(
                     model.unsaved = false;
                     log.entries.push(Ok(format!("saved {}", path.display())));
                 }
-                Err(e) => log.entries.push(Err(e.to_string())),
+                Err(e) => log.entries.push(Err(EditError::Save(e))),
             },
             Edit::Export(path) => {
                 let mesh = surface.mesh();
@@ -80,7 +81,7 @@ pub(crate) fn write_files(
                         )));
                         last.written = Some((path.clone(), out.format, out.fit));
                     }
-                    Err(e) => log.entries.push(Err(e.to_string())),
+                    Err(e) => log.entries.push(Err(EditError::Export(e))),
                 }
             }
             _ => {}

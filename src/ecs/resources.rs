@@ -161,8 +161,8 @@ pub struct Stats {
 /// The outcome of each edit of the last frame that had edits.
 #[derive(Resource, Debug, Clone, Default)]
 pub struct EditLog {
-    /// `Ok(what was done)` or `Err(message)`, in order.
-    pub entries: Vec<Result<String, String>>,
+    /// `Ok(what was done)` or `Err(why not)`, in order.
+    pub entries: Vec<Result<String, super::EditError>>,
     /// Increases with each frame that had edits.
     pub frame: u64,
 }

@@ -16,6 +16,7 @@
 
 use super::components::*;
 use super::dirty::Dirty;
+use crate::ecs::edit_error::EditError;
 use crate::ecs::resources::EditLog;
 use bevy::prelude::*;
 use std::collections::HashMap;
@@ -93,8 +94,7 @@ pub(crate) fn track_handles(
         Ok(Some(d)) => kernel.design = d,
         Ok(None) => {}
         Err(e) => {
-            log.entries
-                .push(Err(format!("the handles make no design ({e})")));
+            log.entries.push(Err(EditError::NoDesign(e)));
             return;
         }
     }

@@ -4,6 +4,7 @@
 
 mod expect;
 
+use super::edit_error::EditError;
 use super::messages::Edit;
 use super::resources::*;
 use super::warnings::BuildWarnings;
@@ -75,13 +76,13 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
         let w = app.world();
         let log = w.resource::<EditLog>();
         let stats = &w.resource::<Stats>().last;
-        let errors: Vec<&String> = log
+        let errors: Vec<&EditError> = log
             .entries
             .iter()
             .filter_map(|e| e.as_ref().err())
             .collect();
         if let Some(e) = errors.first() {
-            pending = Some((n, (*e).clone()));
+            pending = Some((n, e.to_string()));
             report.lines.push(format!("step {n:>3} {label}: error {e}"));
         } else {
             report.lines.push(format!(

@@ -411,7 +411,7 @@ fn watch_outcomes(
     if log.frame != ui.log_frame {
         ui.log_frame = log.frame;
         for e in log.entries.iter().filter_map(|e| e.as_ref().err()) {
-            ui.errors.push(e.clone());
+            ui.errors.push(e.to_string());
             ui.after_save = None; // a failed save stops what waited on it
         }
         if ui.errors.len() > 5 {
