@@ -22,7 +22,7 @@ pub struct StatsSection<'w, 's> {
 pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, &'static str)> {
     let net = p.patch.design().net();
     let s = &section.stats;
-    let mut rows: Vec<(&'static str, String, &'static str)> = Vec::with_capacity(19);
+    let mut rows: Vec<(&'static str, String, &'static str)> = Vec::with_capacity(21);
     {
         let mut row = |k: &'static str, v: String, tip: &'static str| rows.push((k, v, tip));
         row(
@@ -44,27 +44,32 @@ pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, 
             s.tangents_total.to_string(),
             "Tangents in all levels",
         );
-        row(
-            "streamlines",
-            s.streamlines.to_string(),
-            "Streamlines at the display depth",
-        );
+        // the world's entities, counted by queries (the census of `build --json`)
         let c = section.census.count();
         row(
-            "handles",
-            format!(
-                "{} net · {} curve · {} detail",
-                c.handles.surface, c.handles.initial, c.handles.detail
-            ),
-            "Tangent handle entities: control tangents of the net, of the initial curve, and multiresolution details",
+            "streamlines",
+            c.streamlines.to_string(),
+            "Streamline entities: one per streamline at the display depth",
         );
         row(
-            "entities",
-            format!(
-                "{} patch · {} levels · {} streamlines",
-                c.patches, c.levels, c.streamlines
-            ),
-            "The patch entity and its subdivision-level and streamline entities, counted in the world",
+            "patches",
+            c.patches.to_string(),
+            "Patch entities: each owns its handles, levels and streamlines",
+        );
+        row(
+            "handles",
+            format!("{} net, {} curve", c.handles.surface, c.handles.initial),
+            "Tangent handle entities: the net's control tangents and the initial curve's",
+        );
+        row(
+            "detail handles",
+            c.handles.detail.to_string(),
+            "Multiresolution detail entities (one per detail)",
+        );
+        row(
+            "level entities",
+            c.levels.to_string(),
+            "Subdivision-level entities (0 to the deepest depth shown or edited)",
         );
         let l = &s.last;
         let mut edit: String = l.edit.chars().take(26).collect();
