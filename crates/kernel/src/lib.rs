@@ -31,6 +31,7 @@ pub mod curve;
 pub mod error;
 pub mod finetune;
 pub mod grid;
+pub mod joins;
 pub mod levels;
 pub mod limits;
 pub mod loop_subdiv;

@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod authoring;
+pub mod joins;
 pub mod loop_meshes;
 
 use glam::{DQuat, DVec3};

@@ -1,0 +1,170 @@
+//! G2 chains (docs/math.md §11.1, Eqs. 68–70): the chained patches are
+//! subdivided as **one net** `[A's columns | B's columns 1 …]`, `B`'s `s`
+//! continuing `A`'s, and each level is cut at the seam column. `A`'s points
+//! but its last are the merged streamline's first points, `B`'s points but its
+//! first are the rest, and the seam point lies on the merged segment through
+//! it (Eq. 65 splits that segment in two collinear halves). So the seam is as
+//! smooth as the scheme is anywhere.
+
+use crate::grid::Grid;
+use crate::joins::chain::check_chain;
+use crate::joins::error::JoinError;
+use crate::joins::kinds::Continuity;
+use crate::joins::stack::Stack;
+use crate::levels::design::{Design, Level};
+use crate::levels::params::ParamGrid;
+use crate::levels::surface::SurfaceScheme;
+use glam::DVec3;
+
+/// A run of G2-chained patches as one design.
+#[derive(Debug, Clone)]
+pub struct MergedRun {
+    /// The merged net: the first patch's columns, then every later patch's
+    /// columns but its first; `s` continued (Eq. 68); the first patch's
+    /// rows, anchor, scheme, blend order and initial curve.
+    pub design: Design,
+    /// The merged control column of each seam (the last column of every
+    /// patch but the last).
+    pub seams: Vec<usize>,
+}
+
+/// Merges a run of patches, each G2-chained on the previous one's edge
+/// `End` (checked as [`crate::joins::chain::chain`] checks a chain, plus the
+/// same blend order). Row `j` of patch `p ≥ 1` continues the merged `s` by
+/// Eq. 68: `s[k] + (s_last − s_p[j][0])` for its columns `k ≥ 1`, `s_last`
+/// the merged row's last `s` so far.
+pub fn merge_g2(patches: &[&Design]) -> Result<MergedRun, JoinError> {
+    let (first, rest) = patches.split_first().ok_or(JoinError::EmptyRun)?;
+    for w in patches.windows(2) {
+        check_chain(w[0], w[1], Continuity::G2)?;
+    }
+    let rows = first.net().rows();
+    let mut net: Vec<Vec<DVec3>> = (0..rows).map(|r| first.net().row(r).to_vec()).collect();
+    let mut s: Vec<Vec<f64>> = (0..rows)
+        .map(|r| first.params().s.row(r).to_vec())
+        .collect();
+    let mut seams = Vec::with_capacity(rest.len());
+    for p in rest {
+        seams.push(net[0].len() - 1);
+        for r in 0..rows {
+            let last = *s[r].last().expect("a row has columns");
+            let own = p.params().s.row(r);
+            let offset = last - own[0];
+            s[r].extend(own[1..].iter().map(|v| v + offset));
+            net[r].extend_from_slice(&p.net().row(r)[1..]);
+        }
+    }
+    let design = Design::new(
+        &Grid::from_rows(&net)?,
+        Grid::from_rows(&s)?,
+        first.params().t.clone(),
+        first.anchor(),
+        first.scheme(),
+        first.order(),
+        first.initial().clone(),
+    )?;
+    Ok(MergedRun { design, seams })
+}
+
+/// The merged column at depth `depth` where a seam at merged control column
+/// `col` (`≥ 1`) is cut (Eq. 69): `2^d col` for Kobbelt, which keeps the
+/// control column at even indices; `2^d (col − 1) + 1` for Catmull–Clark (the
+/// vertex point of the column, index `2c − 1` of a step) and Doo–Sabin (the
+/// point `¾ t_{c−1} ⊕ … ` nearest the column from below, index `2c − 1`).
+pub fn seam_column(scheme: SurfaceScheme, col: usize, depth: u32) -> usize {
+    if scheme.is_interpolatory() {
+        col << depth
+    } else {
+        ((col - 1) << depth) + 1
+    }
+}
+
+/// A G2 run built to `depth`: one [`Stack`] per patch, each level and point
+/// grid the merged design's cut at the seam columns of that depth (Eqs.
+/// 69–70). Patch `p ≥ 1` keeps the merged `s` (its own plus the Eq. 68
+/// offset) and its `σ` is its first column's `s`.
+pub fn g2_run(patches: &[&Design], depth: u32) -> Result<Vec<Stack>, JoinError> {
+    let merged = merge_g2(patches)?;
+    let whole = Stack::build(&merged.design, depth)?;
+    let scheme = merged.design.scheme();
+    let mut out: Vec<Stack> = (0..patches.len())
+        .map(|_| Stack {
+            levels: Vec::new(),
+            points: Vec::new(),
+        })
+        .collect();
+    for (d, (level, points)) in whole.levels.iter().zip(&whole.points).enumerate() {
+        let last = level.tangents.cols() - 1;
+        let mut cuts = vec![0];
+        cuts.extend(
+            merged
+                .seams
+                .iter()
+                .map(|&c| seam_column(scheme, c, d as u32)),
+        );
+        cuts.push(last);
+        for (p, stack) in out.iter_mut().enumerate() {
+            let (lo, hi) = (cuts[p], cuts[p + 1]);
+            let (part, pts) = cut(level, points, lo, hi, p == 0, hi == last);
+            stack.levels.push(part);
+            stack.points.push(pts);
+        }
+    }
+    Ok(out)
+}
+
+/// Columns `lo ..= hi` of a merged level and their points (Eq. 70): the
+/// merged points `lo + 1 ..= hi`, after the merged first point (`first`) or
+/// the seam point at `lo`, and before the merged last point (`last`) or the
+/// seam point at `hi`.
+fn cut(
+    level: &Level,
+    points: &Grid<DVec3>,
+    lo: usize,
+    hi: usize,
+    first: bool,
+    last: bool,
+) -> (Level, Grid<DVec3>) {
+    let rows = level.tangents.rows();
+    let tangents = columns(&level.tangents, lo, hi);
+    let s = columns(&level.params.s, lo, hi);
+    let sigma = if first {
+        level.params.sigma.clone()
+    } else {
+        (0..rows).map(|r| s.get(r, 0)).collect()
+    };
+    let mut data = Vec::with_capacity(rows * (hi - lo + 2));
+    for r in 0..rows {
+        let row = points.row(r);
+        let seam = |k: usize| seam_point(level, row, r, k);
+        data.push(if first { row[0] } else { seam(lo) });
+        data.extend_from_slice(&row[lo + 1..=hi]);
+        data.push(if last { row[hi + 1] } else { seam(hi) });
+    }
+    let part = Level {
+        tangents,
+        params: ParamGrid {
+            s,
+            t: level.params.t.clone(),
+            sigma,
+        },
+    };
+    let pts = Grid::new(rows, hi - lo + 2, data).expect("sizes agree");
+    (part, pts)
+}
+
+/// Columns `lo ..= hi` of `g`.
+fn columns<T: Copy>(g: &Grid<T>, lo: usize, hi: usize) -> Grid<T> {
+    let data = (0..g.rows())
+        .flat_map(|r| g.row(r)[lo..=hi].iter().copied())
+        .collect();
+    Grid::new(g.rows(), hi - lo + 1, data).expect("sizes agree")
+}
+
+/// The seam point of merged row `r` at column `k ≥ 1`: Eq. 65's last point of
+/// the row cut after `k`, `p_k + ½(s_k − s_{k−1}) t_k`, the middle of the
+/// merged segment `k` at arc length `s_k` (Eq. 70).
+fn seam_point(level: &Level, row: &[DVec3], r: usize, k: usize) -> DVec3 {
+    let s = level.params.s.row(r);
+    row[k] + level.tangents.get(r, k) * (0.5 * (s[k] - s[k - 1]))
+}

@@ -1,0 +1,29 @@
+//! Several patches in one design (docs/math.md §11; paper 000 §7, "switch
+//! parameters from one (s) to the other (t)"): a patch `B` starts on an edge
+//! of an earlier patch `A`, and the join's continuity holds **by
+//! construction at every depth**.
+//!
+//! - [`kinds`]: [`Edge`] (`End`, `First`, `Last`), [`Continuity`] (`G0`–`G2`), [`Join`].
+//! - [`stack`]: a patch's levels and points at every depth, what a join reads.
+//! - [`chain`]: `edge: End` with G0 or G1 (§11.1); [`merged`]: G2 chains as
+//!   one merged net cut at the seams (§11.1).
+//! - [`edge_curve`]: `A`'s first or last streamline as a curve with normals;
+//!   [`side`]: joins on it, G0 or G1 (§11.2).
+//! - [`build`]: one join built whole; [`seam`]: the seam report (§11.3).
+//! - [`error`]: why a join is refused, and what to do.
+
+pub mod build;
+pub mod chain;
+pub mod edge_curve;
+pub mod error;
+pub mod kinds;
+pub mod merged;
+pub mod seam;
+pub mod side;
+pub mod stack;
+
+pub use build::join;
+pub use error::JoinError;
+pub use kinds::{Continuity, Edge, Join};
+pub use seam::{SeamReport, seam_at};
+pub use stack::Stack;

@@ -1,0 +1,208 @@
+//! The seam report (docs/math.md §11.3, Eqs. 74–75): for a join at one depth,
+//! measured on the two meshes, the largest gap, the largest normal angle and
+//! the curvature deviation `(κ_A − κ_B)/(|κ_A| + |κ_B|)` of the normal
+//! curvature across the seam (Alias's measure; 0 where both are flat).
+
+use crate::analysis::angle_between;
+use crate::grid::Grid;
+use crate::joins::error::JoinError;
+use crate::joins::kinds::Edge;
+use crate::joins::stack::Stack;
+use glam::DVec3;
+
+/// Turning angles (radians) at most this large on both sides count as flat:
+/// the curvature deviation is 0 there.
+pub const FLAT_TURN: f64 = 1e-12;
+
+/// A patch's mesh at one depth: its point grid and its vertex normals
+/// (row-major, as [`crate::streamline::surface_mesh::SurfaceMesh`] has them).
+#[derive(Debug, Clone, Copy)]
+pub struct PatchMesh<'a> {
+    /// `rows × points per row`.
+    pub points: &'a Grid<DVec3>,
+    /// One unit normal per point.
+    pub normals: &'a [DVec3],
+}
+
+impl PatchMesh<'_> {
+    fn normal(&self, r: usize, c: usize) -> DVec3 {
+        self.normals[r * self.points.cols() + c]
+    }
+}
+
+/// The measures at one seam point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SeamSample {
+    /// Distance between `B`'s start point and `A`'s edge.
+    pub gap: f64,
+    /// Angle between the two normals, degrees.
+    pub angle_deg: f64,
+    /// `(κ_A − κ_B)/(|κ_A| + |κ_B|)`, in `[−1, 1]`.
+    pub curvature_dev: f64,
+}
+
+/// A seam's measures: the largest of each over its points, and the points'.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SeamReport {
+    /// The largest gap.
+    pub gap: f64,
+    /// The largest normal angle, degrees.
+    pub angle_deg: f64,
+    /// The curvature deviation largest in size (with its sign).
+    pub curvature_dev: f64,
+    /// One sample per row of `B`.
+    pub samples: Vec<SeamSample>,
+}
+
+impl SeamReport {
+    fn from_samples(samples: Vec<SeamSample>) -> Self {
+        let gap = samples.iter().fold(0.0, |m, s| s.gap.max(m));
+        let angle_deg = samples.iter().fold(0.0, |m, s| s.angle_deg.max(m));
+        let curvature_dev = samples.iter().fold(0.0f64, |m, s| {
+            if s.curvature_dev.abs() > m.abs() {
+                s.curvature_dev
+            } else {
+                m
+            }
+        });
+        SeamReport {
+            gap,
+            angle_deg,
+            curvature_dev,
+            samples,
+        }
+    }
+}
+
+/// The seam of `B` joined to `A` on `edge`, on both patches' meshes at depth `d`.
+pub fn seam_at(a: &Stack, b: &Stack, edge: Edge, d: u32) -> Result<SeamReport, JoinError> {
+    let (ma, mb) = (a.mesh(d), b.mesh(d));
+    let pa = PatchMesh {
+        points: &a.points[d as usize],
+        normals: &ma.normals,
+    };
+    let pb = PatchMesh {
+        points: &b.points[d as usize],
+        normals: &mb.normals,
+    };
+    match edge {
+        Edge::End => chain_seam(pa, pb),
+        side => Ok(side_seam(pa, side, pb)),
+    }
+}
+
+/// A chain's seam (Eq. 74): row `j`'s gap `|A(j, last) − B(j, 0)|`, the angle
+/// between the two meshes' normals there (oriented: a chain keeps the
+/// winding), and the normal curvature of `A`'s last and `B`'s first turn of
+/// the streamline (Eq. 75) about the mean of the two normals.
+pub fn chain_seam(a: PatchMesh, b: PatchMesh) -> Result<SeamReport, JoinError> {
+    let (ra, rb) = (a.points.rows(), b.points.rows());
+    if ra != rb {
+        return Err(JoinError::ChainRowCount { a: ra, b: rb });
+    }
+    let last = a.points.cols() - 1;
+    let samples = (0..ra)
+        .map(|j| {
+            let (pa, pb) = (a.points.row(j), b.points.row(j));
+            let (na, nb) = (a.normal(j, last), b.normal(j, 0));
+            let n = (na + nb).try_normalize().unwrap_or(na);
+            let ka = normal_curvature(pa[last - 2], pa[last - 1], pa[last], n);
+            let kb = normal_curvature(pb[0], pb[1], pb[2], n);
+            SeamSample {
+                gap: (pa[last] - pb[0]).length(),
+                angle_deg: angle_between(na, nb).to_degrees(),
+                curvature_dev: deviation(ka, kb),
+            }
+        })
+        .collect();
+    Ok(SeamReport::from_samples(samples))
+}
+
+/// A side seam (Eq. 74): for each row of `B`, the distance from its start
+/// point to `A`'s edge polyline and `A`'s normal there (its mesh normals at
+/// the nearest segment's ends, linear between); the angle between that and
+/// `B`'s normal as lines (a side patch's winding is its own); the normal
+/// curvature of `B`'s first turn and of `A`'s cross curve (its columns'
+/// last turn towards the edge, linear along the segment), both about `A`'s
+/// normal (Eq. 75). A patch of two rows has no cross curvature (0).
+pub fn side_seam(a: PatchMesh, edge: Edge, b: PatchMesh) -> SeamReport {
+    let rows = a.points.rows();
+    let (r0, r1, r2) = match edge {
+        Edge::Last => (rows - 1, rows.saturating_sub(2), rows.saturating_sub(3)),
+        _ => (0, 1.min(rows - 1), 2.min(rows - 1)),
+    };
+    let row = a.points.row(r0);
+    let samples = (0..b.points.rows())
+        .map(|j| {
+            let pb = b.points.row(j);
+            let (k, lambda, gap) = nearest(row, pb[0]);
+            let lerp = |x: DVec3, y: DVec3| x * (1.0 - lambda) + y * lambda;
+            let na = lerp(a.normal(r0, k), a.normal(r0, k + 1))
+                .try_normalize()
+                .unwrap_or(a.normal(r0, k));
+            let angle = angle_between(na, b.normal(j, 0));
+            let cross = |c: usize| {
+                let p = |r: usize| a.points.get(r, c);
+                if rows < 3 {
+                    (0.0, 0.0)
+                } else {
+                    normal_curvature(p(r2), p(r1), p(r0), na)
+                }
+            };
+            let (c0, c1) = (cross(k), cross(k + 1));
+            let ka = (
+                c0.0 * (1.0 - lambda) + c1.0 * lambda,
+                c0.1 * (1.0 - lambda) + c1.1 * lambda,
+            );
+            let kb = normal_curvature(pb[0], pb[1], pb[2], na);
+            SeamSample {
+                gap,
+                angle_deg: angle.min(std::f64::consts::PI - angle).to_degrees(),
+                curvature_dev: deviation(ka, kb),
+            }
+        })
+        .collect();
+    SeamReport::from_samples(samples)
+}
+
+/// The segment of polyline `row` nearest `q`, the fraction along it and the distance.
+fn nearest(row: &[DVec3], q: DVec3) -> (usize, f64, f64) {
+    let mut best = (0, 0.0, f64::INFINITY);
+    for (k, w) in row.windows(2).enumerate() {
+        let e = w[1] - w[0];
+        let len2 = e.length_squared();
+        let lambda = if len2 > 0.0 {
+            ((q - w[0]).dot(e) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let dist = (w[0] + e * lambda - q).length();
+        if dist < best.2 {
+            best = (k, lambda, dist);
+        }
+    }
+    best
+}
+
+/// The turn of the polyline `p0 → p1 → p2` towards `n` and its normal
+/// curvature (Eq. 75): `θ = (u₂ − u₁)·n` for the unit segment directions,
+/// `κ = 2θ/(|e₁| + |e₂|)` (the turn over the arc length between the segments'
+/// middles). A zero segment gives `(0, 0)`.
+pub fn normal_curvature(p0: DVec3, p1: DVec3, p2: DVec3, n: DVec3) -> (f64, f64) {
+    let (e1, e2) = (p1 - p0, p2 - p1);
+    let (l1, l2) = (e1.length(), e2.length());
+    if l1 == 0.0 || l2 == 0.0 || !(l1 + l2).is_finite() {
+        return (0.0, 0.0);
+    }
+    let turn = (e2 / l2 - e1 / l1).dot(n);
+    (turn, 2.0 * turn / (l1 + l2))
+}
+
+/// `(κ_A − κ_B)/(|κ_A| + |κ_B|)` from `(turn, κ)` pairs; 0 where both turns are
+/// at most [`FLAT_TURN`].
+fn deviation((ta, ka): (f64, f64), (tb, kb): (f64, f64)) -> f64 {
+    if ta.abs() <= FLAT_TURN && tb.abs() <= FLAT_TURN {
+        return 0.0;
+    }
+    (ka - kb) / (ka.abs() + kb.abs())
+}
