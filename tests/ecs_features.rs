@@ -1,11 +1,13 @@
 //! ECS features beyond the pipeline: fine tuning (docs/math.md §6) re-integrates only
 //! the streamlines its edit reaches and equals a fresh build; interpolated
-//! control tangents (docs/math.md §7) are reached at the limit and saved.
+//! control tangents (docs/math.md §7) are reached at the limit and saved; the
+//! antipodal warnings, rescanned in the re-blended windows only, are a fresh
+//! build's.
 
 mod common;
 
 use common::{max_diff, points, scene};
-use streamline_kernel::{BlendOrder, Grid, SurfaceScheme, levels::presets};
+use streamline_kernel::{BlendOrder, DVec3, Grid, SurfaceScheme, levels::presets};
 use streamline_studio::ecs::{self, Edit, Stats};
 use streamline_studio::scene::Scene;
 
@@ -123,4 +125,50 @@ fn interpolated_control_tangents_are_reached_at_the_limit() {
             let _ = std::fs::remove_dir_all(&dir);
         }
     }
+}
+
+/// The antipodal warnings (docs/math.md §1) after each edit, found by
+/// rescanning only the windows the blend stage re-blended, are those of a
+/// fresh build of the same scene: pairs made and undone on the control net,
+/// pairs of details at level 1, and edits that move a pair's neighbour only.
+#[test]
+fn warnings_after_edits_equal_a_fresh_build() {
+    use streamline_studio::ecs::patch::scene as scene_of;
+    use streamline_studio::ecs::warnings::BuildWarnings;
+    let lines = |app: &bevy::prelude::App| app.world().resource::<BuildWarnings>().lines.clone();
+    let mut app = ecs::headless_app(Scene::from_design("car", presets::car1(), 3));
+    let (x, y) = (DVec3::new(1.0, 0.0, 0.5), DVec3::new(0.2, 1.0, 0.1));
+    let set = |row, col, dir| Edit::SetDirection { row, col, dir };
+    let steps = [
+        set(2, 4, x),
+        set(2, 5, -x),
+        set(3, 4, -x),
+        set(0, 0, y),
+        set(0, 1, -y),
+        set(1, 0, -y),
+        set(2, 6, x),
+        Edit::Undo,
+        Edit::Undo,
+        set(5, 3, y),
+        Edit::SetEditDepth(1),
+        set(4, 6, y),
+        set(4, 7, -y),
+        set(5, 6, -y),
+        Edit::ClearDetail { row: 4, col: 7 },
+        Edit::Undo,
+        Edit::SetEditDepth(0),
+        set(2, 5, y),
+    ];
+    let mut most = 0;
+    for (i, e) in steps.into_iter().enumerate() {
+        let label = format!("step {i} ({e:?})");
+        ecs::apply(&mut app, e).unwrap_or_else(|err| panic!("{label}: {err}"));
+        let fresh = ecs::headless_app(scene_of(app.world()));
+        assert_eq!(lines(&app), lines(&fresh), "{label}");
+        most = most.max(lines(&app).len());
+    }
+    assert!(
+        most >= 3,
+        "the steps made antipodal pairs ({most} lines at most)"
+    );
 }

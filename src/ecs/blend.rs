@@ -62,6 +62,7 @@ pub(crate) fn reblend(
     mut patches: Query<(Entity, &PatchStructure, &PatchKernel, &mut Dirty)>,
     mut levels: Query<(Entity, &SubdivisionLevel, &mut LevelData)>,
     mut lines: Query<(Entity, &Streamline, &mut StreamlineTangents)>,
+    mut windows: Query<&mut LevelWindow>,
     mut stats: ResMut<Stats>,
     mut log: ResMut<EditLog>,
 ) {
@@ -80,6 +81,7 @@ pub(crate) fn reblend(
             st,
             &mut levels,
             &mut lines,
+            &mut windows,
             &mut sd,
             &mut stats,
             &mut log,
@@ -164,24 +166,31 @@ fn build_all(
     stats.last.full_rebuild = true;
     stats.last.tangents_reblended += stats.levels[1..].iter().map(|(r, c)| r * c).sum::<usize>();
     for l in built {
-        commands.spawn((SubdivisionLevel(l.level), LevelData(l), ChildOf(patch)));
+        commands.spawn((
+            SubdivisionLevel(l.level),
+            LevelData(l),
+            LevelWindow(None),
+            ChildOf(patch),
+        ));
     }
 }
 
 /// Re-blends the dirty windows `sd` of the levels in place; a level is
 /// marked changed only when its window was recomputed. `false` when the
 /// kernel refused (then everything is built afresh).
+#[allow(clippy::too_many_arguments)]
 fn reblend_windows(
     kernel: &PatchKernel,
     st: &PatchStructure,
     levels: &mut Query<(Entity, &SubdivisionLevel, &mut LevelData)>,
     lines: &mut Query<(Entity, &Streamline, &mut StreamlineTangents)>,
+    windows: &mut Query<&mut LevelWindow>,
     sd: &mut Vec<Option<streamline_kernel::levels::dirty_window::DirtyWindow>>,
     stats: &mut Stats,
     log: &mut EditLog,
 ) -> bool {
-    let mut ls: Vec<_> = levels.iter_mut().map(|(_, l, d)| (l.0, d)).collect();
-    ls.sort_by_key(|(l, _)| *l);
+    let mut ls: Vec<_> = levels.iter_mut().map(|(e, l, d)| (l.0, e, d)).collect();
+    ls.sort_by_key(|(l, ..)| *l);
     sd.resize(ls.len(), None);
     // mirrored: the levels are the doubled net's (docs/math.md §9)
     let doubled = match st.mirror {
@@ -198,21 +207,24 @@ fn reblend_windows(
     let result = {
         let mut refs: Vec<&mut LevelState> = ls
             .iter_mut()
-            .map(|(_, d)| &mut d.bypass_change_detection().0)
+            .map(|(_, _, d)| &mut d.bypass_change_detection().0)
             .collect();
         propagate(design, &kernel.details, &mut refs, sd)
     };
     match result {
         Ok(p) => {
-            for ((_, d), w) in ls.iter_mut().zip(&p.dirty) {
+            for ((_, e, d), w) in ls.iter_mut().zip(&p.dirty) {
                 if w.is_some() {
                     d.set_changed();
+                    if let Ok(mut lw) = windows.get_mut(*e) {
+                        *lw = LevelWindow(*w);
+                    }
                 }
             }
             stats.last.tangents_reblended += p.reblended;
             stats.last.details_reapplied += p.details;
             let display = st.display_depth as usize;
-            if let (Some(Some(w)), Some((_, level))) = (p.dirty.get(display), ls.get(display)) {
+            if let (Some(Some(w)), Some((_, _, level))) = (p.dirty.get(display), ls.get(display)) {
                 let rows: Span = w.rows;
                 // only tangents inside the window changed, unless parameters did
                 let from = if p.params { 0 } else { w.cols.lo };

@@ -5,6 +5,7 @@ use bevy::prelude::*;
 use streamline_kernel::DVec3;
 use streamline_kernel::finetune::Constraint;
 use streamline_kernel::finetune::bspline::BSpline;
+use streamline_kernel::levels::dirty_window::DirtyWindow;
 use streamline_kernel::levels::incremental::LevelState;
 
 /// A subdivision level entity.
@@ -21,6 +22,14 @@ impl LevelData {
         (self.0.tangents.row(r), self.0.params.s.row(r))
     }
 }
+
+/// Which cells of a level its last change recomputed: `Some(window)` when
+/// the blend stage re-blended a dirty window, `None` when the level was
+/// built whole. Written with each change of [`LevelData`] by the blend stage,
+/// so that a reader of that change can look at the window alone (the
+/// antipodal scan of [`super::warnings`]).
+#[derive(Component, Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct LevelWindow(pub Option<DirtyWindow>);
 
 /// A streamline of the display depth: row `row`.
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]

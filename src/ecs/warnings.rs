@@ -5,10 +5,12 @@
 //! `build` report, `play` and the editor's status line and Stats read
 //! [`BuildWarnings`].
 
-use super::components::{LevelData, SubdivisionLevel};
+use super::components::{LevelData, LevelWindow, SubdivisionLevel};
 use super::patch::PatchRef;
 use bevy::prelude::*;
-use streamline_kernel::sphere::antipodal::{AntipodalPair, antipodal_legs, antipodal_pairs};
+use streamline_kernel::sphere::antipodal::{
+    AntipodalPair, antipodal_legs, antipodal_pairs, antipodal_pairs_from,
+};
 
 /// The most pairs named one by one; more are counted in one last line.
 pub const MAX_LISTED: usize = 8;
@@ -22,7 +24,28 @@ pub struct BuildWarnings {
     pub lines: Vec<String>,
 }
 
-/// Scans the levels and the initial curve again whenever a level changed.
+/// The pairs of each level below the finest, as the last run found them:
+/// what an edit did not touch is not scanned again.
+#[derive(Default)]
+pub(crate) struct LevelPairs {
+    /// Per level (sorted by level): its shape and its pairs, in scan order.
+    levels: Vec<((usize, usize), Vec<AntipodalPair>)>,
+}
+
+/// The levels, with the window of their last change.
+type Levels<'w, 's> = Query<
+    'w,
+    's,
+    (
+        &'static SubdivisionLevel,
+        Ref<'static, LevelData>,
+        Option<Ref<'static, LevelWindow>>,
+    ),
+>;
+
+/// Scans the levels and the initial curve again whenever a level changed:
+/// a level the blend stage re-blended in a window ([`LevelWindow`]) only
+/// there (the pairs with a cell in the window), a level built whole all over.
 ///
 /// Every level but the finest is blended by the next step, along its rows and
 /// its columns (docs/math.md §3), so those are the pairs scanned; level 0 of
@@ -30,19 +53,51 @@ pub struct BuildWarnings {
 /// j` are the scene's row `j`: its pairs are named by the scene's cells.
 pub(crate) fn find_antipodal_blends(
     patch: PatchRef,
-    levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
+    levels: Levels,
     mut warnings: ResMut<BuildWarnings>,
+    mut known: Local<LevelPairs>,
 ) {
-    if !levels.iter().any(|(_, d)| d.is_changed()) && !patch.design_changed() {
+    if !levels.iter().any(|(_, d, _)| d.is_changed()) && !patch.design_changed() {
         return;
     }
-    let finest = levels.iter().map(|(l, _)| l.0).max().unwrap_or(0);
-    let mut pairs = Vec::new();
-    let mut sorted: Vec<_> = levels.iter().filter(|(l, _)| l.0 < finest).collect();
-    sorted.sort_by_key(|(l, _)| l.0);
-    for (l, d) in sorted {
-        antipodal_pairs(l.0, &d.0.tangents, &mut pairs);
+    let finest = levels.iter().map(|(l, ..)| l.0).max().unwrap_or(0);
+    let mut sorted: Vec<_> = levels.iter().filter(|(l, ..)| l.0 < finest).collect();
+    sorted.sort_by_key(|(l, ..)| l.0);
+    let known = &mut known.levels;
+    let same_levels = known.len() == sorted.len()
+        && (known.iter().zip(&sorted)).all(|((shape, _), (_, d, _))| *shape == d.0.shape());
+    if !same_levels {
+        known.clear();
+        known.resize_with(sorted.len(), Default::default);
     }
+    for ((shape, pairs), (l, d, w)) in known.iter_mut().zip(&sorted) {
+        if same_levels && !d.is_changed() {
+            continue;
+        }
+        // the window the blend stage recomputed with this change, if it says
+        let window = w
+            .as_ref()
+            .filter(|w| same_levels && w.is_changed() && !d.is_added())
+            .and_then(|w| w.0);
+        match window {
+            Some(w) => {
+                // a pair's second cell is the right or lower neighbour of its
+                // first: the pairs that read the window start up to one row
+                // and one column before it
+                let rows = w.rows.lo.saturating_sub(1)..=w.rows.hi;
+                let cols = w.cols.lo.saturating_sub(1)..=w.cols.hi;
+                pairs.retain(|p| !(rows.contains(&p.a.0) && cols.contains(&p.a.1)));
+                antipodal_pairs_from(l.0, &d.0.tangents, rows, cols, pairs);
+                pairs.sort_unstable(); // the scan's order (row-major, right before below)
+            }
+            None => {
+                pairs.clear();
+                antipodal_pairs(l.0, &d.0.tangents, pairs);
+            }
+        }
+        *shape = d.0.shape();
+    }
+    let mut pairs: Vec<AntipodalPair> = known.iter().flat_map(|(_, p)| p.iter().copied()).collect();
     if patch.structure().mirror {
         let m = patch.structure().rows;
         fold_mirror(&mut pairs, m);

@@ -448,9 +448,21 @@ pub fn fine_tuning() -> Vec<Workload> {
     .collect()
 }
 
+/// Marks the patch's [`PatchStructure`](crate::ecs::patch::PatchStructure)
+/// changed, so that the next update builds every level and streamline afresh.
+fn force_full_build(app: &mut bevy::prelude::App) {
+    use crate::ecs::patch::{PatchStructure, patch_entity};
+    use bevy::prelude::DetectChangesMut;
+    let w = app.world_mut();
+    if let Some(mut st) = patch_entity(w).and_then(|p| w.get_mut::<PatchStructure>(p)) {
+        st.set_changed();
+    }
+}
+
 /// One edit through the ECS pipeline (message → blend → integrate → mesh) vs a
 /// full rebuild, on the car and on a 20×20 net, at depths 3 and 5 (issue 3).
-/// Rows: `ecs/<net>/d<depth>/<edit-interior|edit-corner|full>`.
+/// Rows: `ecs/<net>/d<depth>/<edit-interior|edit-corner|full>`; `full` sends
+/// the blend order the design has and builds everything afresh.
 pub fn incremental() -> Vec<Workload> {
     use crate::ecs::{self, Edit, SurfaceData};
     use crate::scene::Scene;
@@ -486,6 +498,12 @@ pub fn incremental() -> Vec<Workload> {
                             None => Edit::SetBlendOrder(order),
                         };
                         ecs::send(&mut app, edit);
+                        if cell.is_none() {
+                            // the order it has changes no component, so asks
+                            // for no build (issue 26): mark the patch's
+                            // structure changed, as a structural edit does
+                            force_full_build(&mut app);
+                        }
                         app.update();
                         app.world().resource::<SurfaceData>().points.data()[0].x
                     }),

@@ -62,16 +62,42 @@ impl fmt::Display for AntipodalPair {
 /// Appends to `out` every pair of row or column neighbours of `level` (the
 /// tangents of subdivision level `depth`) that takes the antipodal branch, in
 /// row-major order of the first cell (its right neighbour before the one
-/// below). One dot product per pair; a cross product only for pairs more
-/// than 120° apart.
+/// below), which is also the pairs' `Ord`. One dot product per pair; a cross
+/// product only for pairs more than 120° apart.
 pub fn antipodal_pairs(depth: u32, level: &Grid<DVec3>, out: &mut Vec<AntipodalPair>) {
     let (rows, cols) = (level.rows(), level.cols());
-    for r in 0..rows {
+    if rows > 0 && cols > 0 {
+        antipodal_pairs_from(depth, level, 0..=rows - 1, 0..=cols - 1, out);
+    }
+}
+
+/// [`antipodal_pairs`] for the pairs whose first cell `a` lies in `rows` ×
+/// `cols` (clamped to the grid), in the same order. After the cells of a
+/// window `r0 ..= r1` × `c0 ..= c1` changed, the pairs that may have changed
+/// are those with a first cell in `r0 − 1 ..= r1` × `c0 − 1 ..= c1` (a pair's
+/// second cell is the right or lower neighbour of the first), so a scan of
+/// those brings a level's list up to date.
+pub fn antipodal_pairs_from(
+    depth: u32,
+    level: &Grid<DVec3>,
+    rows: std::ops::RangeInclusive<usize>,
+    cols: std::ops::RangeInclusive<usize>,
+    out: &mut Vec<AntipodalPair>,
+) {
+    let (n_rows, n_cols) = (level.rows(), level.cols());
+    let (r1, c1) = (
+        (*rows.end()).min(n_rows.saturating_sub(1)),
+        (*cols.end()).min(n_cols.saturating_sub(1)),
+    );
+    if n_rows == 0 || n_cols == 0 || *rows.start() > r1 || *cols.start() > c1 {
+        return;
+    }
+    for r in *rows.start()..=r1 {
         let row = level.row(r);
-        let below = (r + 1 < rows).then(|| level.row(r + 1));
-        for c in 0..cols {
+        let below = (r + 1 < n_rows).then(|| level.row(r + 1));
+        for c in *cols.start()..=c1 {
             let a = row[c];
-            if c + 1 < cols && is_antipodal(a, row[c + 1]) {
+            if c + 1 < n_cols && is_antipodal(a, row[c + 1]) {
                 out.push(AntipodalPair {
                     level: depth,
                     a: (r, c),
@@ -155,5 +181,43 @@ mod tests {
         );
         assert_eq!(antipodal_legs(&[x, -x, DVec3::Y, -DVec3::Y]), vec![0, 2]);
         assert!(antipodal_legs(&[x]).is_empty());
+    }
+
+    /// A window's rescan brings a level's list up to date: drop the pairs
+    /// whose first cell is in the window grown by one up and left, scan
+    /// those cells again, and the sorted list is the full scan's.
+    #[test]
+    fn a_window_rescan_equals_the_full_scan() {
+        let x = DVec3::X;
+        let mut g = Grid::filled(7, 9, x);
+        for &(r, c) in &[(0, 0), (2, 3), (3, 4), (6, 8), (4, 0)] {
+            g.set(r, c, -x);
+        }
+        let mut before = Vec::new();
+        antipodal_pairs(1, &g, &mut before);
+        let mut sorted = before.clone();
+        sorted.sort();
+        assert_eq!(before, sorted, "the scan order is the pairs' order");
+        for (r0, r1, c0, c1) in [(2, 4, 3, 5), (0, 0, 0, 0), (5, 6, 6, 8), (0, 6, 0, 8)] {
+            let mut h = g.clone();
+            for r in r0..=r1 {
+                for c in c0..=c1 {
+                    let v = if (r + c) % 2 == 0 { -x } else { x };
+                    h.set(r, c, v);
+                }
+            }
+            let (rows, cols) = (r0.saturating_sub(1)..=r1, c0.saturating_sub(1)..=c1);
+            let mut list = before.clone();
+            list.retain(|p| !(rows.contains(&p.a.0) && cols.contains(&p.a.1)));
+            antipodal_pairs_from(1, &h, rows, cols, &mut list);
+            list.sort();
+            let mut full = Vec::new();
+            antipodal_pairs(1, &h, &mut full);
+            assert_eq!(list, full, "window {r0}..={r1} × {c0}..={c1}");
+        }
+        let mut none = Vec::new();
+        antipodal_pairs_from(0, &g, 9..=12, 0..=3, &mut none);
+        antipodal_pairs(0, &Grid::filled(0, 0, x), &mut none);
+        assert!(none.is_empty());
     }
 }
