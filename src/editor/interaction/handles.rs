@@ -337,7 +337,8 @@ fn level_handles(
     place_rows_tuned(initial, &l.tangents, &l.params, tuning, &mut all);
     let mut out = Vec::with_capacity(rows * cols);
     let mut copies = Vec::with_capacity(reflected * cols);
-    let net = patch.design().net();
+    // the designer's control tangents, read from their handle entities
+    let net = patch.net();
     for r in 0..rows {
         let pts = &all[r * (cols + 1)..(r + 1) * (cols + 1)];
         for c in 0..cols {
