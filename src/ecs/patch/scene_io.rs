@@ -14,6 +14,7 @@ use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use std::collections::BTreeMap;
 use streamline_kernel::levels::multires::Details;
+use streamline_kernel::streamline::initial_curve::InitialCurve;
 use streamline_kernel::{DVec3, Design, Grid};
 
 /// The patch-wide components of a scene.
@@ -114,8 +115,7 @@ fn spawn_detail(
 
 /// The scene of a patch, from its components and its handles' values
 /// (`dir`, `s` and `detail` read a handle entity's). `kernel` lends its
-/// initial curve when the handles describe the same one (making a curve
-/// evaluates its arc length, Eq. 1, by quadrature).
+/// initial curve when the handles describe the same one ([`initial_curve`]).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn assemble_with(
     name: &PatchName,
@@ -148,12 +148,8 @@ pub(crate) fn assemble_with(
         length: Finite(pl.initial_length),
         origin: Point::from_vec(pl.initial_origin),
     };
-    let curve = match kernel {
-        Some(k) if InitialSpec::from_kernel(k.design.initial()) == initial => {
-            k.design.initial().clone()
-        }
-        _ => initial.to_kernel().map_err(|e| e.to_string())?,
-    };
+    let tangents: Vec<DVec3> = initial.tangents.iter().map(|d| d.vec()).collect();
+    let curve = initial_curve(pl, &tangents, kernel.map(|k| k.design.initial()))?;
     let design = Design::new(
         &net,
         sg,
@@ -179,6 +175,35 @@ pub(crate) fn assemble_with(
         interpolate_tangents: st.interpolate_tangents,
         mirror: st.mirror,
     })
+}
+
+/// The initial curve of `pl` and the curve handles' `tangents`: `old` when
+/// it is that curve (same order, length, origin and normalised tangents, bit
+/// for bit), else made afresh (making one evaluates its arc length, Eq. 1,
+/// by quadrature).
+pub(crate) fn initial_curve(
+    pl: &PatchPlacement,
+    tangents: &[DVec3],
+    old: Option<&InitialCurve>,
+) -> Result<InitialCurve, String> {
+    let same = |c: &InitialCurve| {
+        c.qi().order() == pl.initial_order
+            && c.length().to_bits() == pl.initial_length.to_bits()
+            && c.origin() == pl.initial_origin
+            && c.qi().tangents().len() == tangents.len()
+            && (c.qi().tangents().iter().zip(tangents))
+                .all(|(a, b)| streamline_kernel::Tangent::new(*b).is_ok_and(|t| t.get() == *a))
+    };
+    match old {
+        Some(c) if same(c) => Ok(c.clone()),
+        _ => InitialCurve::new(
+            tangents,
+            pl.initial_order,
+            pl.initial_length,
+            pl.initial_origin,
+        )
+        .map_err(|e| e.to_string()),
+    }
 }
 
 /// The scene of the world's patch, assembled from its entities (for

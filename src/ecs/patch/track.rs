@@ -20,7 +20,6 @@ use crate::ecs::edit_error::EditError;
 use crate::ecs::resources::EditLog;
 use bevy::prelude::*;
 use std::collections::HashMap;
-use streamline_kernel::streamline::initial_curve::InitialCurve;
 use streamline_kernel::{DVec3, Design, Grid};
 
 /// The net handles whose value changed since the last run.
@@ -157,24 +156,7 @@ fn fresh_design(
         .map(|&e| initial.get(e).map(|d| d.0))
         .collect::<Result<Vec<_>, _>>()
         .map_err(|_| "an initial-curve handle is missing".to_string())?;
-    let c = old.initial();
-    let same_curve = c.qi().order() == pl.initial_order
-        && c.length().to_bits() == pl.initial_length.to_bits()
-        && c.origin() == pl.initial_origin
-        && c.qi().tangents().len() == tangents.len()
-        && (c.qi().tangents().iter().zip(&tangents))
-            .all(|(a, b)| streamline_kernel::Tangent::new(*b).is_ok_and(|t| t.get() == *a));
-    let curve = if same_curve {
-        c.clone()
-    } else {
-        InitialCurve::new(
-            &tangents,
-            pl.initial_order,
-            pl.initial_length,
-            pl.initial_origin,
-        )
-        .map_err(|e| e.to_string())?
-    };
+    let curve = super::scene_io::initial_curve(pl, &tangents, Some(old.initial()))?;
     Design::new(
         &dirs,
         s,
