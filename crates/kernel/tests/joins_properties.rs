@@ -289,23 +289,24 @@ proptest! {
     }
 
     /// Side G1: projecting B's first column into A's tangent planes after
-    /// every step makes the seam's normal angle shrink with depth; projecting
-    /// only the control column does not (negative control).
-    ///
-    /// Ignored: the claim does not hold for every pair yet. In about one run
-    /// in two some pair levels off or rises between depths 3 and 5 (e.g.
-    /// 0.122, 0.059, 0.040, 0.034, 0.032, 0.054° at depths 0–5; or a rate of
-    /// 0.9 a level: 0.249, 0.071, 0.058, 0.052, 0.047, 0.044°). Open in issue
-    /// 28 (docs/math.md §11.2); run with `--ignored` to see it.
+    /// every step makes the seam's normal angle shrink with depth: at depth 5
+    /// at most half the largest of depths 1–3 (the measure's constant depends
+    /// on where B's rows fall in A's segments, docs/math.md §11.2, so one
+    /// level may rise; the envelope halves). B's first column is in A's
+    /// tangent planes at every depth. Negative control: the control column
+    /// projected once drifts out of A's planes as it is refined, the drift
+    /// does not shrink from depth 4 to 5, and the seam's angle at depth 5 is
+    /// that drift (and above G1's).
     #[test]
-    #[ignore = "issue 28: side G1 does not converge for every pair yet (docs/math.md §11.2)"]
     fn side_g1_angle_shrinks_and_control_only_does_not(spec in pair_spec(), last in any::<bool>()) {
-        let spec = default_omega(spec);
+        let spec = refining(default_omega(spec));
         let edge = if last { Edge::Last } else { Edge::First };
         let Some((_, sa, b)) = side_pair(&spec, Field::Bent, edge, 5) else { return Ok(()) };
         let g1 = streamline_kernel::joins::side::side(&sa, &b, edge, Continuity::G1).unwrap();
         let angle: Vec<f64> = measures(&sa, &g1, edge).iter().map(|m| m.0).collect();
-        prop_assert!(angle[5] < angle[3] && angle[5] < angle[1], "G1: {:?}", angle);
+        let early = angle[1].max(angle[2]).max(angle[3]);
+        prop_assert!(angle[5] <= 0.5 * early, "G1: {:?}", angle);
+        prop_assert!(drift(&sa, &g1, edge).iter().all(|&v| v < 1e-9), "G1 leaves A's planes");
         // the control column projected once, with A's level-0 normals, then free
         let curve = EdgeCurve::of(&sa, 0, edge).unwrap();
         let mut net = b.net().clone();
@@ -318,8 +319,39 @@ proptest! {
         once.set_net(&net).unwrap();
         let g0 = streamline_kernel::joins::side::side(&sa, &once, edge, Continuity::G0).unwrap();
         let ctl: Vec<f64> = measures(&sa, &g0, edge).iter().map(|m| m.0).collect();
-        prop_assert!(ctl[5] > 0.7 * ctl[4] && ctl[5] > 1.5 * angle[5], "control only: {:?}, G1: {:?}", ctl, angle);
+        let off = drift(&sa, &g0, edge);
+        prop_assert!(off[0] < 1e-9 && off[5] > 0.05 && off[5] >= 0.6 * off[4], "control drift: {:?}", off);
+        prop_assert!(ctl[5] >= 0.7 * off[5] && ctl[5] > angle[5], "control only: {:?}, drift {:?}, G1 {:?}", ctl, off, angle);
     }
+}
+
+/// A net that is refined along the side edge: Catmull–Clark keeps a net of 3
+/// columns (or rows) at 3 at every depth (`2n − 3`), contracting it onto its
+/// middle column instead of refining it, so `A` needs 4 columns and `B` 4
+/// rows there (docs/math.md §11.2). The other schemes refine any net.
+fn refining(mut spec: PairSpec) -> PairSpec {
+    if spec.scheme == SurfaceScheme::CatmullClark {
+        spec.cols_a = spec.cols_a.max(4);
+        spec.cols_b = spec.cols_b.max(4);
+    }
+    spec
+}
+
+/// How far (degrees) `B`'s first-column tangents lie out of `A`'s tangent
+/// planes at their rows' starts (Eq. 72's normal), the largest at each depth.
+fn drift(a: &Stack, b: &Stack, edge: Edge) -> Vec<f64> {
+    (0..=a.depth())
+        .map(|d| {
+            let curve = EdgeCurve::of(a, d, edge).unwrap();
+            let level = &b.levels[d as usize];
+            (0..level.tangents.rows())
+                .map(|r| {
+                    let n = curve.normal(level.params.t[r]).unwrap();
+                    level.tangents.get(r, 0).dot(n).abs().asin().to_degrees()
+                })
+                .fold(0.0, f64::max)
+        })
+        .collect()
 }
 
 /// Every refusal of docs/math.md §11 ("Bad input") is an error that says
