@@ -155,7 +155,8 @@ proptest! {
     /// tangent plane shows the turn as a normal angle: on the control net,
     /// and for Kobbelt (which keeps the column) at every depth. The
     /// approximating schemes move the boundary, so deeper the turn mixes with
-    /// the bend of the next columns: a crease of some size, never rounding.
+    /// the bend of the next columns: a crease of some size (at least 1e-3°;
+    /// G1 is below 1e-11°), never rounding.
     #[test]
     fn chain_g0_with_a_turned_seam_column_shows_the_angle(spec in pair_spec(), deg in 10.0f64..40.0) {
         let a = spec.a(Field::Bent);
@@ -164,7 +165,7 @@ proptest! {
         let b = turned_seam(&shared, &sa, deg.to_radians());
         let Some((sa, sb)) = built(join(&a, &b, end(Continuity::G0), DEPTH)) else { return Ok(()) };
         for (d, (angle, _)) in measures(&sa, &sb, Edge::End).into_iter().enumerate() {
-            let least = if d == 0 || spec.scheme.is_interpolatory() { deg / 3.0 } else { 1e-6 };
+            let least = if d == 0 || spec.scheme.is_interpolatory() { deg / 3.0 } else { 1e-3 };
             prop_assert!(angle > least, "depth {}: {} degrees for a {} degree turn", d, angle, deg);
         }
     }
