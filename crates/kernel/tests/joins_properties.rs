@@ -202,7 +202,10 @@ proptest! {
 
     /// Negative control: a G1 chain of two patches that bend at different
     /// rates keeps its curvature jump at depth 5, where the G2 join of the
-    /// same pair has shrunk it.
+    /// same pair has shrunk it (measured over 2 000 pairs: G1's deviation at
+    /// least 0.039 for Kobbelt, whose 4-point rule smooths it somewhat, 0.66
+    /// and 0.88 for Doo–Sabin and Catmull–Clark; at least 3.1 times G2's);
+    /// and its `B` is not the merged net's surface.
     #[test]
     fn chain_g1_does_not_pass_as_g2(spec in pair_spec()) {
         let spec = default_omega(spec);
@@ -213,7 +216,12 @@ proptest! {
         let Some((g2a, g2b)) = built(join(&a, &b, end(Continuity::G2), 5)) else { return Ok(()) };
         let g1 = measures(&g1a, &g1b, Edge::End)[5].1;
         let g2 = measures(&g2a, &g2b, Edge::End)[5].1;
-        prop_assert!(g1 > 0.05 && g1 > 2.0 * g2, "G1 deviation {} against G2's {}", g1, g2);
+        prop_assert!(g1 > 0.02 && g1 > 2.0 * g2, "G1 deviation {} against G2's {}", g1, g2);
+        // nor is it the merged net's surface: B's points next to the seam
+        // (which the G2 test finds bit for bit in the merged net) are elsewhere
+        let (p1, p2) = (&g1b.points[1], &g2b.points[1]);
+        let apart = (0..p1.rows()).map(|j| (p1.get(j, 1) - p2.get(j, 1)).length()).fold(0.0f64, f64::max);
+        prop_assert!(apart > 1e-6, "G1's B at depth 1 is the merged net's to {}", apart);
     }
 
     /// Chain G2: the two patches are the merged net's surface cut at the seam
