@@ -351,11 +351,25 @@ fn the_shipped_three_patch_scene_joins_as_it_says_at_its_depth() {
         inner(1).iter().all(|p| p.x > hh.x - 1e-9 || p.z > hh.z),
         "screen clear of the hood"
     );
+    // the wing leaves the hood's last streamline outwards: beyond it at the same x
+    let edge = {
+        let g = built.patches[0].finest_points();
+        g.row(g.rows() - 1).to_vec()
+    };
+    let edge_y = |x: f64| {
+        let k = edge.partition_point(|p| p.x <= x).clamp(1, edge.len() - 1);
+        let (p, q) = (edge[k - 1], edge[k]);
+        p.y + (q.y - p.y) * (x - p.x) / (q.x - p.x)
+    };
     assert!(
-        inner(2).iter().all(|p| p.y > hh.y),
+        inner(2).iter().all(|p| p.y > edge_y(p.x)),
         "wing clear of the hood"
     );
-    assert!(first_col(2).iter().all(|p| p.y <= hh.y + 1e-9));
+    assert!(
+        first_col(2)
+            .iter()
+            .all(|p| (p.y - edge_y(p.x)).abs() < 1e-9)
+    );
     // no fold inside a patch: each streamline advances, rows keep their order
     let g = built.patches[0].finest_points();
     for j in 0..g.rows() {
@@ -495,7 +509,7 @@ fn random_document(seed: u64, n: usize, kinds: &[(usize, u8)], depth: u32) -> Do
         };
         let pa = patches[a].clone();
         let (ra, ca) = (pa.tangents.len(), pa.tangents[0].len());
-        let bcols = 2 + (seed >> (16 + i)) as usize % 3;
+        let bcols = 3 + (seed >> (16 + i)) as usize % 2;
         let (patch, edge, continuity, is_g2) = match kind {
             Kind::Chain(c) => {
                 let mut tangents = net(ra, bcols, DVec3::X, &mut rnd);
@@ -520,7 +534,7 @@ fn random_document(seed: u64, n: usize, kinds: &[(usize, u8)], depth: u32) -> Do
                 let row = if e == EdgeSpec::First { 0 } else { ra - 1 };
                 let sa = &pa.s[row].0;
                 let len = sa[ca - 1] - sa[0];
-                let brows = 2 + (seed >> (20 + i)) as usize % 2;
+                let brows = 3 + (seed >> (20 + i)) as usize % 2;
                 let out = if e == EdgeSpec::First {
                     -DVec3::Y
                 } else {
