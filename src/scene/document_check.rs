@@ -47,12 +47,13 @@ pub fn check_document(doc: &Document, file: &Path, place: &PatchText) -> Result<
         let Start::Edge { patch, .. } = &p.start else {
             continue;
         };
+        let curve = "`initial: Curve(tangents: […], order: 3, length: L, origin: (x, y, z))`";
+        let earlier = listed((0..i).map(name));
         let fix = if i == 0 {
-            "the first patch starts on its own curve: give it `initial: Curve(tangents: […], order: 3, length: L, origin: (x, y, z))`".to_string()
+            format!("the first patch starts on its own curve: give it {curve}")
         } else {
             format!(
-                "start it on one of the patches before it: {}",
-                listed((0..i).map(name))
+                "start it on one of the patches before it ({earlier}), or give it its own curve, {curve}"
             )
         };
         match doc.index(patch) {
@@ -76,12 +77,20 @@ pub fn check_document(doc: &Document, file: &Path, place: &PatchText) -> Result<
                         doc.patches.len()
                     )
                 };
+                let fix = if i == 0 || j == i {
+                    fix
+                } else {
+                    format!(
+                        "move `{patch}` before `{}`, or start `{}` on one of the patches before it ({earlier})",
+                        p.name, p.name
+                    )
+                };
                 return Err(at(
                     i,
                     "initial",
                     format!(
-                        "patch `{}` starts on {what}; a patch starts on an earlier patch, so that joins cannot form a cycle: move `{patch}` before `{}`, or {fix}",
-                        p.name, p.name
+                        "patch `{}` starts on {what}, but a patch starts on an earlier one (so that joins cannot form a cycle); {fix}",
+                        p.name
                     ),
                 ));
             }
@@ -136,24 +145,24 @@ pub fn check_document(doc: &Document, file: &Path, place: &PatchText) -> Result<
         if !joined {
             continue;
         }
-        let refuse = |key: &str, what: &str| {
+        let refuse = |key: &str| {
             at(
                 i,
                 key,
                 format!(
-                    "patch `{}` has {what}, but it is joined to another patch, and joins are built from the control nets ({what} on a joined patch is future work); remove it or the join",
+                    "patch `{}` has `{key}`, but it is joined to another patch, and joins are built from the control nets alone (`{key}` on a joined patch is future work); remove `{key}`, or the join",
                     p.name
                 ),
             )
         };
         if !p.details.is_empty() {
-            return Err(refuse("details", "multiresolution details"));
+            return Err(refuse("details"));
         }
         if p.tuning.is_some() {
-            return Err(refuse("tuning", "fine tuning"));
+            return Err(refuse("tuning"));
         }
         if p.interpolate_tangents {
-            return Err(refuse("interpolate_tangents", "tangent interpolation"));
+            return Err(refuse("interpolate_tangents"));
         }
     }
     stacks(doc, 0).map_err(|e| at(e.patch, "initial", e.message))?;
