@@ -514,8 +514,8 @@ fn random_document(seed: u64, n: usize, kinds: &[(usize, u8)], depth: u32) -> Do
             Kind::Chain(c) => {
                 let mut tangents = net(ra, bcols, DVec3::X, &mut rnd);
                 if c != ContinuitySpec::G0 {
-                    for r in 0..ra {
-                        tangents[r][0] = pa.tangents[r][ca - 1];
+                    for (row, a_row) in tangents.iter_mut().zip(&pa.tangents) {
+                        row[0] = a_row[ca - 1];
                     }
                 }
                 (

@@ -241,26 +241,32 @@ impl<'de> Deserialize<'de> for Version3 {
 }
 
 /// The version a scene file declares, read without parsing the rest: the
-/// number after the first `version:` outside comments and strings; `None`
-/// when there is none or it is not a number.
+/// number after the first `version:` outside comments (a scan of the text),
+/// else the `version` field of the record (a RON parse that skips the
+/// rest); `None` when there is none or it is not a number.
 pub fn declared_version(text: &str) -> Option<u32> {
     #[derive(Deserialize)]
     struct Probe {
         version: u32,
     }
-    if let Ok(p) = ron::Options::default().from_str::<Probe>(text) {
-        return Some(p.version);
-    }
-    let code = super::patch_text::code_only(text);
-    let (line, col) = super::error::find_key(&code, "version")?;
-    let rest: String = code.lines().nth(line - 1)?.chars().skip(col - 1).collect();
-    let rest = rest["version".len()..].trim_start().strip_prefix(':')?;
-    let digits: String = rest
-        .trim_start()
-        .chars()
-        .take_while(char::is_ascii_digit)
-        .collect();
-    digits.parse().ok()
+    let scanned = || {
+        let code = super::patch_text::code_only(text);
+        let (line, col) = super::error::find_key(&code, "version")?;
+        let rest: String = code.lines().nth(line - 1)?.chars().skip(col - 1).collect();
+        let rest = rest["version".len()..].trim_start().strip_prefix(':')?;
+        let digits: String = rest
+            .trim_start()
+            .chars()
+            .take_while(char::is_ascii_digit)
+            .collect();
+        digits.parse().ok()
+    };
+    scanned().or_else(|| {
+        ron::Options::default()
+            .from_str::<Probe>(text)
+            .ok()
+            .map(|p| p.version)
+    })
 }
 
 /// The longest patch name.

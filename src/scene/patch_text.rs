@@ -82,10 +82,10 @@ pub fn code_only(text: &str) -> String {
         } else {
             out.push(c);
         }
-        if take == 2 {
-            if let Some(n) = chars.next() {
-                out.push(if comment { ' ' } else { n });
-            }
+        if take == 2
+            && let Some(n) = chars.next()
+        {
+            out.push(if comment { ' ' } else { n });
         }
         lex = to;
     }
