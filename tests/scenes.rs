@@ -236,8 +236,8 @@ fn bad_scenes_have_located_errors() {
         ),
         (
             "wrong version",
-            good.replace("version: 1,", "version: 3,"),
-            "version 3 is not supported; this build reads versions 1 and 2",
+            good.replace("version: 1,", "version: 4,"),
+            "version 4 is not supported; this build reads versions 1 to 3",
         ),
         (
             "mirror in a version-1 file",

@@ -1,5 +1,6 @@
 //! The scene file, version 2 (RON; version 1, the same without `mirror`,
-//! is read unchanged and saved as version 2). Every field is checked while it is read,
+//! is read unchanged and saved as version 2; version 3, several patches, is
+//! [`super::format_v3`]). Every field is checked while it is read,
 //! so an error carries the line and column of the bad value: tangents must be
 //! finite and non-zero ([`Dir`]), each row of `s` finite and strictly
 //! increasing ([`SRow`]), ω in range; unknown fields are errors.
@@ -122,7 +123,8 @@ fn default_display_depth() -> u32 {
     3
 }
 
-/// The file version; anything but 1 or 2 is refused while reading.
+/// The file version of one surface; anything but 1 or 2 is refused while
+/// reading (version 3, several patches, is [`super::format_v3::DocumentFile`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(transparent)]
 pub struct Version(pub u32);
@@ -130,9 +132,15 @@ pub struct Version(pub u32);
 impl<'de> Deserialize<'de> for Version {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         let v = u32::deserialize(d)?;
+        let patches = super::format_v3::VERSION_PATCHES;
+        if v == patches {
+            return Err(D::Error::custom(format!(
+                "a version-{patches} file lists its surfaces under `patches: [ … ]`; move the surface fields into a patch `( name: \"main\", tangents: …, … )`, or write `version: {VERSION}`"
+            )));
+        }
         if !(OLDEST_VERSION..=VERSION).contains(&v) {
             return Err(D::Error::custom(format!(
-                "scene version {v} is not supported; this build reads versions {OLDEST_VERSION} and {VERSION} (write `version: {VERSION}`, or open the file with the build that wrote it)"
+                "scene version {v} is not supported; this build reads versions {OLDEST_VERSION} to {patches} (write `version: {VERSION}` for one surface or `version: {patches}` for several patches, or open the file with the build that wrote it)"
             )));
         }
         Ok(Version(v))

@@ -5,10 +5,15 @@
 pub mod builtin;
 pub mod cad;
 pub mod cad_text;
+pub mod document;
+pub mod document_build;
+pub mod document_check;
+pub mod document_io;
 pub mod edit;
 pub mod error;
 pub mod export;
 pub mod format;
+pub mod format_v3;
 pub mod glb;
 pub mod iges;
 pub mod io;
@@ -16,10 +21,12 @@ pub mod job;
 pub mod model;
 pub mod numbers;
 pub mod obj;
+pub mod patch_text;
 pub mod script;
 pub mod step;
 pub mod usd;
 
+pub use document::Document;
 pub use error::SceneError;
 pub use format::SceneFile;
 pub use model::Scene;

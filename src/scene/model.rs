@@ -1,8 +1,13 @@
 //! A scene in memory: the kernel's [`Design`], its details, depths and view,
 //! converted from and to a [`SceneFile`] with validation across fields.
 
-use super::error::SceneError;
+use super::error::{SceneError, find_key};
 use super::format::*;
+use super::format_v3::{
+    DocumentFile, StartSpec, VERSION_PATCHES, declared_version, patch_name_problem,
+    placeholder_initial, scene_file_of,
+};
+use super::patch_text::PatchText;
 use std::path::Path;
 use streamline_kernel::finetune::bspline::TensorBSpline;
 use streamline_kernel::finetune::{Constraint, SurfaceTuning};
@@ -264,8 +269,21 @@ impl Scene {
     /// Checks what crosses fields: depth cap, parameter increase at every
     /// level, details inside their level. `file`/`text` locate the errors.
     pub fn validate(&self, file: &Path, text: &str) -> Result<(), SceneError> {
+        self.validate_at(file, &|key| find_key(text, key).unwrap_or((0, 0)))
+    }
+
+    /// [`Scene::validate`], with `place` giving the line and column of a
+    /// field by its key (a version-3 file places them inside the patch).
+    pub fn validate_at(
+        &self,
+        file: &Path,
+        place: &dyn Fn(&str) -> (usize, usize),
+    ) -> Result<(), SceneError> {
         let d = &self.design;
-        let at = |key: &str, e: String| SceneError::locate(file, text, key, e);
+        let at = |key: &str, e: String| {
+            let (line, col) = place(key);
+            SceneError::at(file, line, col, e)
+        };
         let depth = self.max_depth();
         if let Err(e) = d
             .scheme()
@@ -315,7 +333,20 @@ impl Scene {
 
     /// From a file's contents, with every error located.
     pub fn from_file(f: SceneFile, file: &Path, text: &str) -> Result<Self, SceneError> {
-        let at = |key: &str, e: String| SceneError::locate(file, text, key, e);
+        Scene::from_file_at(f, file, &|key| find_key(text, key).unwrap_or((0, 0)))
+    }
+
+    /// [`Scene::from_file`], with `place` giving the line and column of a
+    /// field by its key.
+    pub fn from_file_at(
+        f: SceneFile,
+        file: &Path,
+        place: &dyn Fn(&str) -> (usize, usize),
+    ) -> Result<Self, SceneError> {
+        let at = |key: &str, e: String| {
+            let (line, col) = place(key);
+            SceneError::at(file, line, col, e)
+        };
         let rows = f.tangents.len();
         if rows < 2 {
             return Err(at(
@@ -436,7 +467,7 @@ impl Scene {
             interpolate_tangents: f.interpolate_tangents,
             mirror: f.mirror,
         };
-        scene.validate(file, text)?;
+        scene.validate_at(file, place)?;
         Ok(scene)
     }
 
@@ -486,10 +517,78 @@ impl Scene {
                 "the file is empty; a scene is a RON record `( version: 2, tangents: …, … )` — start from scenes/car1.ron",
             ));
         }
+        if declared_version(text) == Some(VERSION_PATCHES) {
+            return Scene::parse_one_patch(text, file);
+        }
         let f: SceneFile = ron::Options::default()
             .from_str(text)
             .map_err(|e| SceneError::ron(file, text, &e))?;
         Scene::from_file(f, file, text)
+    }
+
+    /// A version-3 file of one patch, which starts on its own curve, as a
+    /// scene; a file of several patches is refused saying so (the editor and
+    /// the one-surface commands open one surface; `scene::document` opens
+    /// every patch).
+    fn parse_one_patch(text: &str, file: &Path) -> Result<Self, SceneError> {
+        let f: DocumentFile = ron::Options::default()
+            .from_str(text)
+            .map_err(|e| SceneError::ron(file, text, &e))?;
+        let place = PatchText::new(text);
+        if f.patches.len() != 1 {
+            let names: Vec<String> = f.patches.iter().map(|p| format!("`{}`", p.name)).collect();
+            let (line, col) = place.top("patches");
+            let msg = if names.is_empty() {
+                "`patches` is empty; a design needs at least one patch, the first starting on its own curve (`initial: Curve(tangents: […], order: 3, length: L, origin: (x, y, z))`)".to_string()
+            } else {
+                format!(
+                    "this design has {} patches ({}), and this part of the program opens one surface only (the editor does not open several patches yet); open a design of one patch, or a version-2 scene",
+                    names.len(),
+                    names.join(", ")
+                )
+            };
+            return Err(SceneError::at(file, line, col, msg));
+        }
+        let patch = &f.patches[0];
+        if let StartSpec::Edge { patch: on, .. } = &patch.initial {
+            let (line, col) = place.in_patch(0, "initial");
+            return Err(SceneError::at(
+                file,
+                line,
+                col,
+                format!(
+                    "patch `{}` starts on patch `{on}`, which is not an earlier patch; the first patch starts on its own curve: give it `initial: Curve(tangents: […], order: 3, length: L, origin: (x, y, z))`",
+                    patch.name
+                ),
+            ));
+        }
+        Scene::from_patch(&f, 0, file, &place)
+    }
+
+    /// Patch `i` of a version-3 file as a scene of its own: the design's
+    /// depths and view, the mirror for the first patch only (its plane is
+    /// the design's, docs/math.md §11), and for a patch that starts on an
+    /// edge a placeholder initial curve ([`placeholder_initial`]: the join
+    /// gives its start points). Errors are placed inside the patch and name it.
+    pub fn from_patch(
+        f: &DocumentFile,
+        i: usize,
+        file: &Path,
+        place: &PatchText,
+    ) -> Result<Self, SceneError> {
+        let patch = &f.patches[i];
+        let name_err = patch_name_problem(&patch.name);
+        let named = |e: SceneError| SceneError {
+            message: format!("patch `{}`: {}", patch.name, e.message),
+            ..e
+        };
+        if let Some(m) = name_err {
+            let (line, col) = place.in_patch(i, "name");
+            return Err(SceneError::at(file, line, col, m));
+        }
+        let initial = patch.initial.initial().unwrap_or_else(placeholder_initial);
+        let sf = scene_file_of(f, i, initial);
+        Scene::from_file_at(sf, file, &|key| place.in_patch(i, key)).map_err(named)
     }
 
     /// RON text of this scene.
