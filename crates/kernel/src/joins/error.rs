@@ -76,7 +76,8 @@ impl fmt::Display for JoinError {
             ),
             SeamColumnDiffers { row, angle_deg } => write!(
                 f,
-                "on a G1/G2 chain B's first control column is A's last (one handle), but at row {row} they are {angle_deg:e} degrees apart; copy A's last column into B's first, or join with G0"
+                "on a G1/G2 chain B's first control column is A's last (one handle), but at row {row} they are {} degrees apart; copy A's last column into B's first, or join with G0",
+                readable_degrees(*angle_deg)
             ),
             SideG2 => write!(
                 f,
@@ -115,3 +116,14 @@ impl fmt::Display for JoinError {
 }
 
 impl std::error::Error for JoinError {}
+
+/// An angle as a designer reads it: three decimals from a hundredth of a
+/// degree up (`2.726`), otherwise in scientific notation (`3.1e-9`), so that
+/// a rounding-sized difference does not print as `0.000`.
+fn readable_degrees(deg: f64) -> String {
+    if deg.abs() >= 0.01 {
+        format!("{deg:.3}")
+    } else {
+        format!("{deg:.1e}")
+    }
+}
