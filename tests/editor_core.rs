@@ -146,7 +146,10 @@ fn picking_finds_the_nearest_shown_handle() {
         let mid = (p0 + p1) * 0.5;
         let got = handles(&mut app, |q| q.pick_on_screen(&settings, mid, project, 8.0));
         // the nearest arrow within 8 px: this one, or one at most as near
-        let g = handles(&mut app, |q| q.find(got.expect("an arrow under the pointer"))).unwrap();
+        let g = handles(&mut app, |q| {
+            q.find(got.expect("an arrow under the pointer"))
+        })
+        .unwrap();
         let (q0, q1) = g.on_screen(project).unwrap();
         let d = streamline_studio::editor::interaction::segment_distance;
         assert!(d(mid, q0, q1) <= d(mid, p0, p1) + 1e-4);
@@ -159,10 +162,14 @@ fn picking_finds_the_nearest_shown_handle() {
     let sphere = |d: DVec3| Some(Vec2::new(d.x as f32 * 100.0, d.y as f32 * 100.0));
     let at = sphere(a.dir).unwrap();
     let eye = DVec3::new(a.dir.x, a.dir.y, a.dir.z.abs() + 1.0).normalize();
-    let got = handles(&mut app, |q| q.pick_on_sphere(&settings, at, eye, sphere, 10.0));
+    let got = handles(&mut app, |q| {
+        q.pick_on_sphere(&settings, at, eye, sphere, 10.0)
+    });
     assert!(got.is_some_and(|g| (sphere(g.dir).unwrap() - at).length() <= 1e-4));
     // a handle on the far side of the sphere is never picked
-    let back = handles(&mut app, |q| q.pick_on_sphere(&settings, at, -a.dir, sphere, 10.0));
+    let back = handles(&mut app, |q| {
+        q.pick_on_sphere(&settings, at, -a.dir, sphere, 10.0)
+    });
     assert!(back.is_none_or(|g| g.dir.dot(-a.dir) >= 0.0));
 }
 
@@ -245,7 +252,10 @@ fn placements(app: &mut App) -> Vec<(HandleId, [u64; 7])> {
     let bits = |a: Handle| {
         let v = [a.base, a.dir].map(|v| v.to_array().map(f64::to_bits));
         let [b, d] = v;
-        (a.id, [b[0], b[1], b[2], d[0], d[1], d[2], a.length.to_bits()])
+        (
+            a.id,
+            [b[0], b[1], b[2], d[0], d[1], d[2], a.length.to_bits()],
+        )
     };
     handles(app, |q| {
         q.controls()
@@ -303,7 +313,10 @@ fn only_the_moved_handles_are_marked_changed() {
         .collect();
     differ.sort_by_key(|h| (h.is_surface(), h.row, h.col));
     differ.dedup();
-    assert!(changed.contains(&h), "the turned handle is marked: {changed:?}");
+    assert!(
+        changed.contains(&h),
+        "the turned handle is marked: {changed:?}"
+    );
     assert!(
         changed.iter().all(|c| c.is_surface() && c.row == row),
         "only its row's handles are marked: {changed:?}"
@@ -368,11 +381,14 @@ fn refined_handles_are_entities_at_an_edit_depth_above_0() {
     let target = HandleId::tangent(1, rows / 2, cols / 2);
     let a = handles(&mut app, |q| q.find(target)).expect("the refined handle");
     let (p0, p1) = a.on_screen(project).unwrap();
-    let got = handles(&mut app, |q| q.pick_on_screen(&settings, (p0 + p1) * 0.5, project, 8.0))
-        .expect("a refined arrow under the pointer");
+    let got = handles(&mut app, |q| {
+        q.pick_on_screen(&settings, (p0 + p1) * 0.5, project, 8.0)
+    })
+    .expect("a refined arrow under the pointer");
     assert_eq!(got.level(), 1, "at depth 1 the refined handles are picked");
     // turn it: the level's tangent at its cell follows, and so does its entity
     let dir = (a.dir + DVec3::new(0.2, -0.1, 0.15)).normalize();
+    let steps = undo_steps(&app);
     press(&mut app, Some(target), Some(DragKind::Sphere));
     steer(&mut app, dir);
     release(&mut app);
@@ -383,8 +399,11 @@ fn refined_handles_are_entities_at_an_edit_depth_above_0() {
     let mut q = w.query::<(&SubdivisionLevel, &LevelData)>();
     let level = q.iter(w).find(|(s, _)| s.0 == 1).unwrap().1;
     let t = level.0.tangents.get(target.row, target.col);
-    assert!((t - dir).length() < 1e-9, "the level's tangent {t} != {dir}");
-    assert_eq!(undo_steps(&app), 1);
+    assert!(
+        (t - dir).length() < 1e-9,
+        "the level's tangent {t} != {dir}"
+    );
+    assert_eq!(undo_steps(&app), steps + 1, "the drag is one undo step");
     // back at depth 0: no refined entity is left
     set_depth(&mut app, 0);
     frame(&mut app);

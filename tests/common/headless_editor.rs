@@ -81,6 +81,6 @@ pub fn handles<R>(
     let mut state = bevy::ecs::system::SystemState::<
         streamline_studio::editor::interaction::HandleQuery,
     >::new(app.world_mut());
-    let q = state.get(app.world());
+    let q = state.get(app.world()).expect("the patch and its handles");
     f(&q)
 }

@@ -14,12 +14,12 @@ use super::super::interaction::{
     MainCamera, MirroredHandle, Placed, Selection,
 };
 use crate::ecs::patch::InitialHandle;
-use bevy::gizmos::config::GizmoLineConfig;
 use bevy::gizmos::GizmoAsset;
+use bevy::gizmos::config::GizmoLineConfig;
 use bevy::gizmos::retained::Gizmo;
 use bevy::prelude::*;
-use bevy_state::prelude::State;
 use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
+use bevy_state::prelude::State;
 use bevy_state::prelude::in_state;
 use streamline_kernel::DVec3;
 
@@ -103,10 +103,7 @@ fn attach(
             ArrowOf(h),
             Gizmo {
                 handle: assets.add(GizmoAsset::new()),
-                line_config: GizmoLineConfig {
-                    width,
-                    ..default()
-                },
+                line_config: GizmoLineConfig { width, ..default() },
                 depth_bias,
             },
             ArrowLook::default(),

@@ -12,16 +12,16 @@ use super::super::interaction::{
     Drag, DragKind, DragTo, EditorMode, EditorSet, Handle, HandleId, HandleKind, HandlePressed,
     HandleQuery, HandleSettings, MainCamera, OrbitCamera, Placed, Selection, SphereArea, ViewArea,
 };
-use bevy::gizmos::GizmoAsset;
-use bevy::gizmos::config::GizmoLineConfig;
-use bevy::gizmos::gizmos::GizmoBuffer;
-use bevy::gizmos::retained::Gizmo;
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::patch::PatchRef;
 use crate::ecs::{SurfaceChange, SurfaceChanges};
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::Viewport;
 use bevy::camera::visibility::RenderLayers;
+use bevy::gizmos::GizmoAsset;
+use bevy::gizmos::config::GizmoLineConfig;
+use bevy::gizmos::gizmos::GizmoBuffer;
+use bevy::gizmos::retained::Gizmo;
 use bevy::mesh::{PrimitiveTopology, VertexAttributeValues};
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;

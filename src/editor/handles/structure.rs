@@ -6,7 +6,9 @@
 //! control arrow ([`KEYS`]). Each sends one `Insert`/`Delete` edit: one undo
 //! step, and the new row or column is selected.
 
-use super::super::interaction::{EditorMode, EditorSet, HandleId, HandleKind, HandleLayout, Selection};
+use super::super::interaction::{
+    EditorMode, EditorSet, HandleId, HandleKind, HandleLayout, Selection,
+};
 use crate::ecs::authoring::AuthorEdit;
 use crate::ecs::patch::PatchRef;
 use crate::ecs::{Edit, EditMessage};

@@ -23,8 +23,8 @@ use bevy_state::app::{AppExtStates, StatesPlugin};
 pub use drag::{ActiveDrag, Drag, DragGroups, DragKind, DragTo, HandlePressed};
 pub use handle_query::HandleQuery;
 pub use handles::{Handle, HandleId, HandleKind, HandleSettings, segment_distance};
-pub use placed::{HandleLayout, MirroredHandle, Placed, RefinedHandle};
 pub use mode::EditorMode;
+pub use placed::{HandleLayout, MirroredHandle, Placed, RefinedHandle};
 pub use selection::{Selected, Selection};
 pub use view::{FrameRequest, MainCamera, OrbitCamera, SceneBounds, SphereArea, ViewArea};
 

@@ -118,7 +118,15 @@ type TurnedNet<'w, 's> = Query<'w, 's, &'static SurfaceHandle, Changed<Direction
 pub(super) struct MovesAll<'w, 's> {
     s: Query<'w, 's, (), (With<SurfaceHandle>, Changed<ArcParam>)>,
     curve: Query<'w, 's, (), (With<InitialHandle>, Changed<Direction>)>,
-    unplaced: Query<'w, 's, (), (Or<(With<SurfaceHandle>, With<InitialHandle>)>, Without<Placed>)>,
+    unplaced: Query<
+        'w,
+        's,
+        (),
+        (
+            Or<(With<SurfaceHandle>, With<InitialHandle>)>,
+            Without<Placed>,
+        ),
+    >,
 }
 
 /// The entities the placement writes: every [`Placed`], the copies' and the

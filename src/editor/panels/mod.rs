@@ -217,9 +217,7 @@ impl PanelCtx<'_, '_> {
     /// The primary selected handle's arrow, where the framing buttons and
     /// menu entries aim (`None` with nothing selected).
     pub fn selected_arrow(&self) -> Option<super::interaction::Handle> {
-        self.selection
-            .primary()
-            .and_then(|h| self.handles.find(h))
+        self.selection.primary().and_then(|h| self.handles.find(h))
     }
 
     /// Sends one edit.
