@@ -182,7 +182,7 @@ fn redraw(
     inputs: LookInputs,
     handles: Query<(Ref<Placed>, Option<&HandleId>, Option<&MirroredHandle>)>,
     moved: Query<&ArrowDrawn, Changed<Placed>>,
-    added: Query<(), Added<ArrowLook>>,
+    added: Query<(), Added<ArrowOf>>,
     mut arrows: Query<(Entity, &ArrowOf, &mut ArrowLook, &Gizmo)>,
     mut assets: ResMut<Assets<GizmoAsset>>,
     mut redraws: ResMut<ArrowRedraws>,

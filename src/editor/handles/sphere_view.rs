@@ -454,7 +454,7 @@ fn redraw(
     main: Query<Ref<OrbitCamera>, With<MainCamera>>,
     moved: Query<&HandleId, Changed<Placed>>,
     drawn: Query<&DotDrawn>,
-    added: Query<(), Added<DotLook>>,
+    added: Query<(), Added<DotOf>>,
     mut dots: Query<(&DotOf, &mut DotLook, &Gizmo)>,
     mut assets: ResMut<Assets<GizmoAsset>>,
     mut redraws: ResMut<DotRedraws>,
