@@ -89,13 +89,14 @@ pub struct ArrowLook {
 #[derive(Resource, Debug, Default, Clone, Copy, PartialEq, Eq)]
 pub struct ArrowRedraws(pub usize);
 
+/// Placed handle entities without an arrow yet (and whether they are the
+/// initial curve's).
+type Bare<'w, 's> =
+    Query<'w, 's, (Entity, Has<InitialHandle>), (With<Placed>, Without<ArrowDrawn>)>;
+
 /// Gives every placed handle entity (net, initial curve, refined cell,
 /// mirrored copy) an arrow entity with an empty gizmo of its own.
-fn attach(
-    mut commands: Commands,
-    mut assets: ResMut<Assets<GizmoAsset>>,
-    bare: Query<(Entity, Has<InitialHandle>), (With<Placed>, Without<ArrowDrawn>)>,
-) {
+fn attach(mut commands: Commands, mut assets: ResMut<Assets<GizmoAsset>>, bare: Bare) {
     for (h, initial) in &bare {
         // the initial curve's arrows: over the surface, a little wider
         let (width, depth_bias) = if initial { (2.5, -1.0) } else { (2.0, 0.0) };

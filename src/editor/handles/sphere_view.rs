@@ -377,13 +377,12 @@ pub struct DotLook {
 #[derive(Resource, Debug, Default, Clone, Copy, PartialEq, Eq)]
 pub struct DotRedraws(pub usize);
 
+/// Placed handle entities (not copies) without a point yet.
+type Bare<'w, 's> = Query<'w, 's, Entity, (With<Placed>, With<HandleId>, Without<DotDrawn>)>;
+
 /// Gives every placed handle entity but the mirrored copies a point of its
 /// own in the sphere view's layer.
-fn attach(
-    mut commands: Commands,
-    mut assets: ResMut<Assets<GizmoAsset>>,
-    bare: Query<Entity, (With<Placed>, With<HandleId>, Without<DotDrawn>)>,
-) {
+fn attach(mut commands: Commands, mut assets: ResMut<Assets<GizmoAsset>>, bare: Bare) {
     for h in &bare {
         commands.spawn((
             DotOf(h),

@@ -112,21 +112,24 @@ fn length_cap(level: &LevelState, initial: &InitialCurve) -> f64 {
 /// Control tangents whose handle entity's direction changed.
 type TurnedNet<'w, 's> = Query<'w, 's, &'static SurfaceHandle, Changed<Direction>>;
 
+/// Handle entities of the net or the initial curve not placed yet.
+type Unplaced<'w, 's> = Query<
+    'w,
+    's,
+    (),
+    (
+        Or<(With<SurfaceHandle>, With<InitialHandle>)>,
+        Without<Placed>,
+    ),
+>;
+
 /// What else moves every handle: a new `s`, a new initial curve, a handle
 /// entity not placed yet.
 #[derive(bevy::ecs::system::SystemParam)]
 pub(super) struct MovesAll<'w, 's> {
     s: Query<'w, 's, (), (With<SurfaceHandle>, Changed<ArcParam>)>,
     curve: Query<'w, 's, (), (With<InitialHandle>, Changed<Direction>)>,
-    unplaced: Query<
-        'w,
-        's,
-        (),
-        (
-            Or<(With<SurfaceHandle>, With<InitialHandle>)>,
-            Without<Placed>,
-        ),
-    >,
+    unplaced: Unplaced<'w, 's>,
 }
 
 /// The entities the placement writes: every [`Placed`], the copies' and the
