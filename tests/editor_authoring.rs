@@ -12,7 +12,7 @@ use bevy::prelude::*;
 use common::headless_editor::*;
 use streamline_kernel::{DQuat, DVec3};
 use streamline_studio::ecs::Stats;
-use streamline_studio::editor::interaction::{Drag, DragKind, HandleId, Handles, Selection};
+use streamline_studio::editor::interaction::{Drag, DragKind, HandleId, Selection};
 use streamline_studio::scene::Scene;
 
 fn scene(app: &App) -> Scene {
@@ -36,10 +36,10 @@ fn esc(app: &mut App) {
 fn an_initial_tangent_is_a_handle_whose_drag_moves_the_streamlines_rigidly() {
     let mut app = app();
     let n = scene(&app).design.initial().qi().tangents().len();
-    let handles = app.world().resource::<Handles>();
-    assert_eq!(handles.initial.len(), n, "one handle per initial tangent");
+    let initial = handles(&mut app, |h| h.initial().collect::<Vec<_>>());
+    assert_eq!(initial.len(), n, "one handle per initial tangent");
     // each drawn at its curve point, pointing the tangent's way
-    for (i, a) in handles.initial.iter().enumerate() {
+    for (i, a) in initial.iter().enumerate() {
         assert_eq!(a.id, HandleId::initial(i));
         assert_eq!(a.dir, scene(&app).design.initial().qi().tangents()[i]);
         assert!(a.base.is_finite() && a.length > 0.0);
@@ -66,7 +66,7 @@ fn an_initial_tangent_is_a_handle_whose_drag_moves_the_streamlines_rigidly() {
         );
         assert!(stats.streamlines_replaced > 0, "{stats:?}");
         // the handle follows the curve's new tangent
-        let a = app.world().resource::<Handles>().find(h).copied().unwrap();
+        let a = handles(&mut app, |q| q.find(h)).unwrap();
         assert!((a.dir - t).length() < 1e-12);
     }
     assert!(

@@ -4,7 +4,7 @@
 
 use super::coords::to_view;
 use super::handles::sphere_view::{SphereCamera, SubdividedPoints};
-use super::interaction::{HandleId, Handles, MainCamera, Selection};
+use super::interaction::{HandleId, HandleQuery, MainCamera, Selection};
 use super::panels::{PanelName, UiState};
 use super::surface::analysis::{AnalysisSettings, SurfaceMode};
 use super::surface::shaded::{ShownSurface, SurfaceEntity};
@@ -234,7 +234,7 @@ fn write_report(path: &std::path::Path, r: &Report) {
 fn write_handle_position(
     req: &ScreenshotRequest,
     selection: &Selection,
-    arrows: &Handles,
+    arrows: &HandleQuery,
     camera: &Query<(&Camera, &GlobalTransform), With<MainCamera>>,
     sphere: &Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
 ) -> bool {
@@ -279,7 +279,7 @@ fn drive(
     stats: Res<Stats>,
     timing: Res<super::view::frame_timing::FrameTiming>,
     selection: Res<Selection>,
-    arrows: Res<Handles>,
+    arrows: HandleQuery,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
     sphere: Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
     mesh: Res<super::mesh_mode::MeshView>,

@@ -72,3 +72,15 @@ pub fn key(app: &mut App, k: KeyCode) {
         .release(k);
     frame(app);
 }
+
+/// Reads the handle entities as the editor's views do ([`HandleQuery`]).
+pub fn handles<R>(
+    app: &mut App,
+    f: impl FnOnce(&streamline_studio::editor::interaction::HandleQuery) -> R,
+) -> R {
+    let mut state = bevy::ecs::system::SystemState::<
+        streamline_studio::editor::interaction::HandleQuery,
+    >::new(app.world_mut());
+    let q = state.get(app.world()).expect("the patch and its handles");
+    f(&q)
+}

@@ -1,5 +1,6 @@
-//! Drawing the handles ([`Handles`], placed by the interaction core) as
-//! arrows: the control tangents (level 0) as yellow arrows at their
+//! Drawing the handle entities (placed by the interaction core, [`Placed`])
+//! as arrows, each a retained gizmo of its own redrawn only when its
+//! handle moved or its colour changed: the control tangents (level 0) as yellow arrows at their
 //! streamline points, and the refined tangents of the edit depth as red arrows
 //! (optionally every other one), and the initial curve with its control
 //! tangents in cyan (a second kind of handle); with mirror symmetry on, the
@@ -9,10 +10,16 @@
 
 use super::super::coords::to_view;
 use super::super::interaction::{
-    Drag, EditorMode, EditorSet, Handle, HandleSettings, Handles, MainCamera, Selection,
+    Drag, EditorMode, EditorSet, Handle, HandleId, HandleLayout, HandleQuery, HandleSettings,
+    MainCamera, MirroredHandle, Placed, Selection,
 };
+use crate::ecs::patch::InitialHandle;
+use bevy::gizmos::GizmoAsset;
+use bevy::gizmos::config::GizmoLineConfig;
+use bevy::gizmos::retained::Gizmo;
 use bevy::prelude::*;
 use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
+use bevy_state::prelude::State;
 use bevy_state::prelude::in_state;
 use streamline_kernel::DVec3;
 
@@ -31,9 +38,13 @@ impl Plugin for ArrowsPlugin {
                 cfg.depth_bias = -1.0;
                 cfg.line.width = 2.5;
             })
+            .init_resource::<ArrowRedraws>()
             .add_systems(
                 Update,
-                draw.run_if(in_state(EditorMode::Streamline))
+                (
+                    (attach, redraw).chain(),
+                    draw_curve.run_if(in_state(EditorMode::Streamline)),
+                )
                     .in_set(EditorSet::Present),
             )
             .add_systems(
@@ -53,67 +64,187 @@ const CYAN: Color = Color::srgb(0.2, 0.85, 0.95);
 /// Also selected (a group; the primary is [`SELECTED`]).
 const GROUP: Color = Color::srgb(0.75, 0.8, 1.0);
 
-#[allow(clippy::too_many_arguments)]
-fn draw(
-    meter: Res<crate::ecs::meter::CpuMeter>,
-    patch: crate::ecs::patch::PatchRef,
-    arrows: Res<Handles>,
-    settings: Res<HandleSettings>,
-    selection: Res<Selection>,
-    drag: Res<Drag>,
-    mut gizmos: Gizmos,
-    mut initial: Gizmos<InitialGizmos>,
-) {
-    let _meter = meter.start();
-    let edit = arrows.edit_depth;
-    let active = drag.0.as_ref().map(|d| d.handle).or(selection.primary());
-    let colour = |a: &Handle, base: Color| {
-        if a.level() == edit && Some(a.id) == active {
-            SELECTED
-        } else if a.level() == edit && Some(a.id) == selection.hover {
-            HOVER
-        } else if a.level() == edit && selection.contains(a.id) {
-            GROUP
-        } else {
-            base
-        }
-    };
-    if settings.controls || edit == 0 {
-        for a in &arrows.controls {
-            arrow(&mut gizmos, a, colour(a, YELLOW));
-        }
-        for a in &arrows.mirrored {
-            arrow(&mut gizmos, a, MIRRORED);
-        }
+/// The arrow of a handle entity: a retained gizmo of its own, redrawn only
+/// when the handle's [`Placed`] or the arrow's [`ArrowLook`] changed.
+#[derive(Component, Debug)]
+#[relationship(relationship_target = ArrowDrawn)]
+pub struct ArrowOf(pub Entity);
+
+/// The handle entity's arrow (despawned with it).
+#[derive(Component, Debug)]
+#[relationship_target(relationship = ArrowOf, linked_spawn)]
+pub struct ArrowDrawn(Vec<Entity>);
+
+/// How an arrow looks: its colour (the kind's, or the selection's), and
+/// whether it is shown.
+#[derive(Component, Debug, Clone, Copy, PartialEq, Default)]
+pub struct ArrowLook {
+    /// Its colour.
+    pub color: Color,
+    /// Shown (a hidden arrow's gizmo is empty).
+    pub shown: bool,
+}
+
+/// Arrows redrawn by the last frame (a meter of the incremental drawing).
+#[derive(Resource, Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub struct ArrowRedraws(pub usize);
+
+/// Placed handle entities without an arrow yet (and whether they are the
+/// initial curve's).
+type Bare<'w, 's> =
+    Query<'w, 's, (Entity, Has<InitialHandle>), (With<Placed>, Without<ArrowDrawn>)>;
+
+/// Gives every placed handle entity (net, initial curve, refined cell,
+/// mirrored copy) an arrow entity with an empty gizmo of its own.
+fn attach(mut commands: Commands, mut assets: ResMut<Assets<GizmoAsset>>, bare: Bare) {
+    for (h, initial) in &bare {
+        // the initial curve's arrows: over the surface, a little wider
+        let (width, depth_bias) = if initial { (2.5, -1.0) } else { (2.0, 0.0) };
+        commands.spawn((
+            ArrowOf(h),
+            Gizmo {
+                handle: assets.add(GizmoAsset::new()),
+                line_config: GizmoLineConfig { width, ..default() },
+                depth_bias,
+            },
+            ArrowLook::default(),
+        ));
     }
-    if edit > 0 && settings.refined {
-        for a in &arrows.editable {
-            if settings.shows(a) {
-                arrow(&mut gizmos, a, colour(a, RED));
-            }
-        }
+}
+
+/// What an arrow's look is read from.
+#[derive(bevy::ecs::system::SystemParam)]
+struct LookInputs<'w> {
+    settings: Res<'w, HandleSettings>,
+    selection: Res<'w, Selection>,
+    drag: Res<'w, Drag>,
+    mode: Res<'w, State<EditorMode>>,
+    layout: Res<'w, HandleLayout>,
+}
+
+impl LookInputs<'_> {
+    /// Whether any arrow's look may have changed since `active` was the
+    /// handle shown as active.
+    fn changed(&self, active: Option<HandleId>) -> bool {
+        self.settings.is_changed()
+            || self.selection.is_changed()
+            || self.mode.is_changed()
+            || self.layout.is_changed()
+            || active != self.active()
     }
-    if settings.initial {
-        let curve = patch.design().initial();
-        let line: Vec<Vec3> = curve.polyline(96).into_iter().map(to_view).collect();
-        initial.linestrip(line, CYAN.with_alpha(0.6));
-        for a in &arrows.initial {
-            let c = if Some(a.id) == active {
+
+    /// The handle drawn as the active one: the dragged, else the primary.
+    fn active(&self) -> Option<HandleId> {
+        self.drag
+            .0
+            .as_ref()
+            .map(|d| d.handle)
+            .or(self.selection.primary())
+    }
+
+    /// The look of handle `id` (`None`: a mirrored copy) placed as `a`.
+    fn look(&self, id: Option<HandleId>, a: &Handle) -> ArrowLook {
+        let s = &*self.settings;
+        let edit = self.layout.edit_depth;
+        let streamline = *self.mode.get() == EditorMode::Streamline;
+        let picked = |base: Color| {
+            if Some(a.id) == self.active() {
                 SELECTED
-            } else if Some(a.id) == selection.hover {
+            } else if Some(a.id) == self.selection.hover {
                 HOVER
-            } else if selection.contains(a.id) {
+            } else if self.selection.contains(a.id) {
                 GROUP
             } else {
-                CYAN
-            };
-            arrow(&mut initial, a, c);
+                base
+            }
+        };
+        let (color, shown) = match id {
+            None => (MIRRORED, s.controls || edit == 0),
+            Some(id) if !id.is_surface() => (picked(CYAN), s.initial),
+            Some(id) if id.level() == 0 => (
+                if edit == 0 { picked(YELLOW) } else { YELLOW },
+                s.controls || edit == 0,
+            ),
+            Some(_) => (picked(RED), edit > 0 && s.refined && s.shows(a)),
+        };
+        ArrowLook {
+            color,
+            shown: shown && streamline,
         }
     }
 }
 
+/// Redraws the arrows whose handle moved or whose look changed (a turn at
+/// edit depth 0 redraws its row's arrows; a selection, the two arrows whose
+/// colour changed), and only those.
+#[allow(clippy::too_many_arguments)]
+fn redraw(
+    meter: Res<crate::ecs::meter::CpuMeter>,
+    inputs: LookInputs,
+    handles: Query<(Ref<Placed>, Option<&HandleId>, Option<&MirroredHandle>)>,
+    moved: Query<&ArrowDrawn, Changed<Placed>>,
+    added: Query<(), Added<ArrowOf>>,
+    mut arrows: Query<(Entity, &ArrowOf, &mut ArrowLook, &Gizmo)>,
+    mut assets: ResMut<Assets<GizmoAsset>>,
+    mut redraws: ResMut<ArrowRedraws>,
+    mut shown_active: Local<Option<HandleId>>,
+) {
+    let _meter = meter.start();
+    let everything = inputs.changed(*shown_active) || !added.is_empty();
+    *shown_active = inputs.active();
+    let candidates: Vec<Entity> = if everything {
+        arrows.iter().map(|(e, ..)| e).collect()
+    } else {
+        moved.iter().flat_map(|d| d.0.iter().copied()).collect()
+    };
+    let mut n = 0;
+    for v in candidates {
+        let Ok((_, of, mut look, gizmo)) = arrows.get_mut(v) else {
+            continue;
+        };
+        let Ok((placed, id, copy)) = handles.get(of.0) else {
+            continue;
+        };
+        let Some(shown_id) = id.copied().or(copy.map(|m| m.of)) else {
+            continue;
+        };
+        let a = placed.handle(shown_id);
+        let new = inputs.look(id.copied(), &a);
+        if *look == new && !placed.is_changed() {
+            continue;
+        }
+        if *look != new {
+            *look = new;
+        }
+        let Some(mut asset) = assets.get_mut(&gizmo.handle) else {
+            continue;
+        };
+        asset.clear();
+        if new.shown {
+            arrow(&mut asset, &a, new.color);
+        }
+        n += 1;
+    }
+    redraws.set_if_neq(ArrowRedraws(n));
+}
+
+/// The initial curve itself, over the surface.
+fn draw_curve(
+    meter: Res<crate::ecs::meter::CpuMeter>,
+    patch: crate::ecs::patch::PatchRef,
+    settings: Res<HandleSettings>,
+    mut initial: Gizmos<InitialGizmos>,
+) {
+    let _meter = meter.start();
+    if settings.initial {
+        let curve = patch.design().initial();
+        let line: Vec<Vec3> = curve.polyline(96).into_iter().map(to_view).collect();
+        initial.linestrip(line, CYAN.with_alpha(0.6));
+    }
+}
+
 /// A shaft and a head whose shape follows the column index: cone, ball, cross, ring.
-fn arrow<G: GizmoConfigGroup>(gizmos: &mut Gizmos<G>, a: &Handle, color: Color) {
+fn arrow(gizmos: &mut GizmoAsset, a: &Handle, color: Color) {
     let base = to_view(a.base);
     let tip = to_view(a.tip());
     let dir = to_view(a.dir).normalize_or(Vec3::X);
@@ -148,7 +279,7 @@ fn arrow<G: GizmoConfigGroup>(gizmos: &mut Gizmos<G>, a: &Handle, color: Color) 
 fn labels(
     meter: Res<crate::ecs::meter::CpuMeter>,
     mut contexts: EguiContexts,
-    arrows: Res<Handles>,
+    arrows: HandleQuery,
     settings: Res<HandleSettings>,
     selection: Res<Selection>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
@@ -180,8 +311,8 @@ fn labels(
             );
         }
     };
-    if settings.labels && (settings.controls || arrows.edit_depth == 0) {
-        for a in arrows.controls.iter().filter(|a| a.id.row == 0) {
+    if settings.labels && (settings.controls || arrows.edit_depth() == 0) {
+        for a in arrows.controls().filter(|a| a.id.row == 0) {
             put(
                 a.tip(),
                 a.id.col.to_string(),
@@ -190,7 +321,7 @@ fn labels(
         }
     }
     if settings.initial && settings.labels {
-        for a in &arrows.initial {
+        for a in arrows.initial() {
             put(
                 a.tip(),
                 format!("i{}", a.id.col),

@@ -6,7 +6,7 @@
 
 use super::super::coords::to_view;
 use super::super::interaction::{
-    Drag, EditorMode, EditorSet, HandleSettings, Handles, MainCamera, Selection, SphereArea,
+    Drag, EditorMode, EditorSet, HandleQuery, HandleSettings, MainCamera, Selection, SphereArea,
 };
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
@@ -94,7 +94,7 @@ fn follow(
     buttons: Res<ButtonInput<MouseButton>>,
     window: Single<&Window, With<PrimaryWindow>>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
-    handles: Res<Handles>,
+    handles: HandleQuery,
     settings: Res<HandleSettings>,
     mut selection: ResMut<Selection>,
     mut select_box: ResMut<SelectBox>,

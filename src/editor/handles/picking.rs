@@ -9,7 +9,7 @@
 
 use super::super::coords::{from_view, to_view};
 use super::super::interaction::{
-    Drag, DragKind, DragTo, EditorMode, EditorSet, HandlePressed, HandleSettings, Handles,
+    Drag, DragKind, DragTo, EditorMode, EditorSet, HandlePressed, HandleQuery, HandleSettings,
     MainCamera, Selection, SphereArea,
 };
 use bevy::prelude::*;
@@ -56,7 +56,7 @@ fn hover(
     meter: Res<crate::ecs::meter::CpuMeter>,
     window: Single<&Window, With<PrimaryWindow>>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
-    handles: Res<Handles>,
+    handles: HandleQuery,
     settings: Res<HandleSettings>,
     sphere: Res<SphereArea>,
     drag: Res<Drag>,
@@ -85,7 +85,7 @@ fn press(
     buttons: Res<ButtonInput<MouseButton>>,
     window: Single<&Window, With<PrimaryWindow>>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
-    handles: Res<Handles>,
+    handles: HandleQuery,
     sphere: Res<SphereArea>,
     selection: Res<Selection>,
     drag: Res<Drag>,

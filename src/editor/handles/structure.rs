@@ -6,7 +6,9 @@
 //! control arrow ([`KEYS`]). Each sends one `Insert`/`Delete` edit: one undo
 //! step, and the new row or column is selected.
 
-use super::super::interaction::{EditorMode, EditorSet, HandleId, HandleKind, Handles, Selection};
+use super::super::interaction::{
+    EditorMode, EditorSet, HandleId, HandleKind, HandleLayout, Selection,
+};
 use crate::ecs::authoring::AuthorEdit;
 use crate::ecs::patch::PatchRef;
 use crate::ecs::{Edit, EditMessage};
@@ -252,7 +254,7 @@ fn keys(
 fn menu(
     mut contexts: EguiContexts,
     patch: PatchRef,
-    handles: Res<Handles>,
+    handles: Res<HandleLayout>,
     mut menu: ResMut<ArrowMenu>,
     mut selection: ResMut<Selection>,
     mut edits: MessageWriter<EditMessage>,

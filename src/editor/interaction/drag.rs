@@ -9,7 +9,8 @@
 //! each initial-curve tangent), all in the drag's undo group. Shift-click
 //! adds a handle to the selection or takes it out, and starts no drag.
 
-use super::handles::{HandleId, Handles};
+use super::handle_query::HandleQuery;
+use super::handles::HandleId;
 use super::selection::Selection;
 use crate::ecs::{Edit, EditMessage};
 use bevy::prelude::*;
@@ -60,7 +61,7 @@ impl ActiveDrag {
         &mut self,
         dir: DVec3,
         selection: &Selection,
-        handles: &Handles,
+        handles: &HandleQuery,
         edits: &mut MessageWriter<EditMessage>,
     ) {
         if (dir - self.last).length() < 1e-7 {
@@ -150,7 +151,7 @@ pub(super) fn run(
     meter: Res<crate::ecs::meter::CpuMeter>,
     buttons: Res<ButtonInput<MouseButton>>,
     keys: Res<ButtonInput<KeyCode>>,
-    handles: Res<Handles>,
+    handles: HandleQuery,
     mut presses: MessageReader<HandlePressed>,
     mut targets: MessageReader<DragTo>,
     mut drag: ResMut<Drag>,

@@ -1,6 +1,7 @@
 //! The interaction core: what the user points at and turns, owned in one
-//! place. It holds the handles (their kinds, their places on the screen and
-//! on the Gaussian sphere), the selection, the one drag state machine, the
+//! place. It places the handle entities (their kinds, their places on the
+//! screen and on the Gaussian sphere: [`Placed`], written by one system),
+//! reads them for the views ([`HandleQuery`]), and holds the selection, the one drag state machine, the
 //! editor's mode (a Bevy `States`), the state the views share about the main
 //! view, and the public [`EditorSet`]s that order the editor. The camera,
 //! the arrows, picking, the sphere view, mesh mode and the panels depend on
@@ -8,8 +9,11 @@
 //! [`HandleKind`] here.
 
 mod drag;
+mod handle_query;
 mod handles;
 mod mode;
+mod placed;
+mod placement;
 mod selection;
 mod view;
 
@@ -17,8 +21,10 @@ use crate::ecs::ModelSet;
 use bevy::prelude::*;
 use bevy_state::app::{AppExtStates, StatesPlugin};
 pub use drag::{ActiveDrag, Drag, DragGroups, DragKind, DragTo, HandlePressed};
-pub use handles::{Handle, HandleId, HandleKind, HandleSettings, Handles, segment_distance};
+pub use handle_query::HandleQuery;
+pub use handles::{Handle, HandleId, HandleKind, HandleSettings, segment_distance};
 pub use mode::EditorMode;
+pub use placed::{HandleLayout, MirroredHandle, Placed, RefinedHandle};
 pub use selection::{Selected, Selection};
 pub use view::{FrameRequest, MainCamera, OrbitCamera, SceneBounds, SphereArea, ViewArea};
 
@@ -48,7 +54,7 @@ impl Plugin for InteractionPlugin {
             app.add_plugins(StatesPlugin);
         }
         app.init_state::<EditorMode>()
-            .init_resource::<Handles>()
+            .init_resource::<HandleLayout>()
             .init_resource::<HandleSettings>()
             .init_resource::<Selection>()
             .init_resource::<Drag>()
@@ -74,7 +80,7 @@ impl Plugin for InteractionPlugin {
             .add_systems(
                 Update,
                 (
-                    handles::rebuild,
+                    placement::place,
                     selection::keep_valid,
                     selection::mark_selected,
                 )

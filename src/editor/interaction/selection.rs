@@ -1,7 +1,8 @@
 //! The selection: the handles chosen (a list, the first primary: Shift-click
 //! and a Shift box add to it) and the one under the pointer.
 
-use super::handles::{HandleId, HandleKind, Handles};
+use super::handle_query::HandleQuery;
+use super::handles::{HandleId, HandleKind};
 use crate::ecs::patch::PatchRef;
 use bevy::prelude::*;
 
@@ -91,7 +92,7 @@ impl Selection {
     /// Follows a change of the handles: a selected surface tangent whose
     /// level is no longer the edit depth becomes the edit depth's tangent at
     /// the same cell; handles that no longer exist are dropped.
-    pub fn follow(&mut self, handles: &Handles) {
+    pub fn follow(&mut self, handles: &HandleQuery) {
         let moved: Vec<HandleId> = self
             .selected
             .iter()
@@ -112,11 +113,11 @@ impl Selection {
 /// Drops a selection that no longer exists (after a depth change or a load).
 pub(super) fn keep_valid(
     meter: Res<crate::ecs::meter::CpuMeter>,
-    handles: Res<Handles>,
+    handles: HandleQuery,
     mut selection: ResMut<Selection>,
 ) {
     let _meter = meter.start();
-    if !handles.is_changed() || handles.editable.is_empty() {
+    if !handles.layout_changed() || !handles.layout().placed {
         return;
     }
     if selection.iter().any(|h| handles.find(h).is_none()) {
@@ -125,23 +126,21 @@ pub(super) fn keep_valid(
 }
 
 /// Marks a handle entity that is selected: a control tangent of the net or
-/// of the initial curve, or a detail (a tangent of a deeper level that has
-/// no detail yet has no entity to mark).
+/// of the initial curve, a refined cell of the edit depth, and the detail
+/// at that cell when it has one.
 #[derive(Component, Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Selected;
 
-/// The handle entity of `id`, if it has one.
-fn entity_of(patch: &PatchRef, id: HandleId) -> Option<Entity> {
-    let index = patch.index();
-    match id.kind {
-        HandleKind::SurfaceTangent { level: 0 } => (id.row < index.surface.rows()
-            && id.col < index.surface.cols())
-        .then(|| index.surface.get(id.row, id.col)),
-        HandleKind::SurfaceTangent { level } => {
-            index.details.get(&(level, id.row, id.col)).copied()
+/// The entities of `id`: its handle entity, and its detail's when it is a
+/// refined cell with a detail.
+fn entities_of(patch: &PatchRef, handles: &HandleQuery, id: HandleId) -> [Option<Entity>; 2] {
+    let detail = match id.kind {
+        HandleKind::SurfaceTangent { level } if level > 0 => {
+            patch.index().details.get(&(level, id.row, id.col)).copied()
         }
-        HandleKind::InitialTangent => index.initial.get(id.col).copied(),
-    }
+        _ => None,
+    };
+    [handles.entity(id), detail]
 }
 
 /// Keeps the [`Selected`] marker on exactly the selected handles' entities.
@@ -149,14 +148,16 @@ pub(super) fn mark_selected(
     mut commands: Commands,
     selection: Res<Selection>,
     patch: PatchRef,
+    handles: HandleQuery,
     marked: Query<Entity, With<Selected>>,
 ) {
-    if !selection.is_changed() && !patch.design_changed() {
+    if !selection.is_changed() && !patch.design_changed() && !handles.layout_changed() {
         return;
     }
     let want: Vec<Entity> = selection
         .iter()
-        .filter_map(|h| entity_of(&patch, h))
+        .flat_map(|h| entities_of(&patch, &handles, h))
+        .flatten()
         .collect();
     for e in &marked {
         if !want.contains(&e) {

@@ -67,7 +67,7 @@ fn axis(t: &Turn) -> Option<DVec3> {
 }
 
 fn initial_tangent(ui: &mut egui::Ui, p: &mut PanelCtx, h: HandleId) {
-    let Some(a) = p.handles.find(h).copied() else {
+    let Some(a) = p.handles.find(h) else {
         ui.label(egui::RichText::new("The selected initial tangent is gone.").weak());
         return;
     };

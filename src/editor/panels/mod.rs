@@ -24,7 +24,7 @@ mod subdivision;
 mod tuning;
 
 use super::interaction::{
-    Drag, DragGroups, DragKind, FrameRequest, Handles, SceneBounds, Selection, ViewArea,
+    Drag, DragGroups, DragKind, FrameRequest, HandleQuery, SceneBounds, Selection, ViewArea,
 };
 use crate::ecs::{Edit, EditLog, EditMessage, History, Model};
 use bevy::ecs::system::SystemParam;
@@ -168,7 +168,7 @@ impl Default for UiState {
 pub struct PanelCtx<'w, 's> {
     pub model: Res<'w, Model>,
     pub patch: crate::ecs::patch::PatchRef<'w, 's>,
-    pub handles: Res<'w, Handles>,
+    pub handles: HandleQuery<'w, 's>,
     pub selection: ResMut<'w, Selection>,
     pub edits: MessageWriter<'w, EditMessage>,
     pub groups: ResMut<'w, DragGroups>,
@@ -217,10 +217,7 @@ impl PanelCtx<'_, '_> {
     /// The primary selected handle's arrow, where the framing buttons and
     /// menu entries aim (`None` with nothing selected).
     pub fn selected_arrow(&self) -> Option<super::interaction::Handle> {
-        self.selection
-            .primary()
-            .and_then(|h| self.handles.find(h))
-            .copied()
+        self.selection.primary().and_then(|h| self.handles.find(h))
     }
 
     /// Sends one edit.

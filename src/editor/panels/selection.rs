@@ -35,7 +35,7 @@ struct RotateInput {
 }
 
 pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
-    let depth = p.handles.edit_depth;
+    let depth = p.handles.edit_depth();
     let (rows, cols) = p.handles.shape();
     let Some((mut row, mut col)) = p.selection.cell() else {
         ui.label(
@@ -69,7 +69,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
         .on_hover_text("Column (index along the streamline) of the selected handle");
     });
     p.select_cell((row, col));
-    let Some(a) = p.handles.at((row, col)).copied() else {
+    let Some(a) = p.handles.at((row, col)) else {
         return;
     };
     let id = ui.id().with("rotate_input");

@@ -57,7 +57,7 @@ fn body(ui: &mut egui::Ui, p: &mut PanelCtx, fields: &mut IndexFields) {
         }
         None => {
             ui.label(
-                egui::RichText::new(if p.handles.edit_depth > 0 {
+                egui::RichText::new(if p.handles.edit_depth() > 0 {
                     "Structure edits act on the control net: set the edit depth to 0 and select an arrow"
                 } else {
                     "Select an arrow to insert or delete at it, or use an index below"

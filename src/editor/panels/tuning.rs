@@ -132,7 +132,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
 fn plot(ui: &mut egui::Ui, p: &PanelCtx, t: &SurfaceTuning) {
     let rows = p.patch.design().net().rows();
     let v = match p.selection.cell() {
-        Some((row, _)) if p.handles.edit_depth == 0 => {
+        Some((row, _)) if p.handles.edit_depth() == 0 => {
             let ts = &p.patch.design().params().t;
             let (lo, hi) = ts
                 .iter()

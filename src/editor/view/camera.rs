@@ -5,7 +5,7 @@
 //! the pointer is over an egui panel.
 
 use super::super::interaction::{
-    EditorSet, FrameRequest, Handles, MainCamera, OrbitCamera, SceneBounds, Selection, ViewArea,
+    EditorSet, FrameRequest, HandleQuery, MainCamera, OrbitCamera, SceneBounds, Selection, ViewArea,
 };
 use crate::ecs::patch::PatchRef;
 use crate::ecs::{SurfaceChanges, SurfaceData};
@@ -135,7 +135,7 @@ fn keys(
     meter: Res<crate::ecs::meter::CpuMeter>,
     keys: Res<ButtonInput<KeyCode>>,
     bounds: Res<SceneBounds>,
-    handles: Res<Handles>,
+    handles: HandleQuery,
     selection: Res<Selection>,
     mut req: ResMut<FrameRequest>,
 ) {
