@@ -32,7 +32,7 @@ pub enum Stale {
 
 impl Stale {
     /// Also lacking `w` (`None`: everything).
-    pub fn add(self, w: Option<DirtyWindow>) -> Stale {
+    pub fn and(self, w: Option<DirtyWindow>) -> Stale {
         match (self, w) {
             (Stale::All, _) | (_, None) => Stale::All,
             (Stale::Nothing, Some(w)) => Stale::Window(w),
@@ -92,7 +92,7 @@ impl VertexMirror {
     /// The staging pair is up to date; the reader's lacks `around` more.
     pub(crate) fn written(&mut self, around: DirtyWindow) {
         self.staged = Stale::Nothing;
-        self.shown = self.shown.add(Some(around));
+        self.shown = self.shown.and(Some(around));
     }
 
     /// The whole surface (a new shape) into the staging pair; the reader's
@@ -188,9 +188,9 @@ mod tests {
     fn stale_windows_add_up() {
         let a = DirtyWindow::cell(1, 2);
         let b = DirtyWindow::cell(4, 0);
-        assert_eq!(Stale::Nothing.add(Some(a)), Stale::Window(a));
-        assert_eq!(Stale::Window(a).add(Some(b)), Stale::Window(a.union(b)));
-        assert_eq!(Stale::Window(a).add(None), Stale::All);
-        assert_eq!(Stale::All.add(Some(a)), Stale::All);
+        assert_eq!(Stale::Nothing.and(Some(a)), Stale::Window(a));
+        assert_eq!(Stale::Window(a).and(Some(b)), Stale::Window(a.union(b)));
+        assert_eq!(Stale::Window(a).and(None), Stale::All);
+        assert_eq!(Stale::All.and(Some(a)), Stale::All);
     }
 }

@@ -82,6 +82,7 @@ fn setup(
     });
 }
 
+#[allow(clippy::too_many_arguments)]
 fn sync_mesh(
     meter: Res<crate::ecs::meter::CpuMeter>,
     data: Res<SurfaceData>,
