@@ -26,6 +26,7 @@ pub mod patch;
 pub mod playback;
 pub mod resources;
 pub mod runner;
+pub mod vertex_mirror;
 pub mod warnings;
 
 use crate::scene::Scene;

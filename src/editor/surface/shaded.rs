@@ -1,9 +1,12 @@
-//! The shaded surface: one mesh entity mirroring [`SurfaceData`]; the points
-//! the surface's changes rewrote since the last copy ([`SurfaceChanges`])
-//! are patched in place, anything else rebuilds the Bevy mesh. Lights.
+//! The shaded surface: one mesh entity mirroring [`SurfaceData`]. Its
+//! positions and normals are swapped with the ones the mesh stage converted
+//! while computing them ([`VertexMirror`]); without those, the points the
+//! surface's changes rewrote since the last copy ([`SurfaceChanges`]) are
+//! patched in place; a new shape rebuilds the Bevy mesh. Lights.
 
 use super::super::interaction::EditorSet;
 use crate::ecs::patch::PatchRef;
+use crate::ecs::vertex_mirror::{VertexMirror, write_f32};
 use crate::ecs::{SurfaceChange, SurfaceChanges, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology, VertexAttributeValues};
@@ -34,6 +37,7 @@ pub struct SurfacePlugin;
 impl Plugin for SurfacePlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<ShownSurface>()
+            .init_resource::<VertexMirror>()
             .add_systems(Startup, setup)
             .add_systems(Update, sync_mesh.in_set(EditorSet::Sync));
     }
@@ -78,6 +82,7 @@ fn setup(
     });
 }
 
+#[allow(clippy::too_many_arguments)]
 fn sync_mesh(
     meter: Res<crate::ecs::meter::CpuMeter>,
     data: Res<SurfaceData>,
@@ -86,6 +91,7 @@ fn sync_mesh(
     mut shown: ResMut<ShownSurface>,
     mut meshes: ResMut<Assets<Mesh>>,
     surface: Single<&Mesh3d, With<SurfaceEntity>>,
+    mut mirror: Option<ResMut<VertexMirror>>,
 ) {
     let _meter = meter.start();
     let change = changes.take();
@@ -98,6 +104,12 @@ fn sync_mesh(
     shown.built = true;
     let points = data.points.data();
     let cols = data.points.cols();
+    if let Some(m) = mirror.as_deref_mut()
+        && swap_in(&mut mesh, m, points.len())
+    {
+        shown.full = false;
+        return;
+    }
     if let SurfaceChange::Window(w) = change
         && mesh.count_vertices() == points.len()
         && cols > 0
@@ -111,24 +123,23 @@ fn sync_mesh(
             mesh.attribute_mut(Mesh::ATTRIBUTE_POSITION)
         {
             for range in rows() {
-                for (p, q) in p[range.clone()].iter_mut().zip(&points[range]) {
-                    *p = q.as_vec3().to_array();
-                }
+                write_f32(&mut p[range.clone()], &points[range]);
             }
         }
         if let Some(VertexAttributeValues::Float32x3(n)) =
             mesh.attribute_mut(Mesh::ATTRIBUTE_NORMAL)
         {
             for range in rows() {
-                for (n, m) in n[range.clone()].iter_mut().zip(&data.normals[range]) {
-                    *n = m.as_vec3().to_array();
-                }
+                write_f32(&mut n[range.clone()], &data.normals[range]);
             }
         }
         shown.full = false;
         return;
     }
     *mesh = to_bevy_mesh(points, &data.normals, &data.indices);
+    if let Some(m) = mirror.as_deref_mut() {
+        m.shown_rebuilt();
+    }
     if patch.structure().mirror {
         mesh.insert_attribute(
             Mesh::ATTRIBUTE_COLOR,
@@ -136,6 +147,26 @@ fn sync_mesh(
         );
     }
     shown.full = true;
+}
+
+/// Swaps the mesh's positions and normals with the staging pair of `m`
+/// when that is up to date and the mesh has the surface's shape.
+fn swap_in(mesh: &mut Mesh, m: &mut VertexMirror, points: usize) -> bool {
+    if mesh.count_vertices() != points {
+        return false;
+    }
+    let mut normals = match mesh.attribute_mut(Mesh::ATTRIBUTE_NORMAL) {
+        Some(VertexAttributeValues::Float32x3(n)) => std::mem::take(n),
+        _ => return false,
+    };
+    let swapped = match mesh.attribute_mut(Mesh::ATTRIBUTE_POSITION) {
+        Some(VertexAttributeValues::Float32x3(p)) => m.swap(p, &mut normals, points),
+        _ => false,
+    };
+    if let Some(VertexAttributeValues::Float32x3(n)) = mesh.attribute_mut(Mesh::ATTRIBUTE_NORMAL) {
+        *n = normals;
+    }
+    swapped
 }
 
 /// How much of the colour the mirrored half keeps (`docs/math.md §9`: it is
@@ -197,7 +228,7 @@ mod tests {
     /// time plugin's fixed steps, messages are dropped after two frames, as
     /// strictly as Bevy ever drops them: a reader that skips two frames
     /// misses some.
-    fn app(every: u64) -> App {
+    fn app(every: u64, mirror: bool) -> App {
         let mut s = Scene::from_design("car1", streamline_kernel::levels::presets::car1(), 3);
         s.edit_depth = 0;
         let mut app = App::new();
@@ -208,6 +239,9 @@ mod tests {
             .insert_resource(SyncEvery(every, 0))
             .add_systems(First, count)
             .add_systems(Update, sync_mesh.after(ModelSet::Output).run_if(due));
+        if mirror {
+            app.init_resource::<VertexMirror>();
+        }
         let mesh = app
             .world_mut()
             .resource_mut::<Assets<Mesh>>()
@@ -298,8 +332,8 @@ mod tests {
     /// Plays [`script`] with the sync every `every` frames, checking the mesh
     /// after each frame the sync ran; also returns how many of those copies
     /// rewrote the whole mesh.
-    fn drag(every: u64) -> (App, usize) {
-        let mut app = app(every);
+    fn drag(every: u64, mirror: bool) -> (App, usize) {
+        let mut app = app(every, mirror);
         app.update();
         let mut whole = 0;
         for (n, edits) in script().into_iter().enumerate() {
@@ -315,7 +349,7 @@ mod tests {
             let synced = (app.world().resource::<SyncEvery>().1 - 1).is_multiple_of(every);
             if synced {
                 if let Err(e) = mesh_is_model(&mut app) {
-                    panic!("frame {n}, sync every {every} frames: {e}");
+                    panic!("frame {n}, sync every {every} frames, mirror {mirror}: {e}");
                 }
                 whole += usize::from(app.world().resource::<ShownSurface>().full);
             }
@@ -352,9 +386,12 @@ mod tests {
     #[test]
     fn mesh_sync_that_skips_frames_ends_up_exact() {
         for every in [1, 2, 3] {
-            let (mut app, _) = drag(every);
-            mesh_is_model(&mut app).unwrap_or_else(|e| panic!("sync every {every}: {e}"));
-            assert!(app.world().resource::<ShownSurface>().built);
+            for mirror in [false, true] {
+                let (mut app, _) = drag(every, mirror);
+                mesh_is_model(&mut app)
+                    .unwrap_or_else(|e| panic!("sync every {every}, mirror {mirror}: {e}"));
+                assert!(app.world().resource::<ShownSurface>().built);
+            }
         }
     }
 
@@ -364,17 +401,33 @@ mod tests {
     #[test]
     fn mesh_sync_patches_windows_unless_it_missed_changes() {
         let frames = script().len();
-        let (_, whole) = drag(1);
+        let (_, whole) = drag(1, false);
         assert_eq!(whole, 1, "every frame: only the depth change copies all");
-        let (_, whole) = drag(2);
+        let (_, whole) = drag(2, false);
         assert_eq!(
             whole, 1,
             "every other frame: only the depth change copies all"
         );
-        let (_, whole) = drag(3);
+        let (_, whole) = drag(3, false);
         assert!(
             whole > frames / 6,
             "every third frame the sync missed changes: {whole} whole copies in {frames} frames"
         );
+    }
+
+    /// With the mesh stage's `f32` staging pair ([`VertexMirror`]) the sync
+    /// swaps buffers, and what each pair lacks is tracked by the mesh stage
+    /// itself: however many frames the sync skips, only the depth change
+    /// (new triangles) builds the mesh afresh; the mesh equals the model
+    /// bit for bit after every sync (checked in `drag`).
+    #[test]
+    fn mesh_sync_swaps_the_staged_pair_even_after_missed_changes() {
+        for every in [1, 2, 3] {
+            let (_, whole) = drag(every, true);
+            assert_eq!(
+                whole, 1,
+                "sync every {every} frames: only the depth change copies all"
+            );
+        }
     }
 }

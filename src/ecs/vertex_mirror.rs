@@ -1,0 +1,196 @@
+//! The surface's vertices as `f32`, for a renderer that wants them: the mesh
+//! stage converts a row's points and normals right after it computed the
+//! row's normals (while they are in the cache), into a staging pair of
+//! buffers; the reader swaps that pair with the one its mesh holds
+//! ([`VertexMirror::swap`]) instead of converting the surface again from
+//! memory that has gone cold (on the car at depth 6 a drag rewrites nearly
+//! all of its 165,000 vertices every frame: about 0.9 ms a frame).
+//!
+//! Each of the two pairs records which points it lacks ([`Stale`]): the mesh
+//! stage brings the staging pair up to date and adds its window to what the
+//! other pair lacks; after a swap the pair that comes back lacks what the
+//! shown one lacked. So a reader that skips frames swaps in an exact pair.
+//! Present only where a renderer asks for it (the editor inserts it);
+//! headless runs convert nothing.
+
+use super::resources::SurfaceData;
+use bevy::prelude::*;
+use streamline_kernel::DVec3;
+use streamline_kernel::levels::dirty_window::DirtyWindow;
+
+/// Which points of a pair differ from [`SurfaceData`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Stale {
+    /// All of them (or the pair has another shape).
+    #[default]
+    All,
+    /// Those in this window (rows × columns of the points).
+    Window(DirtyWindow),
+    /// None.
+    Nothing,
+}
+
+impl Stale {
+    /// Also lacking `w` (`None`: everything).
+    pub fn and(self, w: Option<DirtyWindow>) -> Stale {
+        match (self, w) {
+            (Stale::All, _) | (_, None) => Stale::All,
+            (Stale::Nothing, Some(w)) => Stale::Window(w),
+            (Stale::Window(a), Some(w)) => Stale::Window(a.union(w)),
+        }
+    }
+}
+
+/// The staging pair of `f32` positions and normals, and what each pair lacks.
+#[derive(Resource, Debug, Default)]
+pub struct VertexMirror {
+    /// Positions of the staging pair, one per point of [`SurfaceData`].
+    positions: Vec<[f32; 3]>,
+    /// Normals of the staging pair.
+    normals: Vec<[f32; 3]>,
+    /// What the staging pair lacks.
+    staged: Stale,
+    /// What the reader's pair lacks.
+    shown: Stale,
+}
+
+impl VertexMirror {
+    /// The window the mesh stage must convert to bring the staging pair up
+    /// to date after rewriting `around`: `around` and what the pair lacked
+    /// already; `None` when it lacks everything (then [`Self::write_all`]).
+    pub(crate) fn to_write(&self, around: DirtyWindow, points: usize) -> Option<DirtyWindow> {
+        if self.positions.len() != points || self.normals.len() != points {
+            return None;
+        }
+        match self.staged {
+            Stale::All => None,
+            Stale::Nothing => Some(around),
+            Stale::Window(w) => Some(around.union(w)),
+        }
+    }
+
+    /// Converts rows `rows` (columns `cols`) of the surface into the staging
+    /// pair (call for each chunk of [`Self::to_write`]'s window, then
+    /// [`Self::written`]).
+    pub(crate) fn write_rows(
+        &mut self,
+        s: &SurfaceData,
+        rows: std::ops::RangeInclusive<usize>,
+        cols: std::ops::RangeInclusive<usize>,
+    ) {
+        let width = s.points.cols();
+        for r in rows {
+            let range = r * width + cols.start()..r * width + cols.end() + 1;
+            write_f32(
+                &mut self.positions[range.clone()],
+                &s.points.data()[range.clone()],
+            );
+            write_f32(&mut self.normals[range.clone()], &s.normals[range]);
+        }
+    }
+
+    /// The staging pair is up to date; the reader's lacks `around` more.
+    pub(crate) fn written(&mut self, around: DirtyWindow) {
+        self.staged = Stale::Nothing;
+        self.shown = self.shown.and(Some(around));
+    }
+
+    /// The whole surface (a new shape) into the staging pair; the reader's
+    /// pair lacks everything.
+    pub(crate) fn write_all(&mut self, s: &SurfaceData) {
+        let n = s.points.data().len();
+        self.positions.resize(n, [0.0; 3]);
+        self.normals.resize(n, [0.0; 3]);
+        write_f32(&mut self.positions, s.points.data());
+        write_f32(&mut self.normals, &s.normals);
+        self.staged = Stale::Nothing;
+        self.shown = Stale::All;
+    }
+
+    /// What the reader's pair lacks.
+    pub fn shown_stale(&self) -> Stale {
+        self.shown
+    }
+
+    /// Swaps the staging pair with `positions` and `normals` (the reader's
+    /// mesh buffers), when the staging pair is up to date and both have
+    /// `points` entries and the reader's pair is not missing everything (a
+    /// new shape also has new triangles: the reader builds its mesh afresh,
+    /// then calls [`Self::shown_rebuilt`]). Returns whether it swapped.
+    pub fn swap(
+        &mut self,
+        positions: &mut Vec<[f32; 3]>,
+        normals: &mut Vec<[f32; 3]>,
+        points: usize,
+    ) -> bool {
+        let ready = self.staged == Stale::Nothing
+            && self.shown != Stale::All
+            && [
+                self.positions.len(),
+                self.normals.len(),
+                positions.len(),
+                normals.len(),
+            ]
+            .iter()
+            .all(|&n| n == points);
+        if !ready {
+            return false;
+        }
+        std::mem::swap(&mut self.positions, positions);
+        std::mem::swap(&mut self.normals, normals);
+        self.staged = self.shown;
+        self.shown = Stale::Nothing;
+        true
+    }
+
+    /// The reader built its mesh afresh from [`SurfaceData`].
+    pub fn shown_rebuilt(&mut self) {
+        self.shown = Stale::Nothing;
+    }
+}
+
+/// `src` as `f32` into `dst`, the conversion of `DVec3::as_vec3` (each
+/// component `as f32`), over the flat components.
+pub fn write_f32(dst: &mut [[f32; 3]], src: &[DVec3]) {
+    const _: () = assert!(size_of::<DVec3>() == 3 * size_of::<f64>());
+    let dst = dst.as_flattened_mut();
+    // SAFETY: glam's `DVec3` is `#[repr(C)]` with three `f64` fields and no
+    // padding (checked above), so `n` of them are `3n` consecutive `f64`s,
+    // borrowed as long as `src` is.
+    let src: &[f64] =
+        unsafe { std::slice::from_raw_parts(src.as_ptr().cast::<f64>(), src.len() * 3) };
+    for (d, s) in dst.iter_mut().zip(src) {
+        *d = *s as f32;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn write_f32_is_as_vec3() {
+        let v: Vec<DVec3> = (0..50)
+            .map(|i| DVec3::new(i as f64 * 0.1, -1e-40 * i as f64, 1e300 / (i as f64 + 1.0)))
+            .chain([DVec3::new(-0.0, f64::NAN, f64::INFINITY)])
+            .collect();
+        let mut out = vec![[9.0f32; 3]; v.len()];
+        write_f32(&mut out, &v);
+        for (o, p) in out.iter().zip(&v) {
+            assert_eq!(
+                o.map(f32::to_bits),
+                p.as_vec3().to_array().map(f32::to_bits)
+            );
+        }
+    }
+
+    #[test]
+    fn stale_windows_add_up() {
+        let a = DirtyWindow::cell(1, 2);
+        let b = DirtyWindow::cell(4, 0);
+        assert_eq!(Stale::Nothing.and(Some(a)), Stale::Window(a));
+        assert_eq!(Stale::Window(a).and(Some(b)), Stale::Window(a.union(b)));
+        assert_eq!(Stale::Window(a).and(None), Stale::All);
+        assert_eq!(Stale::All.and(Some(a)), Stale::All);
+    }
+}
