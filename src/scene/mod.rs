@@ -18,6 +18,7 @@ pub mod numbers;
 pub mod obj;
 pub mod script;
 pub mod step;
+pub mod step_shell;
 pub mod usd;
 
 pub use error::SceneError;
