@@ -28,10 +28,7 @@ use streamline_studio::scene::step_shell::{faces_text, write_shell};
 const DEPTH: u32 = 5;
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "streamline-shell-{name}-{}",
-        std::process::id()
-    ));
+    let dir = std::env::temp_dir().join(format!("streamline-shell-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -273,7 +270,12 @@ fn opencascade_reads_one_shell_whose_seams_are_shared() {
         assert_eq!(r["shared_edges"], c.seams.len(), "{}: {r}", c.tag);
         for (f, d) in shell.faces.iter().zip(r["deviation"].as_array().unwrap()) {
             let d = d.as_f64().unwrap();
-            assert!(d <= f.tolerance, "{}: a face is {d} from its points, over {}", c.tag, f.tolerance);
+            assert!(
+                d <= f.tolerance,
+                "{}: a face is {d} from its points, over {}",
+                c.tag,
+                f.tolerance
+            );
         }
         for s in r["seams"].as_array().unwrap() {
             let angle = s["max_angle_deg"].as_f64().unwrap();
@@ -291,6 +293,9 @@ fn opencascade_reads_one_shell_whose_seams_are_shared() {
     eprintln!("control: {r}");
     assert_eq!(r["faces"], 2);
     assert_eq!(r["shared_edges"], 0, "fitted alone, a seam is shared? {r}");
-    assert_eq!(r["free_edges"], 8, "fitted alone, both seam edges are free: {r}");
+    assert_eq!(
+        r["free_edges"], 8,
+        "fitted alone, both seam edges are free: {r}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

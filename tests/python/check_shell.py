@@ -16,6 +16,7 @@ import math
 import sys
 
 from OCP.BRep import BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.Extrema import Extrema_ExtAlgo_Tree
 from OCP.GeomAPI import GeomAPI_ProjectPointOnSurf
@@ -104,7 +105,8 @@ def check(entry):
     seams = []
     n = entry.get("samples", 40)
     for edge, (fa, fb) in shared:
-        curve, t0, t1 = BRep_Tool.Curve_s(edge, 0.0, 0.0)
+        curve = BRepAdaptor_Curve(edge)
+        t0, t1 = curve.FirstParameter(), curve.LastParameter()
         sa, sb = BRep_Tool.Surface_s(fa), BRep_Tool.Surface_s(fb)
         worst, gap = 0.0, 0.0
         for k in range(n):
