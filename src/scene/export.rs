@@ -85,7 +85,7 @@ pub fn obj_text(mesh: &SurfaceMesh, name: &str) -> String {
     s
 }
 
-fn sanitize(name: &str) -> String {
+pub(super) fn sanitize(name: &str) -> String {
     let n: String = name
         .chars()
         .map(|c| {

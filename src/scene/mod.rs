@@ -16,6 +16,7 @@ pub mod job;
 pub mod model;
 pub mod numbers;
 pub mod obj;
+pub mod obj_shell;
 pub mod script;
 pub mod step;
 pub mod step_shell;

@@ -240,6 +240,10 @@ fn merge_knots(required: &[f64], optional: &[f64], gap: f64) -> Vec<f64> {
     kept
 }
 
+/// A seam's poles held in a face's first column, and for G1 the earlier
+/// face and its column next to the seam.
+type Held = (Vec<DVec3>, Option<(usize, usize)>);
+
 /// The most `u` knots added to a face whose held boundary puts it over the tolerance.
 const MAX_ROUNDS: usize = 12;
 
@@ -434,7 +438,7 @@ pub fn fit_shell(
             .clone()
             .expect("made at the group's first patch");
         // the seam's poles, fitted once: a's last column, or the piece of a's edge
-        let held: Option<(Vec<DVec3>, Option<(usize, usize)>)> = match incoming[i] {
+        let held: Option<Held> = match incoming[i] {
             None => None,
             Some(k) => {
                 let s = seams[k];
@@ -476,7 +480,7 @@ pub fn fit_shell(
                 break (surface, dev);
             }
         };
-        if !(dev.max <= tols[i]) {
+        if dev.max.partial_cmp(&tols[i]) != Some(std::cmp::Ordering::Less) && dev.max != tols[i] {
             return Err(ShellError::OverTolerance {
                 patch: patches[i].name.clone(),
                 reached: dev.max,
