@@ -2,8 +2,8 @@
 //! "Several patches") read back by OpenCascade (tests/python/check_shell.py,
 //! in the test virtual environment of `scripts/setup.sh --tests`): chains of
 //! 2 and 3 copies of the car's net (each copy's first column the one
-//! before's last) joined with G1 and G2, and a G1 side join on the car's
-//! first streamline. Each: one shell, one face per patch, valid, free edges
+//! before's last) joined with G1 and G2, and G1 side joins on the car's
+//! first and last streamlines. Each: one shell, one face per patch, valid, free edges
 //! only on the outer boundary (a chain of N: 2N + 2), every face within its
 //! tolerance of its patch's points (by OpenCascade's projection), and across each G1/G2 chain seam
 //! the faces' normals within 0.1° at 40 points. The negative control: the
@@ -80,17 +80,22 @@ fn chain_of(n: usize, continuity: Continuity) -> Vec<Stack> {
     stacks
 }
 
-/// The car and a patch leaving its first streamline outwards (G1), over the
-/// middle 60 % of it.
-fn side_pair() -> Vec<Stack> {
+/// The car and a patch leaving its first or last streamline outwards (G1),
+/// over the middle 60 % of it (its rows along the car's `u`).
+fn side_pair(on: Edge) -> Vec<Stack> {
     let a = car();
     let sa = Stack::build(&a, DEPTH + 1).unwrap();
-    let edge = EdgeCurve::of(&sa, DEPTH + 1, Edge::First).unwrap();
+    let edge = EdgeCurve::of(&sa, DEPTH + 1, on).unwrap();
     let (lo, hi) = (edge.start(), edge.length());
     let (lo, hi) = (lo + 0.2 * (hi - lo), hi - 0.2 * (hi - lo));
     let p = &sa.points[0];
     let mid = p.cols() / 2;
-    let out = (p.get(0, mid) - p.get(1, mid)).normalize();
+    let (r0, r1) = if on == Edge::First {
+        (0, 1)
+    } else {
+        (p.rows() - 1, p.rows() - 2)
+    };
+    let out = (p.get(r0, mid) - p.get(r1, mid)).normalize();
     let (rows, cols) = (4, 4);
     let net = (0..rows * cols)
         .map(|i| {
@@ -119,7 +124,7 @@ fn side_pair() -> Vec<Stack> {
     )
     .unwrap();
     let jn = Join {
-        edge: Edge::First,
+        edge: on,
         continuity: Continuity::G1,
     };
     let (sa, sb) = join(&a, &b, jn, DEPTH + 1).unwrap();
@@ -213,21 +218,25 @@ fn opencascade_reads_one_shell_whose_seams_are_shared() {
         chain_case(2, Continuity::G2),
         chain_case(3, Continuity::G2),
     ];
-    cases.push(Case {
-        tag: "side-first-G1".into(),
-        patches: grids(&side_pair()),
-        seams: vec![SeamSpec {
-            a: 0,
-            b: 1,
-            join: Join {
-                edge: Edge::First,
-                continuity: Continuity::G1,
-            },
-        }],
-        // A's first edge split in three, one of them the seam: 5 + 3
-        free: 8,
-        smooth: false,
-    });
+    for on in [Edge::First, Edge::Last] {
+        cases.push(Case {
+            tag: format!("side-{}-G1", on.name()),
+            patches: grids(&side_pair(on)),
+            seams: vec![SeamSpec {
+                a: 0,
+                b: 1,
+                join: Join {
+                    edge: on,
+                    continuity: Continuity::G1,
+                },
+            }],
+            // A's edge split in three, one of them the seam: 5 + 3 (on
+            // `Last`, B's face is written reversed: check_shell.py's normals
+            // take each face's orientation, so a wrong one shows as ~180°)
+            free: 8,
+            smooth: false,
+        });
+    }
     let mut manifest = Vec::new();
     let mut fits = Vec::new();
     for c in &cases {
