@@ -85,7 +85,7 @@ pub fn obj_text(mesh: &SurfaceMesh, name: &str) -> String {
     s
 }
 
-fn sanitize(name: &str) -> String {
+pub(super) fn sanitize(name: &str) -> String {
     let n: String = name
         .chars()
         .map(|c| {
@@ -246,7 +246,7 @@ pub fn export_scene(
 
 /// Now in UTC: year, month, day, hour, minute, second (days to the civil
 /// calendar by Howard Hinnant's `civil_from_days`).
-fn utc_now() -> (i64, u32, u32, u32, u32, u32) {
+pub(super) fn utc_now() -> (i64, u32, u32, u32, u32, u32) {
     let secs = std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
         .map(|d| d.as_secs() as i64)

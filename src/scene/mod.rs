@@ -21,9 +21,11 @@ pub mod job;
 pub mod model;
 pub mod numbers;
 pub mod obj;
+pub mod obj_shell;
 pub mod patch_text;
 pub mod script;
 pub mod step;
+pub mod step_shell;
 pub mod usd;
 
 pub use document::Document;

@@ -32,13 +32,13 @@ pub struct StepInfo<'a> {
     pub timestamp: &'a str,
 }
 
-struct Writer {
-    text: String,
-    next: usize,
+pub(super) struct Writer {
+    pub(super) text: String,
+    pub(super) next: usize,
 }
 
 impl Writer {
-    fn add(&mut self, entity: impl AsRef<str>) -> usize {
+    pub(super) fn add(&mut self, entity: impl AsRef<str>) -> usize {
         let id = self.next;
         self.next += 1;
         let _ = writeln!(self.text, "#{id}={};", entity.as_ref());
@@ -46,12 +46,12 @@ impl Writer {
     }
 }
 
-fn list<T>(items: impl IntoIterator<Item = T>, f: impl Fn(T) -> String) -> String {
+pub(super) fn list<T>(items: impl IntoIterator<Item = T>, f: impl Fn(T) -> String) -> String {
     let v: Vec<String> = items.into_iter().map(f).collect();
     format!("({})", v.join(","))
 }
 
-fn refs(ids: &[usize]) -> String {
+pub(super) fn refs(ids: &[usize]) -> String {
     list(ids.iter(), |i| format!("#{i}"))
 }
 
@@ -69,7 +69,7 @@ fn knots_and_multiplicities(k: &KnotVector) -> (Vec<usize>, Vec<f64>) {
     (mult, vals)
 }
 
-fn point(w: &mut Writer, p: DVec3) -> usize {
+pub(super) fn point(w: &mut Writer, p: DVec3) -> usize {
     w.add(format!(
         "CARTESIAN_POINT('',({},{},{}))",
         real(p.x),
@@ -196,6 +196,11 @@ pub fn step_text(surface: &BSplineSurface, info: &StepInfo) -> String {
 /// surface, and every `#n` referenced is defined (all outside string
 /// literals, which may hold anything a name does but a `'`: cad_text.rs).
 pub fn verify(bytes: &[u8]) -> Result<(), String> {
+    verify_faces(bytes, 1)
+}
+
+/// [`verify`] for a file of `faces` faces, each on its own B-spline surface.
+pub(super) fn verify_faces(bytes: &[u8], faces: usize) -> Result<(), String> {
     if !bytes.is_ascii() {
         return Err("not ASCII".into());
     }
@@ -205,8 +210,10 @@ pub fn verify(bytes: &[u8]) -> Result<(), String> {
     }
     let code: String = text.split('\'').step_by(2).collect();
     let count = |what: &str| code.matches(what).count();
-    if count("ADVANCED_FACE(") != 1 || count("B_SPLINE_SURFACE_WITH_KNOTS(") != 1 {
-        return Err("not exactly one face on one B-spline surface".into());
+    if count("ADVANCED_FACE(") != faces || count("B_SPLINE_SURFACE_WITH_KNOTS(") != faces {
+        return Err(format!(
+            "not exactly {faces} face(s), each on one B-spline surface"
+        ));
     }
     let defined = code.lines().filter(|l| l.starts_with('#')).count();
     for l in code.lines().filter(|l| l.starts_with('#')) {

@@ -5,12 +5,14 @@
 //! the streamline surface and its fit (`deviation`).
 
 mod banded;
+pub mod curve;
 pub mod deviation;
 pub mod error;
 pub mod fit;
 pub mod knots;
 mod lsq;
 pub mod samples;
+pub mod shell;
 pub mod surface;
 
 pub use deviation::{Deviation, deviation, deviation_field};
@@ -18,4 +20,7 @@ pub use error::{Direction, FitError};
 pub use fit::{Fit, FitOptions, FitReport, Tolerance, fit, fit_design, fit_knots};
 pub use knots::KnotVector;
 pub use samples::Samples;
+pub use shell::{
+    PatchGrid, SeamSpec, ShellError, ShellFace, ShellFit, ShellSeam, fit_alone, fit_shell,
+};
 pub use surface::BSplineSurface;

@@ -1,0 +1,67 @@
+//! OBJ for several patches (docs/cad.md, "Several patches"): one `o <patch
+//! name>` object per patch, each written as a single patch's OBJ is
+//! ([`super::export::obj_text`]): its vertices row by row over the point
+//! grid (streamline by streamline), then its normals, then its triangles,
+//! whose indices count on from the patches before (OBJ's indices are
+//! global to the file).
+
+use super::export::sanitize;
+use std::fmt::Write as _;
+use streamline_kernel::DVec3;
+use streamline_kernel::grid::Grid;
+use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
+
+/// The OBJ text of `patches` (name, point grid), one object each.
+pub fn obj_shell_text(patches: &[(&str, &Grid<DVec3>)]) -> String {
+    let mut s = String::from("# Streamline Studio surface: several patches\n");
+    let mut offset = 0usize;
+    for (name, points) in patches {
+        let mesh = SurfaceMesh::from_points(points);
+        let _ = writeln!(s, "o {}", sanitize(name));
+        for p in &mesh.positions {
+            let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
+        }
+        for n in &mesh.normals {
+            let _ = writeln!(s, "vn {} {} {}", n.x, n.y, n.z);
+        }
+        for t in mesh.indices.chunks_exact(3) {
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| i as usize + 1 + offset);
+            let _ = writeln!(s, "f {a}//{a} {b}//{b} {c}//{c}");
+        }
+        offset += mesh.positions.len();
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_patch_is_one_object_with_its_rows_and_global_indices() {
+        let grid = |x0: f64| {
+            let data = (0..6)
+                .map(|i| DVec3::new(x0 + (i % 3) as f64, (i / 3) as f64, 0.0))
+                .collect();
+            Grid::new(2, 3, data).unwrap()
+        };
+        let (a, b) = (grid(0.0), grid(2.0));
+        let text = obj_shell_text(&[("hood", &a), ("screen", &b)]);
+        let objects: Vec<&str> = text.lines().filter(|l| l.starts_with("o ")).collect();
+        assert_eq!(objects, ["o hood", "o screen"]);
+        let v: Vec<&str> = text.lines().filter(|l| l.starts_with("v ")).collect();
+        assert_eq!(v.len(), 12);
+        // the second object's vertices are its grid, row by row
+        assert_eq!(v[6], "v 2 0 0");
+        assert_eq!(v[8], "v 4 0 0");
+        assert_eq!(v[9], "v 2 1 0");
+        // the second object's faces use only its own vertices (7..=12)
+        let second = text.split("o screen").nth(1).unwrap();
+        for f in second.lines().filter(|l| l.starts_with("f ")) {
+            for idx in f[2..].split(' ') {
+                let i: usize = idx.split("//").next().unwrap().parse().unwrap();
+                assert!((7..=12).contains(&i), "{f}");
+            }
+        }
+    }
+}

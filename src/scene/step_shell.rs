@@ -1,0 +1,304 @@
+//! STEP for several patches (docs/math.md §10, §11): one `ADVANCED_FACE` per
+//! patch in one `OPEN_SHELL` of a `SHELL_BASED_SURFACE_MODEL`, each face
+//! named for its patch, and each seam **one** `EDGE_CURVE` used by both
+//! faces in opposite directions, its vertices shared (the faces come from
+//! [`streamline_kernel::nurbs::fit_shell`], whose seams are one curve).
+//!
+//! A face's loop is `v = 0`, `u = 1`, `v = 1`, `u = 0` as in [`super::step`].
+//! A chain's seam is `A`'s `u = 1` edge and `B`'s `u = 0` edge. A side seam
+//! covers the part `[u₀, u₁]` of `A`'s `v = 0` (`First`) or `v = 1` (`Last`)
+//! edge: that edge is split at `u₀` and `u₁` into up to three edges (each
+//! the piece of the boundary curve, cut by knot insertion), the middle one
+//! being `B`'s `u = 0` edge. Where `B`'s own orientation (`∂u × ∂v`) turns
+//! against `A`'s across the seam (both faces would use the seam edge the
+//! same way) `B`'s face is written with `same_sense` false, so the shell is
+//! consistently oriented.
+
+use super::cad_text::step_string as string;
+use super::error::SceneError;
+use super::export::utc_now;
+use super::io::write_atomic;
+use super::numbers::real;
+use super::step::{StepInfo, Writer, list, point, refs, verify_faces};
+use std::path::Path;
+use streamline_kernel::DVec3;
+use streamline_kernel::joins::Edge;
+use streamline_kernel::nurbs::curve::Curve;
+use streamline_kernel::nurbs::{
+    FitOptions, PatchGrid, SeamSpec, ShellFace, ShellFit, ShellSeam, fit_shell,
+};
+
+/// Distinct knots and their multiplicities.
+fn knots_and_multiplicities(k: &[f64]) -> (Vec<usize>, Vec<f64>) {
+    let (mut mult, mut vals) = (Vec::new(), Vec::<f64>::new());
+    for &x in k {
+        if vals.last() == Some(&x) {
+            *mult.last_mut().expect("one per value") += 1;
+        } else {
+            vals.push(x);
+            mult.push(1);
+        }
+    }
+    (mult, vals)
+}
+
+fn curve(w: &mut Writer, c: &Curve) -> usize {
+    let ids: Vec<usize> = c.poles.iter().map(|&p| point(w, p)).collect();
+    let (mult, vals) = knots_and_multiplicities(&c.knots);
+    w.add(format!(
+        "B_SPLINE_CURVE_WITH_KNOTS('',{},{},.UNSPECIFIED.,.F.,.F.,{},{},.UNSPECIFIED.)",
+        c.degree,
+        refs(&ids),
+        list(mult, |m| m.to_string()),
+        list(vals, real),
+    ))
+}
+
+/// An edge written: its `EDGE_CURVE` and its start and end vertices.
+#[derive(Clone, Copy)]
+struct EdgeRec {
+    id: usize,
+    start: usize,
+    end: usize,
+}
+
+fn vertex(w: &mut Writer, p: DVec3) -> usize {
+    let c = point(w, p);
+    w.add(format!("VERTEX_POINT('',#{c})"))
+}
+
+fn edge(w: &mut Writer, c: &Curve, start: usize, end: usize) -> EdgeRec {
+    let g = curve(w, c);
+    let id = w.add(format!("EDGE_CURVE('',#{start},#{end},#{g},.T.)"));
+    EdgeRec { id, start, end }
+}
+
+/// The edges of one side run along `u` (`v = 0` or `v = 1`), split at
+/// `splits` (increasing, inside `(0, 1)`): the curve `c`'s pieces between
+/// the vertices `first`, the splits' and `last`.
+fn split_side(
+    w: &mut Writer,
+    c: &Curve,
+    splits: &[f64],
+    first: usize,
+    last: usize,
+) -> Vec<(f64, f64, EdgeRec)> {
+    let mut cuts = vec![0.0];
+    cuts.extend_from_slice(splits);
+    cuts.push(1.0);
+    let pieces: Vec<Curve> = cuts.windows(2).map(|x| c.piece(x[0], x[1])).collect();
+    let mut verts = vec![first];
+    for p in &pieces[1..] {
+        verts.push(vertex(w, p.poles[0]));
+    }
+    verts.push(last);
+    pieces
+        .iter()
+        .enumerate()
+        .map(|(k, p)| (cuts[k], cuts[k + 1], edge(w, p, verts[k], verts[k + 1])))
+        .collect()
+}
+
+/// The whole file: `faces` in one shell, sharing the edges of `seams`
+/// (none: every face on its own edges, as separate exports would be).
+pub fn faces_text(faces: &[ShellFace], seams: &[ShellSeam], info: &StepInfo) -> String {
+    let mut w = Writer {
+        text: String::new(),
+        next: 1,
+    };
+    let name = string(info.name);
+    let app = w.add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')");
+    w.add(format!(
+        "APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#{app})"
+    ));
+    let pctx = w.add(format!("PRODUCT_CONTEXT('',#{app},'mechanical')"));
+    let product = w.add(format!("PRODUCT({name},{name},'',(#{pctx}))"));
+    w.add(format!(
+        "PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#{product}))"
+    ));
+    let formation = w.add(format!("PRODUCT_DEFINITION_FORMATION('','',#{product})"));
+    let dctx = w.add(format!(
+        "PRODUCT_DEFINITION_CONTEXT('part definition',#{app},'design')"
+    ));
+    let def = w.add(format!(
+        "PRODUCT_DEFINITION('design','',#{formation},#{dctx})"
+    ));
+    let shape = w.add(format!("PRODUCT_DEFINITION_SHAPE('','',#{def})"));
+    let metre = w.add("(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT($,.METRE.))");
+    let radian = w.add("(NAMED_UNIT(*)PLANE_ANGLE_UNIT()SI_UNIT($,.RADIAN.))");
+    let steradian = w.add("(NAMED_UNIT(*)SI_UNIT($,.STERADIAN.)SOLID_ANGLE_UNIT())");
+    let unc = w.add(format!(
+        "UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE({}),#{metre},'distance_accuracy_value','confusion accuracy')",
+        real(info.uncertainty)
+    ));
+    let ctx = w.add(format!(
+        "(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#{unc}))GLOBAL_UNIT_ASSIGNED_CONTEXT((#{metre},#{radian},#{steradian}))REPRESENTATION_CONTEXT('Context #1','3D Context with UNIT and UNCERTAINTY'))"
+    ));
+    // per seam: the edge written for it on `a`'s side, whether `b`'s v runs
+    // along the edge's curve, and whether `a`'s loop runs along it
+    let mut seam_edge: Vec<Option<(EdgeRec, bool, bool)>> = vec![None; seams.len()];
+    let mut flipped = vec![false; faces.len()];
+    let mut face_ids = Vec::with_capacity(faces.len());
+    for (f, face) in faces.iter().enumerate() {
+        let s = &face.surface;
+        let (nu, nv) = s.pole_counts();
+        let (p, q) = s.degree();
+        let mut columns = Vec::with_capacity(nu);
+        for i in 0..nu {
+            let col: Vec<usize> = (0..nv).map(|j| point(&mut w, s.poles.get(j, i))).collect();
+            columns.push(refs(&col));
+        }
+        let (mu, ku) = knots_and_multiplicities(s.knots_u.knots());
+        let (mv, kv) = knots_and_multiplicities(s.knots_v.knots());
+        let srf = w.add(format!(
+            "B_SPLINE_SURFACE_WITH_KNOTS('',{p},{q},({}),.UNSPECIFIED.,.F.,.F.,.F.,{},{},{},{},.UNSPECIFIED.)",
+            columns.join(","),
+            list(mu, |m| m.to_string()),
+            list(mv, |m| m.to_string()),
+            list(ku, real),
+            list(kv, real),
+        ));
+        let bottom_c = Curve::new(&s.knots_u, s.poles.row(0).to_vec());
+        let top_c = Curve::new(&s.knots_u, s.poles.row(nv - 1).to_vec());
+        let right_c = Curve::new(&s.knots_v, s.poles.column(nu - 1));
+        let left_c = Curve::new(&s.knots_v, s.poles.column(0));
+        // the incoming seam: b's u = 0 edge is a's edge
+        let incoming = seams.iter().position(|x| x.spec.b == f);
+        let (left, left_along) = match incoming.and_then(|k| seam_edge[k].map(|e| (k, e))) {
+            Some((k, (e, along, a_along))) => {
+                // b's loop runs its left edge against v
+                let b_along = !along;
+                flipped[f] = flipped[seams[k].spec.a] ^ (a_along == b_along);
+                (Some(e), along)
+            }
+            None => (None, true),
+        };
+        let (c00, c01) = match left {
+            Some(e) if left_along => (e.start, e.end),
+            Some(e) => (e.end, e.start),
+            None => (
+                vertex(&mut w, s.poles.get(0, 0)),
+                vertex(&mut w, s.poles.get(nv - 1, 0)),
+            ),
+        };
+        let c10 = vertex(&mut w, s.poles.get(0, nu - 1));
+        let c11 = vertex(&mut w, s.poles.get(nv - 1, nu - 1));
+        // side seams that start on this face's first or last streamline
+        let splits = |edge: Edge| -> Vec<f64> {
+            let mut x: Vec<f64> = seams
+                .iter()
+                .filter(|k| k.spec.a == f && k.spec.join.edge == edge)
+                .flat_map(|k| [k.range.0, k.range.1])
+                .filter(|u| *u > 0.0 && *u < 1.0)
+                .collect();
+            x.sort_by(f64::total_cmp);
+            x.dedup();
+            x
+        };
+        let bottom = split_side(&mut w, &bottom_c, &splits(Edge::First), c00, c10);
+        let right = edge(&mut w, &right_c, c10, c11);
+        let top = split_side(&mut w, &top_c, &splits(Edge::Last), c01, c11);
+        let left = left.unwrap_or_else(|| edge(&mut w, &left_c, c00, c01));
+        for (k, x) in seams.iter().enumerate().filter(|(_, x)| x.spec.a == f) {
+            let (lo, hi) = (x.range.0.min(x.range.1), x.range.0.max(x.range.1));
+            let along = x.range.0 <= x.range.1;
+            let find = |side: &[(f64, f64, EdgeRec)]| {
+                side.iter()
+                    .find(|(a, b, _)| *a == lo && *b == hi)
+                    .map(|(_, _, e)| *e)
+            };
+            seam_edge[k] = match x.spec.join.edge {
+                Edge::End => Some((right, true, true)),
+                Edge::First => find(&bottom).map(|e| (e, along, true)),
+                Edge::Last => find(&top).map(|e| (e, along, false)),
+            };
+        }
+        let mut oriented = Vec::new();
+        let mut use_edge = |w: &mut Writer, e: EdgeRec, sense: bool| {
+            let s = if sense { ".T." } else { ".F." };
+            oriented.push(w.add(format!("ORIENTED_EDGE('',*,*,#{},{s})", e.id)));
+        };
+        for (_, _, e) in &bottom {
+            use_edge(&mut w, *e, true);
+        }
+        use_edge(&mut w, right, true);
+        for (_, _, e) in top.iter().rev() {
+            use_edge(&mut w, *e, false);
+        }
+        use_edge(&mut w, left, !left_along);
+        let lp = w.add(format!("EDGE_LOOP('',{})", refs(&oriented)));
+        let bound = w.add(format!("FACE_OUTER_BOUND('',#{lp},.T.)"));
+        let sense = if flipped[f] { ".F." } else { ".T." };
+        face_ids.push(w.add(format!(
+            "ADVANCED_FACE({},(#{bound}),#{srf},{sense})",
+            string(&face.name)
+        )));
+    }
+    let shell = w.add(format!("OPEN_SHELL('',{})", refs(&face_ids)));
+    let model = w.add(format!("SHELL_BASED_SURFACE_MODEL('',(#{shell}))"));
+    let origin = point(&mut w, DVec3::ZERO);
+    let z = w.add("DIRECTION('',(0.,0.,1.))");
+    let x = w.add("DIRECTION('',(1.,0.,0.))");
+    let axes = w.add(format!("AXIS2_PLACEMENT_3D('',#{origin},#{z},#{x})"));
+    let rep = w.add(format!(
+        "MANIFOLD_SURFACE_SHAPE_REPRESENTATION({name},(#{axes},#{model}),#{ctx})"
+    ));
+    w.add(format!("SHAPE_DEFINITION_REPRESENTATION(#{shape},#{rep})"));
+    format!(
+        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('Streamline Studio surface: B-spline faces in one shell'),'2;1');\nFILE_NAME({},{},(''),(''),'Streamline Studio {}','Streamline Studio','');\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN {{ 1 0 10303 214 1 1 1 1 }}'));\nENDSEC;\nDATA;\n{}ENDSEC;\nEND-ISO-10303-21;\n",
+        string(info.file_name),
+        string(info.timestamp),
+        env!("CARGO_PKG_VERSION"),
+        w.text
+    )
+}
+
+/// The shell's file: every face, the seams shared.
+pub fn step_shell_text(shell: &ShellFit, info: &StepInfo) -> String {
+    faces_text(&shell.faces, &shell.seams, info)
+}
+
+/// A check of a shell's file: as [`super::step::verify`], with `faces` faces.
+pub fn verify(bytes: &[u8], faces: usize) -> Result<(), String> {
+    verify_faces(bytes, faces)
+}
+
+/// Fits `patches` as one shell whose `seams` are shared
+/// ([`fit_shell`]) and writes its STEP file to `path` atomically, verified;
+/// nothing is written when the fit or the write fails (the old file is kept).
+/// `name` is the product's; the faces are named for the patches.
+pub fn write_shell(
+    path: &Path,
+    name: &str,
+    patches: &[PatchGrid],
+    seams: &[SeamSpec],
+    opts: &FitOptions,
+) -> Result<ShellFit, SceneError> {
+    let shell = fit_shell(patches, seams, opts).map_err(|e| {
+        SceneError::file(
+            path,
+            format!("{e}; nothing was written (the previous file is kept)"),
+        )
+    })?;
+    let file_name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tol = shell
+        .faces
+        .iter()
+        .map(|f| f.tolerance)
+        .fold(f64::INFINITY, f64::min);
+    let (y, mo, d, h, mi, se) = utc_now();
+    let stamp = format!("{y:04}-{mo:02}-{d:02}T{h:02}:{mi:02}:{se:02}");
+    let info = StepInfo {
+        name,
+        file_name: &file_name,
+        uncertainty: (tol / 10.0).min(1e-6),
+        timestamp: &stamp,
+    };
+    let bytes = step_shell_text(&shell, &info).into_bytes();
+    let n = shell.faces.len();
+    write_atomic(path, &bytes, |b| verify(b, n))?;
+    Ok(shell)
+}
