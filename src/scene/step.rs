@@ -90,14 +90,21 @@ fn curve(w: &mut Writer, k: &KnotVector, poles: &[DVec3]) -> usize {
     ))
 }
 
-/// The whole file.
-pub fn step_text(surface: &BSplineSurface, info: &StepInfo) -> String {
-    let mut w = Writer {
-        text: String::new(),
-        next: 1,
-    };
+/// The ids every file's shape hangs from: the product's shape, the
+/// geometric context (units, uncertainty), and the quoted name.
+pub(super) struct Frame {
+    /// The name, as a STEP string.
+    pub(super) name: String,
+    /// `PRODUCT_DEFINITION_SHAPE`.
+    pub(super) shape: usize,
+    /// The geometric representation context (metres, radians, uncertainty).
+    pub(super) ctx: usize,
+}
+
+/// The product, its definition and shape, the units and the uncertainty:
+/// what comes before the geometry in every file we write (AP214).
+pub(super) fn frame(w: &mut Writer, info: &StepInfo) -> Frame {
     let name = string(info.name);
-    // product, its definition and shape
     let app = w.add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')");
     w.add(format!(
         "APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#{app})"
@@ -115,7 +122,6 @@ pub fn step_text(surface: &BSplineSurface, info: &StepInfo) -> String {
         "PRODUCT_DEFINITION('design','',#{formation},#{dctx})"
     ));
     let shape = w.add(format!("PRODUCT_DEFINITION_SHAPE('','',#{def})"));
-    // units and uncertainty
     let metre = w.add("(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT($,.METRE.))");
     let radian = w.add("(NAMED_UNIT(*)PLANE_ANGLE_UNIT()SI_UNIT($,.RADIAN.))");
     let steradian = w.add("(NAMED_UNIT(*)SI_UNIT($,.STERADIAN.)SOLID_ANGLE_UNIT())");
@@ -126,6 +132,43 @@ pub fn step_text(surface: &BSplineSurface, info: &StepInfo) -> String {
     let ctx = w.add(format!(
         "(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#{unc}))GLOBAL_UNIT_ASSIGNED_CONTEXT((#{metre},#{radian},#{steradian}))REPRESENTATION_CONTEXT('Context #1','3D Context with UNIT and UNCERTAINTY'))"
     ));
+    Frame { name, shape, ctx }
+}
+
+/// The shape's representation around `model` (a `SHELL_BASED_SURFACE_MODEL`),
+/// then the file: header (`what` describes the contents), data, end.
+pub(super) fn finish(
+    mut w: Writer,
+    model: usize,
+    frame: Frame,
+    info: &StepInfo,
+    what: &str,
+) -> String {
+    let Frame { name, shape, ctx } = frame;
+    let origin = point(&mut w, DVec3::ZERO);
+    let z = w.add("DIRECTION('',(0.,0.,1.))");
+    let x = w.add("DIRECTION('',(1.,0.,0.))");
+    let axes = w.add(format!("AXIS2_PLACEMENT_3D('',#{origin},#{z},#{x})"));
+    let rep = w.add(format!(
+        "MANIFOLD_SURFACE_SHAPE_REPRESENTATION({name},(#{axes},#{model}),#{ctx})"
+    ));
+    w.add(format!("SHAPE_DEFINITION_REPRESENTATION(#{shape},#{rep})"));
+    format!(
+        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('Streamline Studio surface: {what}'),'2;1');\nFILE_NAME({},{},(''),(''),'Streamline Studio {}','Streamline Studio','');\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN {{ 1 0 10303 214 1 1 1 1 }}'));\nENDSEC;\nDATA;\n{}ENDSEC;\nEND-ISO-10303-21;\n",
+        string(info.file_name),
+        string(info.timestamp),
+        env!("CARGO_PKG_VERSION"),
+        w.text
+    )
+}
+
+/// The whole file.
+pub fn step_text(surface: &BSplineSurface, info: &StepInfo) -> String {
+    let mut w = Writer {
+        text: String::new(),
+        next: 1,
+    };
+    let frame = frame(&mut w, info);
     // the surface
     let (nu, nv) = surface.pole_counts();
     let (p, q) = surface.degree();
@@ -175,21 +218,7 @@ pub fn step_text(surface: &BSplineSurface, info: &StepInfo) -> String {
     let face = w.add(format!("ADVANCED_FACE('',(#{bound}),#{srf},.T.)"));
     let shell = w.add(format!("OPEN_SHELL('',(#{face}))"));
     let model = w.add(format!("SHELL_BASED_SURFACE_MODEL('',(#{shell}))"));
-    let origin = point(&mut w, DVec3::ZERO);
-    let z = w.add("DIRECTION('',(0.,0.,1.))");
-    let x = w.add("DIRECTION('',(1.,0.,0.))");
-    let axes = w.add(format!("AXIS2_PLACEMENT_3D('',#{origin},#{z},#{x})"));
-    let rep = w.add(format!(
-        "MANIFOLD_SURFACE_SHAPE_REPRESENTATION({name},(#{axes},#{model}),#{ctx})"
-    ));
-    w.add(format!("SHAPE_DEFINITION_REPRESENTATION(#{shape},#{rep})"));
-    format!(
-        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('Streamline Studio surface: one B-spline face'),'2;1');\nFILE_NAME({},{},(''),(''),'Streamline Studio {}','Streamline Studio','');\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN {{ 1 0 10303 214 1 1 1 1 }}'));\nENDSEC;\nDATA;\n{}ENDSEC;\nEND-ISO-10303-21;\n",
-        string(info.file_name),
-        string(info.timestamp),
-        env!("CARGO_PKG_VERSION"),
-        w.text
-    )
+    finish(w, model, frame, info, "one B-spline face")
 }
 
 /// A check of what was written: ASCII, the envelope, one face, one

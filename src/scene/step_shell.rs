@@ -19,7 +19,7 @@ use super::error::SceneError;
 use super::export::utc_now;
 use super::io::write_atomic;
 use super::numbers::real;
-use super::step::{StepInfo, Writer, list, point, refs, verify_faces};
+use super::step::{StepInfo, Writer, finish, frame, list, point, refs, verify_faces};
 use std::path::Path;
 use streamline_kernel::DVec3;
 use streamline_kernel::joins::Edge;
@@ -106,34 +106,7 @@ pub fn faces_text(faces: &[ShellFace], seams: &[ShellSeam], info: &StepInfo) -> 
         text: String::new(),
         next: 1,
     };
-    let name = string(info.name);
-    let app = w.add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')");
-    w.add(format!(
-        "APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#{app})"
-    ));
-    let pctx = w.add(format!("PRODUCT_CONTEXT('',#{app},'mechanical')"));
-    let product = w.add(format!("PRODUCT({name},{name},'',(#{pctx}))"));
-    w.add(format!(
-        "PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#{product}))"
-    ));
-    let formation = w.add(format!("PRODUCT_DEFINITION_FORMATION('','',#{product})"));
-    let dctx = w.add(format!(
-        "PRODUCT_DEFINITION_CONTEXT('part definition',#{app},'design')"
-    ));
-    let def = w.add(format!(
-        "PRODUCT_DEFINITION('design','',#{formation},#{dctx})"
-    ));
-    let shape = w.add(format!("PRODUCT_DEFINITION_SHAPE('','',#{def})"));
-    let metre = w.add("(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT($,.METRE.))");
-    let radian = w.add("(NAMED_UNIT(*)PLANE_ANGLE_UNIT()SI_UNIT($,.RADIAN.))");
-    let steradian = w.add("(NAMED_UNIT(*)SI_UNIT($,.STERADIAN.)SOLID_ANGLE_UNIT())");
-    let unc = w.add(format!(
-        "UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE({}),#{metre},'distance_accuracy_value','confusion accuracy')",
-        real(info.uncertainty)
-    ));
-    let ctx = w.add(format!(
-        "(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#{unc}))GLOBAL_UNIT_ASSIGNED_CONTEXT((#{metre},#{radian},#{steradian}))REPRESENTATION_CONTEXT('Context #1','3D Context with UNIT and UNCERTAINTY'))"
-    ));
+    let frame = frame(&mut w, info);
     // per seam: the edge written for it on `a`'s side, whether `b`'s v runs
     // along the edge's curve, and whether `a`'s loop runs along it
     let mut seam_edge: Vec<Option<(EdgeRec, bool, bool)>> = vec![None; seams.len()];
@@ -236,21 +209,7 @@ pub fn faces_text(faces: &[ShellFace], seams: &[ShellSeam], info: &StepInfo) -> 
     }
     let shell = w.add(format!("OPEN_SHELL('',{})", refs(&face_ids)));
     let model = w.add(format!("SHELL_BASED_SURFACE_MODEL('',(#{shell}))"));
-    let origin = point(&mut w, DVec3::ZERO);
-    let z = w.add("DIRECTION('',(0.,0.,1.))");
-    let x = w.add("DIRECTION('',(1.,0.,0.))");
-    let axes = w.add(format!("AXIS2_PLACEMENT_3D('',#{origin},#{z},#{x})"));
-    let rep = w.add(format!(
-        "MANIFOLD_SURFACE_SHAPE_REPRESENTATION({name},(#{axes},#{model}),#{ctx})"
-    ));
-    w.add(format!("SHAPE_DEFINITION_REPRESENTATION(#{shape},#{rep})"));
-    format!(
-        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('Streamline Studio surface: B-spline faces in one shell'),'2;1');\nFILE_NAME({},{},(''),(''),'Streamline Studio {}','Streamline Studio','');\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN {{ 1 0 10303 214 1 1 1 1 }}'));\nENDSEC;\nDATA;\n{}ENDSEC;\nEND-ISO-10303-21;\n",
-        string(info.file_name),
-        string(info.timestamp),
-        env!("CARGO_PKG_VERSION"),
-        w.text
-    )
+    finish(w, model, frame, info, "B-spline faces in one shell")
 }
 
 /// The shell's file: every face, the seams shared.
