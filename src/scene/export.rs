@@ -201,16 +201,8 @@ pub fn export_scene(
         write_mesh(mesh, &scene.name, path, format, opts.colors.as_deref())?;
         return Ok(Exported { format, fit: None });
     }
-    let fitted = fit_scene(scene, depth, &opts.fit).map_err(|e| {
-        SceneError::file(
-            path,
-            format!("{e}; nothing was written (the previous file is kept)"),
-        )
-    })?;
-    let file_name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
+    let fitted = fit_scene(scene, depth, &opts.fit).map_err(|e| fit_refused(path, e))?;
+    let file_name = file_name(path);
     let surface = &fitted.fit.surface;
     // the distance uncertainty: a micron, or a tenth of a tighter tolerance
     let uncertainty = (fitted.fit.report.tolerance / 10.0).min(1e-6);
@@ -263,4 +255,20 @@ pub(super) fn utc_now() -> (i64, u32, u32, u32, u32, u32) {
     let y = yoe + era * 400 + i64::from(m <= 2);
     let rem = rem as u32;
     (y, m, d, rem / 3600, rem / 60 % 60, rem % 60)
+}
+
+/// A CAD export refused by its fit: the fit's reason, and that the previous
+/// file is kept.
+pub(super) fn fit_refused(path: &Path, e: impl std::fmt::Display) -> SceneError {
+    SceneError::file(
+        path,
+        format!("{e}; nothing was written (the previous file is kept)"),
+    )
+}
+
+/// The last component of `path`, as written into a file's header.
+pub(super) fn file_name(path: &Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
 }

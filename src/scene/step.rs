@@ -162,6 +162,28 @@ pub(super) fn finish(
     )
 }
 
+/// The surface itself: its poles column by column (`u`), then the
+/// `B_SPLINE_SURFACE_WITH_KNOTS` entity; returns its id.
+pub(super) fn surface_entity(w: &mut Writer, surface: &BSplineSurface) -> usize {
+    let (nu, nv) = surface.pole_counts();
+    let (p, q) = surface.degree();
+    let mut columns = Vec::with_capacity(nu);
+    for i in 0..nu {
+        let col: Vec<usize> = (0..nv).map(|j| point(w, surface.poles.get(j, i))).collect();
+        columns.push(refs(&col));
+    }
+    let (mu, ku) = knots_and_multiplicities(&surface.knots_u);
+    let (mv, kv) = knots_and_multiplicities(&surface.knots_v);
+    w.add(format!(
+        "B_SPLINE_SURFACE_WITH_KNOTS('',{p},{q},({}),.UNSPECIFIED.,.F.,.F.,.F.,{},{},{},{},.UNSPECIFIED.)",
+        columns.join(","),
+        list(mu, |m| m.to_string()),
+        list(mv, |m| m.to_string()),
+        list(ku, real),
+        list(kv, real),
+    ))
+}
+
 /// The whole file.
 pub fn step_text(surface: &BSplineSurface, info: &StepInfo) -> String {
     let mut w = Writer {
@@ -170,25 +192,8 @@ pub fn step_text(surface: &BSplineSurface, info: &StepInfo) -> String {
     };
     let frame = frame(&mut w, info);
     // the surface
+    let srf = surface_entity(&mut w, surface);
     let (nu, nv) = surface.pole_counts();
-    let (p, q) = surface.degree();
-    let mut columns = Vec::with_capacity(nu);
-    for i in 0..nu {
-        let col: Vec<usize> = (0..nv)
-            .map(|j| point(&mut w, surface.poles.get(j, i)))
-            .collect();
-        columns.push(refs(&col));
-    }
-    let (mu, ku) = knots_and_multiplicities(&surface.knots_u);
-    let (mv, kv) = knots_and_multiplicities(&surface.knots_v);
-    let srf = w.add(format!(
-        "B_SPLINE_SURFACE_WITH_KNOTS('',{p},{q},({}),.UNSPECIFIED.,.F.,.F.,.F.,{},{},{},{},.UNSPECIFIED.)",
-        columns.join(","),
-        list(mu, |m| m.to_string()),
-        list(mv, |m| m.to_string()),
-        list(ku, real),
-        list(kv, real),
-    ));
     // corners, boundary curves, edges
     let poles = &surface.poles;
     let corner = |j: usize, i: usize| poles.get(j, i);

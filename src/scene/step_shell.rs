@@ -16,10 +16,12 @@
 
 use super::cad_text::step_string as string;
 use super::error::SceneError;
-use super::export::utc_now;
+use super::export::{file_name, fit_refused, utc_now};
 use super::io::write_atomic;
 use super::numbers::real;
-use super::step::{StepInfo, Writer, finish, frame, list, point, refs, verify_faces};
+use super::step::{
+    StepInfo, Writer, finish, frame, list, point, refs, surface_entity, verify_faces,
+};
 use std::path::Path;
 use streamline_kernel::DVec3;
 use streamline_kernel::joins::Edge;
@@ -115,22 +117,7 @@ pub fn faces_text(faces: &[ShellFace], seams: &[ShellSeam], info: &StepInfo) -> 
     for (f, face) in faces.iter().enumerate() {
         let s = &face.surface;
         let (nu, nv) = s.pole_counts();
-        let (p, q) = s.degree();
-        let mut columns = Vec::with_capacity(nu);
-        for i in 0..nu {
-            let col: Vec<usize> = (0..nv).map(|j| point(&mut w, s.poles.get(j, i))).collect();
-            columns.push(refs(&col));
-        }
-        let (mu, ku) = knots_and_multiplicities(s.knots_u.knots());
-        let (mv, kv) = knots_and_multiplicities(s.knots_v.knots());
-        let srf = w.add(format!(
-            "B_SPLINE_SURFACE_WITH_KNOTS('',{p},{q},({}),.UNSPECIFIED.,.F.,.F.,.F.,{},{},{},{},.UNSPECIFIED.)",
-            columns.join(","),
-            list(mu, |m| m.to_string()),
-            list(mv, |m| m.to_string()),
-            list(ku, real),
-            list(kv, real),
-        ));
+        let srf = surface_entity(&mut w, s);
         let bottom_c = Curve::new(&s.knots_u, s.poles.row(0).to_vec());
         let top_c = Curve::new(&s.knots_u, s.poles.row(nv - 1).to_vec());
         let right_c = Curve::new(&s.knots_v, s.poles.column(nu - 1));
@@ -233,16 +220,8 @@ pub fn write_shell(
     seams: &[SeamSpec],
     opts: &FitOptions,
 ) -> Result<ShellFit, SceneError> {
-    let shell = fit_shell(patches, seams, opts).map_err(|e| {
-        SceneError::file(
-            path,
-            format!("{e}; nothing was written (the previous file is kept)"),
-        )
-    })?;
-    let file_name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
+    let shell = fit_shell(patches, seams, opts).map_err(|e| fit_refused(path, e))?;
+    let file_name = file_name(path);
     let tol = shell
         .faces
         .iter()
