@@ -75,6 +75,7 @@ impl Plugin for EditorPlugin {
             screenshot::ScreenshotPlugin,
         ))
         .add_plugins((
+            handles::sphere_dots::SphereDotsPlugin,
             document::new_design::NewDesignPlugin,
             handles::structure::StructurePlugin,
             handles::box_select::BoxSelectPlugin,

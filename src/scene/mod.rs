@@ -24,6 +24,7 @@ pub mod obj;
 pub mod obj_shell;
 pub mod patch_text;
 pub mod script;
+pub mod spec_kernel;
 pub mod step;
 pub mod step_shell;
 pub mod usd;
