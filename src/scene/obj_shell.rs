@@ -47,21 +47,38 @@ mod tests {
         };
         let (a, b) = (grid(0.0), grid(2.0));
         let text = obj_shell_text(&[("hood", &a), ("screen", &b)]);
-        let objects: Vec<&str> = text.lines().filter(|l| l.starts_with("o ")).collect();
-        assert_eq!(objects, ["o hood", "o screen"]);
+        // read by tobj (an outside reader), each object with its own indices
+        let opts = tobj::LoadOptions {
+            single_index: true,
+            triangulate: true,
+            ..Default::default()
+        };
+        let (models, _) = tobj::load_obj_buf(&mut text.as_bytes(), &opts, |_| {
+            Err(tobj::LoadError::OpenFileFailed)
+        })
+        .expect("tobj reads the file");
+        let names: Vec<&str> = models.iter().map(|m| m.name.as_str()).collect();
+        assert_eq!(names, ["hood", "screen"]);
+        // in the file, the second object's vertices are its grid, row by row
         let v: Vec<&str> = text.lines().filter(|l| l.starts_with("v ")).collect();
         assert_eq!(v.len(), 12);
-        // the second object's vertices are its grid, row by row
-        assert_eq!(v[6], "v 2 0 0");
-        assert_eq!(v[8], "v 4 0 0");
-        assert_eq!(v[9], "v 2 1 0");
-        // the second object's faces use only its own vertices (7..=12)
-        let second = text.split("o screen").nth(1).unwrap();
-        for f in second.lines().filter(|l| l.starts_with("f ")) {
-            for idx in f[2..].split(' ') {
-                let i: usize = idx.split("//").next().unwrap().parse().unwrap();
-                assert!((7..=12).contains(&i), "{f}");
-            }
+        assert_eq!((v[6], v[8], v[9]), ("v 2 0 0", "v 4 0 0", "v 2 1 0"));
+        for (m, g) in models.iter().zip([&a, &b]) {
+            // its grid's points, each once (tobj numbers them by first use)
+            let key = |q: [f64; 3]| q.map(f64::to_bits);
+            let mut read: Vec<_> = m
+                .mesh
+                .positions
+                .chunks(3)
+                .map(|q| key([q[0], q[1], q[2]]))
+                .collect();
+            let mut want: Vec<_> = g.data().iter().map(|q| key(q.to_array())).collect();
+            read.sort_unstable();
+            want.sort_unstable();
+            assert_eq!(read, want, "{}", m.name);
+            // two triangles per cell, every index inside the object
+            assert_eq!(m.mesh.indices.len(), 3 * 2 * 2);
+            assert!(m.mesh.indices.iter().all(|&i| (i as usize) < 6));
         }
     }
 }
