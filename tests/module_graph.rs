@@ -1,4 +1,4 @@
-//! Issue 19: the files of `src/editor` and of `src/ecs` import each other
+//! Issue 19: the files of `src/editor`, `src/ecs`, `src/scene` and `src/cli` import each other
 //! without a circle. Each folder is checked on its own: its nodes are its
 //! files and sub-folders (a sub-folder is one node, checked in turn); a
 //! file's use of its folder's `mod.rs` items, and `mod.rs`'s use of its
@@ -215,6 +215,18 @@ fn editor_files_import_each_other_without_a_circle() {
 fn ecs_files_import_each_other_without_a_circle() {
     let (_, edges) = check(&src("ecs"), "crate::ecs");
     assert!(edges >= 10, "{edges} edges");
+}
+
+#[test]
+fn scene_files_import_each_other_without_a_circle() {
+    let (_, edges) = check(&src("scene"), "crate::scene");
+    assert!(edges >= 20, "{edges} edges");
+}
+
+#[test]
+fn cli_files_import_each_other_without_a_circle() {
+    let (_, edges) = check(&src("cli"), "crate::cli");
+    assert!(edges >= 3, "{edges} edges");
 }
 
 /// The checker finds a circle where there is one, through `use` groups,

@@ -30,8 +30,12 @@ use serde::{Deserialize, Deserializer, Serialize};
 use streamline_kernel::DVec3;
 use streamline_kernel::curve::scheme::OMEGA_MAX;
 
-/// The version this build writes (and the newest it reads).
+/// The version this build writes for one surface.
 pub const VERSION: u32 = 2;
+
+/// The version of a file with several patches (its own format:
+/// [`super::format_v3`]).
+pub const VERSION_PATCHES: u32 = 3;
 
 /// The oldest version this build reads.
 pub const OLDEST_VERSION: u32 = 1;
@@ -132,7 +136,7 @@ pub struct Version(pub u32);
 impl<'de> Deserialize<'de> for Version {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         let v = u32::deserialize(d)?;
-        let patches = super::format_v3::VERSION_PATCHES;
+        let patches = VERSION_PATCHES;
         if v == patches {
             return Err(D::Error::custom(format!(
                 "a version-{patches} file lists its surfaces under `patches: [ … ]`; move the surface fields into a patch `( name: \"main\", tangents: …, … )`, or write `version: {VERSION}`"

@@ -39,8 +39,7 @@ use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize};
 use streamline_kernel::joins::{Continuity, Edge};
 
-/// The version of a file with several patches.
-pub const VERSION_PATCHES: u32 = 3;
+pub use super::format::VERSION_PATCHES;
 
 /// A version-3 scene file as written on disk.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
