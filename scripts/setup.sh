@@ -6,7 +6,8 @@
 # xdotool, with which the GUI tests drive a real pointer. With `--tests` (the
 # README's test command) also what the tests check our files with: OpenSubdiv
 # (libosd-dev, compiled into a small C++ oracle with g++) and a Python virtual
-# environment with OpenCascade and USD (scripts/venv.sh).
+# environment with OpenCascade and USD (scripts/venv.sh), and the Khronos glTF
+# validator in a node folder (scripts/node.sh).
 set -euo pipefail
 
 need=()
@@ -24,4 +25,4 @@ if ((${#need[@]})); then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null
 fi
 command -v cargo >/dev/null || { echo "setup: cargo not found; install Rust 1.95 with rustup first" >&2; exit 1; }
-if ((tests)); then bash "$(dirname "$0")/venv.sh"; fi
+if ((tests)); then bash "$(dirname "$0")/venv.sh"; bash "$(dirname "$0")/node.sh"; fi

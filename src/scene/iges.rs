@@ -70,17 +70,53 @@ fn records(
 
 /// The whole file.
 pub fn iges_text(surface: &BSplineSurface, info: &IgesInfo) -> String {
+    iges_faces_text(&[surface], info)
+}
+
+/// The parameter data of one entity 128.
+fn surface_params(surface: &BSplineSurface) -> Vec<String> {
+    let (nu, nv) = surface.pole_counts();
+    let (p, q) = surface.degree();
+    let mut pd: Vec<String> = [128, nu - 1, nv - 1, p, q, 0, 0, 1, 0, 0]
+        .iter()
+        .map(|v| v.to_string())
+        .collect();
+    pd.extend(surface.knots_u.knots().iter().map(|&k| real(k)));
+    pd.extend(surface.knots_v.knots().iter().map(|&k| real(k)));
+    pd.extend(std::iter::repeat_n("1.".to_string(), nu * nv));
+    for j in 0..nv {
+        for i in 0..nu {
+            let c = surface.poles.get(j, i);
+            pd.extend([c.x, c.y, c.z].map(real));
+        }
+    }
+    pd.extend(["0.", "1.", "0.", "1."].map(String::from));
+    let n = pd.len();
+    pd.into_iter()
+        .enumerate()
+        .map(|(i, s)| format!("{s}{}", if i + 1 == n { ";" } else { "," }))
+        .collect()
+}
+
+/// The whole file of several surfaces: one entity 128 each, in order
+/// (directory entries `1, 3, 5, …`; docs/cad.md, "Several patches").
+pub fn iges_faces_text(surfaces: &[&BSplineSurface], info: &IgesInfo) -> String {
     let mut out: Vec<String> = Vec::new();
     // start section
+    let what = if surfaces.len() == 1 {
+        "one B-spline surface (entity 128)".to_string()
+    } else {
+        format!("{} B-spline surfaces (entity 128)", surfaces.len())
+    };
     out.push(format!(
         "{:<72}S{:>7}",
-        "Streamline Studio surface: one B-spline surface (entity 128)", 1
+        format!("Streamline Studio surface: {what}"),
+        1
     ));
     // global section
-    let max_coord = surface
-        .poles
-        .data()
+    let max_coord = surfaces
         .iter()
+        .flat_map(|s| s.poles.data().iter())
         .map(|p| p.abs().max_element())
         .fold(0.0f64, f64::max);
     let g = [
@@ -116,42 +152,33 @@ pub fn iges_text(surface: &BSplineSurface, info: &IgesInfo) -> String {
         .map(|(i, s)| format!("{s}{}", if i + 1 == g.len() { ";" } else { "," }))
         .collect();
     records(&g, 72, 'G', None, &mut out);
-    // parameter data of the one entity
-    let (nu, nv) = surface.pole_counts();
-    let (p, q) = surface.degree();
-    let mut pd: Vec<String> = [128, nu - 1, nv - 1, p, q, 0, 0, 1, 0, 0]
-        .iter()
-        .map(|v| v.to_string())
-        .collect();
-    pd.extend(surface.knots_u.knots().iter().map(|&k| real(k)));
-    pd.extend(surface.knots_v.knots().iter().map(|&k| real(k)));
-    pd.extend(std::iter::repeat_n("1.".to_string(), nu * nv));
-    for j in 0..nv {
-        for i in 0..nu {
-            let c = surface.poles.get(j, i);
-            pd.extend([c.x, c.y, c.z].map(real));
-        }
-    }
-    pd.extend(["0.", "1.", "0.", "1."].map(String::from));
-    let n = pd.len();
-    let pd: Vec<String> = pd
-        .into_iter()
-        .enumerate()
-        .map(|(i, s)| format!("{s}{}", if i + 1 == n { ";" } else { "," }))
-        .collect();
+    // parameter data and directory entries (two records) of each entity
     let mut params = Vec::new();
-    let lines = records(&pd, 64, 'P', Some(1), &mut params);
-    // directory entry: two records
-    let d1 = format!(
-        "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}",
-        128, 1, 0, 0, 0, 0, 0, 0, "00000000"
-    );
-    let d2 = format!(
-        "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}",
-        128, 0, 0, lines, 0, "", "", "BSPLSURF", 0
-    );
-    out.push(format!("{d1}D{:>7}", 1));
-    out.push(format!("{d2}D{:>7}", 2));
+    let mut entries = Vec::new();
+    for (k, surface) in surfaces.iter().enumerate() {
+        let de = 2 * k + 1;
+        let first = params.len() + 1;
+        let lines = records(&surface_params(surface), 64, 'P', Some(de), &mut params);
+        let d1 = format!(
+            "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}",
+            128, first, 0, 0, 0, 0, 0, 0, "00000000"
+        );
+        let d2 = format!(
+            "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}",
+            128,
+            0,
+            0,
+            lines,
+            0,
+            "",
+            "",
+            "BSPLSURF",
+            if surfaces.len() == 1 { 0 } else { k + 1 }
+        );
+        entries.push(format!("{d1}D{:>7}", de));
+        entries.push(format!("{d2}D{:>7}", de + 1));
+    }
+    out.extend(entries);
     out.extend(params);
     let count = |c: u8| out.iter().filter(|l| l.as_bytes()[72] == c).count();
     let t = format!(
@@ -170,6 +197,11 @@ pub fn iges_text(surface: &BSplineSurface, info: &IgesInfo) -> String {
 /// A check of what was written: every record 80 columns, the sections in
 /// order, the terminate counts right, one entity 128.
 pub fn verify(bytes: &[u8]) -> Result<(), String> {
+    verify_faces(bytes, 1)
+}
+
+/// As [`verify`], with `faces` entities 128.
+pub fn verify_faces(bytes: &[u8], faces: usize) -> Result<(), String> {
     if !bytes.is_ascii() {
         return Err("not ASCII".into());
     }
@@ -197,8 +229,14 @@ pub fn verify(bytes: &[u8]) -> Result<(), String> {
     if !last.starts_with(&want) {
         return Err("terminate section counts do not match".into());
     }
-    if count('D') != 2 || !lines.iter().any(|l| l.starts_with("     128       1")) {
-        return Err("not one entity 128".into());
+    let entities = lines
+        .iter()
+        .filter(|l| l.as_bytes()[72] == b'D')
+        .step_by(2)
+        .filter(|l| l.starts_with("     128"))
+        .count();
+    if count('D') != 2 * faces || entities != faces {
+        return Err(format!("not {faces} entities 128"));
     }
     Ok(())
 }

@@ -8,7 +8,10 @@ pub mod cad_text;
 pub mod document;
 pub mod document_build;
 pub mod document_check;
+pub mod document_export;
+pub mod document_fit;
 pub mod document_io;
+pub mod document_mirror;
 pub mod edit;
 pub mod error;
 pub mod export;
@@ -27,6 +30,7 @@ pub mod script;
 pub mod spec_kernel;
 pub mod step;
 pub mod step_shell;
+pub mod stl_shell;
 pub mod usd;
 
 pub use document::Document;

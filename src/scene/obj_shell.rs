@@ -13,10 +13,23 @@ use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 
 /// The OBJ text of `patches` (name, point grid), one object each.
 pub fn obj_shell_text(patches: &[(&str, &Grid<DVec3>)]) -> String {
+    let meshes: Vec<SurfaceMesh> = patches
+        .iter()
+        .map(|(_, p)| SurfaceMesh::from_points(p))
+        .collect();
+    let named: Vec<(&str, &SurfaceMesh)> = patches
+        .iter()
+        .zip(&meshes)
+        .map(|((n, _), m)| (*n, m))
+        .collect();
+    obj_meshes_text(&named)
+}
+
+/// The OBJ text of `patches` (name, mesh), one object each.
+pub fn obj_meshes_text(patches: &[(&str, &SurfaceMesh)]) -> String {
     let mut s = String::from("# Streamline Studio surface: several patches\n");
     let mut offset = 0usize;
-    for (name, points) in patches {
-        let mesh = SurfaceMesh::from_points(points);
+    for (name, mesh) in patches {
         let _ = writeln!(s, "o {}", sanitize(name));
         for p in &mesh.positions {
             let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);

@@ -104,6 +104,31 @@ fn split_side(
 /// The whole file: `faces` in one shell, sharing the edges of `seams`
 /// (none: every face on its own edges, as separate exports would be).
 pub fn faces_text(faces: &[ShellFace], seams: &[ShellSeam], info: &StepInfo) -> String {
+    faces_text_mirrored(faces, seams, None, info)
+}
+
+/// The reflected half of a mirrored shell (docs/math.md §9, §11;
+/// [`super::document_mirror`]): faces `originals..` are the reflections of
+/// faces `0..originals`, in order, and each pair `(i, j)` of `shared` shares
+/// its `v = 0` edge (the first streamline, in the mirror plane).
+#[derive(Debug, Clone, Copy)]
+pub struct MirrorFaces<'a> {
+    /// How many faces are not reflections.
+    pub originals: usize,
+    /// `(original, reflection)` whose first streamlines are one edge.
+    pub shared: &'a [(usize, usize)],
+}
+
+/// [`faces_text`] with reflected faces: each written with the opposite
+/// `same_sense` of its original (a reflection turns the orientation over),
+/// and the pairs of `mirror.shared` on one `v = 0` edge, used by both faces
+/// in opposite directions.
+pub fn faces_text_mirrored(
+    faces: &[ShellFace],
+    seams: &[ShellSeam],
+    mirror: Option<MirrorFaces>,
+    info: &StepInfo,
+) -> String {
     let mut w = Writer {
         text: String::new(),
         next: 1,
@@ -113,6 +138,11 @@ pub fn faces_text(faces: &[ShellFace], seams: &[ShellSeam], info: &StepInfo) -> 
     // along the edge's curve, and whether `a`'s loop runs along it
     let mut seam_edge: Vec<Option<(EdgeRec, bool, bool)>> = vec![None; seams.len()];
     let mut flipped = vec![false; faces.len()];
+    // each face's `v = 0` edge, when it is one piece
+    let mut bottoms: Vec<Option<EdgeRec>> = vec![None; faces.len()];
+    let reflection_of = |f: usize| mirror.filter(|m| f >= m.originals).map(|m| f - m.originals);
+    let mirror_bottom =
+        |f: usize| mirror.and_then(|m| m.shared.iter().find(|(_, j)| *j == f).map(|(i, _)| *i));
     let mut face_ids = Vec::with_capacity(faces.len());
     for (f, face) in faces.iter().enumerate() {
         let s = &face.surface;
@@ -131,17 +161,37 @@ pub fn faces_text(faces: &[ShellFace], seams: &[ShellSeam], info: &StepInfo) -> 
                 flipped[f] = flipped[seams[k].spec.a] ^ (a_along == b_along);
                 (Some(e), along)
             }
-            None => (None, true),
+            None => {
+                // a reflected face with no incoming seam faces the other way
+                if let Some(o) = reflection_of(f) {
+                    flipped[f] = !flipped[o];
+                }
+                (None, true)
+            }
         };
-        let (c00, c01) = match left {
-            Some(e) if left_along => (e.start, e.end),
-            Some(e) => (e.end, e.start),
-            None => (
+        let left_ends = left.map(|e| {
+            if left_along {
+                (e.start, e.end)
+            } else {
+                (e.end, e.start)
+            }
+        });
+        // the original's first streamline, when this reflection shares it
+        let shared_bottom = mirror_bottom(f)
+            .and_then(|o| bottoms[o])
+            .filter(|e| left_ends.is_none_or(|(c00, _)| c00 == e.start));
+        let (c00, c01) = match (left_ends, shared_bottom) {
+            (Some(ends), _) => ends,
+            (None, Some(e)) => (e.start, vertex(&mut w, s.poles.get(nv - 1, 0))),
+            (None, None) => (
                 vertex(&mut w, s.poles.get(0, 0)),
                 vertex(&mut w, s.poles.get(nv - 1, 0)),
             ),
         };
-        let c10 = vertex(&mut w, s.poles.get(0, nu - 1));
+        let c10 = match shared_bottom {
+            Some(e) => e.end,
+            None => vertex(&mut w, s.poles.get(0, nu - 1)),
+        };
         let c11 = vertex(&mut w, s.poles.get(nv - 1, nu - 1));
         // side seams that start on this face's first or last streamline
         let splits = |edge: Edge| -> Vec<f64> {
@@ -155,7 +205,13 @@ pub fn faces_text(faces: &[ShellFace], seams: &[ShellSeam], info: &StepInfo) -> 
             x.dedup();
             x
         };
-        let bottom = split_side(&mut w, &bottom_c, &splits(Edge::First), c00, c10);
+        let bottom = match shared_bottom {
+            Some(e) => vec![(0.0, 1.0, e)],
+            None => split_side(&mut w, &bottom_c, &splits(Edge::First), c00, c10),
+        };
+        if let [(_, _, e)] = bottom.as_slice() {
+            bottoms[f] = Some(*e);
+        }
         let right = edge(&mut w, &right_c, c10, c11);
         let top = split_side(&mut w, &top_c, &splits(Edge::Last), c01, c11);
         let left = left.unwrap_or_else(|| edge(&mut w, &left_c, c00, c01));
@@ -221,6 +277,18 @@ pub fn write_shell(
     opts: &FitOptions,
 ) -> Result<ShellFit, SceneError> {
     let shell = fit_shell(patches, seams, opts).map_err(|e| fit_refused(path, e))?;
+    write_fitted(path, name, &shell, None)?;
+    Ok(shell)
+}
+
+/// Writes a fitted shell (with its reflected faces, if `mirror`) to `path`
+/// atomically, verified (one face per patch).
+pub fn write_fitted(
+    path: &Path,
+    name: &str,
+    shell: &ShellFit,
+    mirror: Option<MirrorFaces>,
+) -> Result<(), SceneError> {
     let file_name = file_name(path);
     let tol = shell
         .faces
@@ -235,8 +303,7 @@ pub fn write_shell(
         uncertainty: (tol / 10.0).min(1e-6),
         timestamp: &stamp,
     };
-    let bytes = step_shell_text(&shell, &info).into_bytes();
+    let bytes = faces_text_mirrored(&shell.faces, &shell.seams, mirror, &info).into_bytes();
     let n = shell.faces.len();
-    write_atomic(path, &bytes, |b| verify(b, n))?;
-    Ok(shell)
+    write_atomic(path, &bytes, |b| verify(b, n))
 }

@@ -1,0 +1,197 @@
+//! The patches of a document as B-spline faces (docs/math.md §10, §11): one
+//! STEP shell whose seams are shared ([`streamline_kernel::nurbs::fit_shell`])
+//! or each patch alone as the one-patch export fits it (IGES). As for one
+//! patch ([`super::cad::fit_scene`]), which sampling reaches the tolerance
+//! is the exporter's business: every patch is sampled at one depth (so a
+//! seam's points stay one set of points and its edge stays shared), starting
+//! from the one asked for, and when a face needs more control points than
+//! its grid has points, or cannot meet the tolerance with its seams held,
+//! the whole document is sampled one depth deeper, up to [`max_fit_depth`].
+
+use super::cad::MAX_CHECK_POINTS;
+use super::document::Document;
+use super::document_build::{BuildError, BuiltDocument};
+use std::borrow::Cow;
+use std::fmt;
+use std::time::Instant;
+use streamline_kernel::nurbs::{
+    FitError, FitOptions, PatchGrid, SeamSpec, ShellError, ShellFace, ShellSeam, fit_alone,
+    fit_shell,
+};
+
+/// The deepest depth a document is sampled at: the last at which every
+/// patch's check grid (one depth finer) has at most [`MAX_CHECK_POINTS`]
+/// points and passes the kernel's size limits (as [`super::cad::max_fit_depth`]).
+pub fn max_fit_depth(doc: &Document) -> u32 {
+    doc.patches
+        .iter()
+        .map(|p| {
+            let d = &p.design;
+            let (rows, cols) = (d.net().rows(), d.net().cols());
+            let mut depth = 0;
+            while let Ok((r, c)) = d.scheme().check_depth(rows, cols, depth + 2) {
+                if r.saturating_mul(c + 1) > MAX_CHECK_POINTS {
+                    break;
+                }
+                depth += 1;
+            }
+            depth
+        })
+        .min()
+        .unwrap_or(0)
+}
+
+/// How the faces are fitted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FaceFit {
+    /// One shell, each seam's boundary curve fitted once and shared (STEP).
+    Shell,
+    /// Each patch alone, as the one-patch export fits it (IGES).
+    Alone,
+}
+
+/// The faces of a document.
+#[derive(Debug, Clone)]
+pub struct DocumentFit {
+    /// The depth every patch was sampled at (checked one deeper).
+    pub depth: u32,
+    /// One per patch, in the document's order.
+    pub faces: Vec<ShellFace>,
+    /// One per seam (empty for [`FaceFit::Alone`]).
+    pub seams: Vec<ShellSeam>,
+    /// The points each face was fitted to and checked at.
+    pub grids: Vec<PatchGrid>,
+    /// Seconds the fits took (the builds not counted).
+    pub seconds: f64,
+}
+
+/// Why a document was not fitted.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DocumentFitError {
+    /// The document could not be built deeper.
+    Build(BuildError),
+    /// A face or seam was refused.
+    Shell(ShellError),
+}
+
+impl fmt::Display for DocumentFitError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            DocumentFitError::Build(e) => write!(f, "{e}"),
+            DocumentFitError::Shell(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for DocumentFitError {}
+
+/// `built` when it holds depth `depth`, else the document built to it.
+pub fn built_to<'a>(
+    doc: &Document,
+    built: &'a BuiltDocument,
+    depth: u32,
+) -> Result<Cow<'a, BuiltDocument>, BuildError> {
+    if built.depth >= depth && built.patches.len() == doc.patches.len() {
+        Ok(Cow::Borrowed(built))
+    } else {
+        doc.build(depth).map(Cow::Owned)
+    }
+}
+
+/// Whether a refusal may pass one depth deeper.
+fn deeper_helps(e: &ShellError) -> bool {
+    matches!(
+        e,
+        ShellError::Fit {
+            error: FitError::TooFewPoints { .. },
+            ..
+        } | ShellError::OverTolerance { .. }
+    )
+}
+
+/// At the deepest depth, a grid too coarse says so with the depth.
+fn at_deepest(e: ShellError, depth: u32) -> ShellError {
+    match e {
+        ShellError::Fit {
+            patch,
+            error:
+                FitError::TooFewPoints {
+                    direction,
+                    points,
+                    tolerance,
+                    reached,
+                },
+        } => ShellError::Fit {
+            patch,
+            error: FitError::TooFewPointsAtDeepest {
+                direction,
+                points,
+                tolerance,
+                reached,
+                depth,
+            },
+        },
+        e => e,
+    }
+}
+
+/// Fits every patch of `doc` (built as `built`, built again deeper when
+/// needed) sampled at `depth` or as much deeper as the tolerance needs
+/// (module docs), as one shell or each alone.
+pub fn fit_document(
+    doc: &Document,
+    built: &BuiltDocument,
+    depth: u32,
+    opts: &FitOptions,
+    how: FaceFit,
+) -> Result<DocumentFit, DocumentFitError> {
+    let deepest = max_fit_depth(doc).max(depth);
+    let mut depth = depth;
+    let mut seconds = 0.0;
+    loop {
+        let b = built_to(doc, built, depth + 1).map_err(DocumentFitError::Build)?;
+        let grids = b
+            .patches
+            .iter()
+            .zip(&doc.patches)
+            .map(|(s, p)| {
+                PatchGrid::from_stack(&p.name, s, depth).map_err(|error| {
+                    DocumentFitError::Shell(ShellError::Fit {
+                        patch: p.name.clone(),
+                        error,
+                    })
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let start = Instant::now();
+        let result = match how {
+            FaceFit::Shell => {
+                let specs: Vec<SeamSpec> = b
+                    .seams
+                    .iter()
+                    .map(|s| SeamSpec {
+                        a: s.a,
+                        b: s.b,
+                        join: s.join,
+                    })
+                    .collect();
+                fit_shell(&grids, &specs, opts).map(|f| (f.faces, f.seams))
+            }
+            FaceFit::Alone => fit_alone(&grids, opts).map(|f| (f, Vec::new())),
+        };
+        seconds += start.elapsed().as_secs_f64();
+        match result {
+            Ok((faces, seams)) => {
+                return Ok(DocumentFit {
+                    depth,
+                    faces,
+                    seams,
+                    grids,
+                    seconds,
+                });
+            }
+            Err(e) if deeper_helps(&e) && depth < deepest => depth += 1,
+            Err(e) => return Err(DocumentFitError::Shell(at_deepest(e, depth))),
+        }
+    }
+}
