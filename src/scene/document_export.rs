@@ -61,6 +61,9 @@ pub struct DocumentExported {
     pub faces: Vec<ShellFace>,
     /// For STEP and IGES of several patches, the fit of the originals.
     pub fit: Option<DocumentFit>,
+    /// For a mirrored STEP shell, the faces `(i, N + i)` whose first
+    /// streamline (in the mirror plane) is one edge.
+    pub mirror_seams: Vec<(usize, usize)>,
     /// A design of one patch: what the one-patch export wrote.
     pub one: Option<Exported>,
 }
@@ -162,6 +165,7 @@ pub fn export_document(
         depth,
         faces: Vec::new(),
         fit: None,
+        mirror_seams: Vec::new(),
         one: None,
     })
 }
@@ -201,6 +205,7 @@ fn export_one(
         depth: out.fit.as_ref().map_or(depth, |f| f.depth),
         faces: Vec::new(),
         fit: None,
+        mirror_seams: Vec::new(),
         one: Some(out),
     })
 }
@@ -240,8 +245,10 @@ fn export_faces(
         originals: doc.patches.len(),
         shared: &shared,
     });
+    let mut mirror_seams = Vec::new();
     if format == Format::Step {
         write_fitted(path, &doc.name, &shell, mirror)?;
+        mirror_seams = shared;
     } else {
         write_iges(path, &doc.name, &shell.faces)?;
     }
@@ -251,6 +258,7 @@ fn export_faces(
         depth: fit.depth,
         faces: shell.faces,
         fit: Some(fit),
+        mirror_seams,
         one: None,
     })
 }

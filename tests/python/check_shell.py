@@ -7,6 +7,10 @@ edge shared by two faces the largest angle between the faces' normals
 (GeomLProp_SLProps, each face's orientation applied) at `samples` points
 along the edge, each point projected onto both faces.
 
+An IGES file (.igs/.iges, tests/cad_document.rs) is read with the IGES
+reader: no shell, every entity 128 a face of its own. Each shared edge names
+its two faces (their indices in the file's order).
+
 Usage: check_shell.py MANIFEST.json, entries {"file", "tolerance" (the smallest face's), "points": [one file of
 "x y z" lines per face, in the faces' order], "samples"}. Prints one JSON
 line per file; exit 1 when a file is not read.
@@ -22,6 +26,7 @@ from OCP.Extrema import Extrema_ExtAlgo_Tree
 from OCP.GeomAPI import GeomAPI_ProjectPointOnSurf
 from OCP.GeomLProp import GeomLProp_SLProps
 from OCP.IFSelect import IFSelect_RetDone
+from OCP.IGESControl import IGESControl_Reader
 from OCP.Interface import Interface_Static
 from OCP.STEPControl import STEPControl_Reader
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_SHELL
@@ -31,7 +36,8 @@ from OCP.gp import gp_Pnt
 
 
 def read(path):
-    reader = STEPControl_Reader()
+    is_iges = path.lower().endswith((".igs", ".iges"))
+    reader = IGESControl_Reader() if is_iges else STEPControl_Reader()
     assert Interface_Static.SetCVal_s("xstep.cascade.unit", "M"), "cannot set xstep.cascade.unit"
     if reader.ReadFile(path) != IFSelect_RetDone:
         raise AssertionError(f"{path}: OpenCascade could not read the file")
@@ -117,7 +123,8 @@ def check(entry):
             dot = max(-1.0, min(1.0, sum(x * y for x, y in zip(na, nb))))
             worst = max(worst, math.degrees(math.acos(dot)))
             gap = max(gap, da, db)
-        seams.append({"max_angle_deg": worst, "max_gap": gap, "samples": n})
+        index = [next(i for i, f in enumerate(fs) if f.IsSame(x)) for x in (fa, fb)]
+        seams.append({"max_angle_deg": worst, "max_gap": gap, "samples": n, "faces": sorted(index)})
     return {
         "file": path,
         "shells": len(shells),
