@@ -13,7 +13,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::time::Duration;
-use streamline_studio::cli::bench::workloads;
+use streamline_studio::cli::bench::{export_rows, workloads};
 
 fn table1(c: &mut Criterion) {
     let mut g = c.benchmark_group("table1");
@@ -79,6 +79,18 @@ fn fit(c: &mut Criterion) {
     g.finish();
 }
 
+/// Issue 28: the export of the three-patch scene (STEP shell, its fit, IGES, glTF).
+fn export(c: &mut Criterion) {
+    let mut g = c.benchmark_group("export");
+    g.warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3))
+        .sample_size(10);
+    for mut w in export_rows::document_export_rows() {
+        g.bench_function(&w.name, |b| b.iter(|| black_box((w.run)())));
+    }
+    g.finish();
+}
+
 /// Issue 20: an insert, an initial-curve edit and the mirrored car, at depth 5.
 fn authoring(c: &mut Criterion) {
     let mut g = c.benchmark_group("authoring");
@@ -98,6 +110,7 @@ criterion_group!(
     incremental,
     loop_subdivision,
     authoring,
-    fit
+    fit,
+    export
 );
 criterion_main!(benches);

@@ -1,6 +1,7 @@
 //! `bench`: a quick built-in benchmark for users who want their machine's figures.
 //! For careful numbers use `cargo bench` (criterion), which runs the same workloads.
 
+pub mod export_rows;
 pub mod workloads;
 
 use super::input::CliError;
@@ -24,7 +25,10 @@ pub struct BenchArgs {
 /// `bench`.
 pub fn bench(a: BenchArgs) -> Result<(), CliError> {
     let budget = std::time::Duration::from_millis(a.millis.max(1));
-    for mut w in workloads::all() {
+    let rows = workloads::all()
+        .into_iter()
+        .chain(export_rows::document_export_rows());
+    for mut w in rows {
         if a.filter.as_deref().is_some_and(|f| !w.name.contains(f)) {
             continue;
         }

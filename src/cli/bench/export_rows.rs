@@ -1,0 +1,75 @@
+//! Export of a design of several patches (issue 28 item 7; docs/cad.md,
+//! "Several patches"): the shipped `scenes/hood-screen-wing.ron` (a G2 chain
+//! and a G1 side join) at its display depth, from the document built at
+//! that depth, as the CLI or the editor hands it to
+//! [`crate::scene::document_export::export_document`]:
+//!
+//! - `export/hood-screen-wing/d4/step`: the STEP shell, everything included
+//!   (the build one depth finer for the check grids, the shell's fit, the
+//!   text, the atomic write and its verification);
+//! - `export/hood-screen-wing/d4/shell-fit`: the shell's fit alone (the
+//!   document already built one depth finer);
+//! - `export/hood-screen-wing/d4/iges`: the IGES file, each patch fitted alone;
+//! - `export/hood-screen-wing/d4/glb`: the `.glb`, one node and mesh per patch.
+//!
+//! The rows are left out when the checkout's scene is missing (an installed binary).
+
+use super::workloads::Workload;
+use crate::scene::document_build::BuiltDocument;
+use crate::scene::document_export::{DocumentExportSettings, export_document};
+use crate::scene::document_fit::{FaceFit, fit_document};
+use crate::scene::{Document, document_io};
+use std::path::{Path, PathBuf};
+
+fn scene() -> Option<Document> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron");
+    document_io::load(&path).ok()
+}
+
+fn scratch(ext: &str) -> PathBuf {
+    std::env::temp_dir().join(format!(
+        "streamline-bench-export-{}.{ext}",
+        std::process::id()
+    ))
+}
+
+fn export_row(doc: &Document, built: &BuiltDocument, ext: &str) -> Workload {
+    let (doc, built) = (doc.clone(), built.clone());
+    let path = scratch(ext);
+    Workload {
+        name: format!("export/hood-screen-wing/d{}/{ext}", doc.display_depth),
+        run: Box::new(move || {
+            let out = export_document(&doc, &built, &path, &DocumentExportSettings::default())
+                .expect("the shipped scene exports");
+            let _ = std::fs::remove_file(&path);
+            out.depth as f64 + out.faces.iter().map(|f| f.deviation.max).sum::<f64>()
+        }),
+    }
+}
+
+/// The rows (module docs).
+pub fn document_export_rows() -> Vec<Workload> {
+    let Some(doc) = scene() else {
+        return Vec::new();
+    };
+    let d = doc.display_depth;
+    let built = doc.build(d).expect("the shipped scene builds");
+    let finer = doc.build(d + 1).expect("the shipped scene builds");
+    let fit = {
+        let doc = doc.clone();
+        Workload {
+            name: format!("export/hood-screen-wing/d{d}/shell-fit"),
+            run: Box::new(move || {
+                let f = fit_document(&doc, &finer, d, &Default::default(), FaceFit::Shell)
+                    .expect("the shipped scene fits");
+                f.faces.iter().map(|f| f.deviation.max).sum::<f64>()
+            }),
+        }
+    };
+    vec![
+        export_row(&doc, &built, "step"),
+        fit,
+        export_row(&doc, &built, "iges"),
+        export_row(&doc, &built, "glb"),
+    ]
+}
