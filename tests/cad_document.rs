@@ -243,9 +243,14 @@ fn opencascade_reads_the_document_as_one_shell_and_as_iges_faces() {
             let out = export_document(doc, &built, &path, &settings)
                 .unwrap_or_else(|e| panic!("{tag}.{ext}: {e}"));
             eprintln!(
-                "{tag}.{ext}: {} faces sampled at depth {}, deviations {:?}",
+                "{tag}.{ext}: {} faces sampled at depth {}, poles {:?}, tolerances {:?}, deviations {:?}",
                 out.faces.len(),
                 out.depth,
+                out.faces
+                    .iter()
+                    .map(|f| f.surface.pole_counts())
+                    .collect::<Vec<_>>(),
+                out.faces.iter().map(|f| f.tolerance).collect::<Vec<_>>(),
                 out.faces
                     .iter()
                     .map(|f| f.deviation.max)
@@ -265,6 +270,7 @@ fn opencascade_reads_the_document_as_one_shell_and_as_iges_faces() {
     let path = dir.join("from-depth-0.step");
     let raised = export_document(&doc, &built, &path, &shallow).unwrap();
     assert!(raised.depth > 0, "depth 0 was enough?");
+    eprintln!("from depth 0: sampled at depth {}", raised.depth);
     // the negative control: at depth 0 the shell is refused
     let grids: Vec<PatchGrid> = (0..3)
         .map(|i| PatchGrid::from_stack("p", &built.patches[i], 0).unwrap())
