@@ -203,6 +203,7 @@ fn cli_bench_json_rows() {
         "surface/kobbelt/9x6/d3/full",
         "surface/kobbelt/9x6/d5/full",
         "fit/car/d5",
+        "export/hood-screen-wing/d4/step",
     ] {
         assert!(
             names.iter().any(|n| n == want),
