@@ -236,6 +236,12 @@ pub fn cloud_points(
     sampled(rows, step).flat_map(move |r| across.clone().map(move |c| tangents[r * cols + c]))
 }
 
+/// How many points [`cloud_points`] yields (without reading them).
+pub fn cloud_count(rows: usize, cols: usize, depth: u32) -> usize {
+    let step = 1usize << depth.saturating_sub(CLOUD_LEVEL).min(16);
+    sampled(rows, step).count() * sampled(cols, step).count()
+}
+
 /// The display depth's tangents as a point cloud ([`cloud_points`]: at most
 /// a level-4 density), rewritten when that level changes.
 fn update_points(
@@ -271,7 +277,7 @@ fn update_points(
     let (rows, cols) = data.0.shape();
     let cloud = cloud_points(data.0.tangents.data(), rows, cols, depth);
     // same count (a drag): rewrite the points in place, no new buffer
-    let n = cloud.clone().count();
+    let n = cloud_count(rows, cols, depth);
     if let Some(VertexAttributeValues::Float32x3(p)) = m.attribute_mut(Mesh::ATTRIBUTE_POSITION)
         && p.len() == n
     {
@@ -453,6 +459,7 @@ mod tests {
                 .collect();
             let got: Vec<DVec3> = cloud_points(&grid, rows, cols, depth).collect();
             assert_eq!(got, want, "depth {depth}");
+            assert_eq!(cloud_count(rows, cols, depth), want.len());
         }
         // the car at depth 6: 81 rows × 130 columns (the last one too), not 165k
         assert_eq!(cloud_points(&grid, rows, cols, 6).count(), 81 * 130);
