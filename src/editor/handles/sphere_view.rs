@@ -453,9 +453,10 @@ mod tests {
             .collect();
         // independently: the kept indices by a filter over all of them
         let kept = |n: usize, step: usize| (0..n).filter(move |i| i % step == 0 || *i == n - 1);
+        let g = &grid;
         for (depth, step) in [(0, 1), (3, 1), (4, 1), (5, 2), (6, 4), (7, 8)] {
             let want: Vec<DVec3> = kept(rows, step)
-                .flat_map(|r| kept(cols, step).map(move |c| grid[r * cols + c]))
+                .flat_map(|r| kept(cols, step).map(move |c| g[r * cols + c]))
                 .collect();
             let got: Vec<DVec3> = cloud_points(&grid, rows, cols, depth).collect();
             assert_eq!(got, want, "depth {depth}");
