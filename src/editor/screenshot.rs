@@ -3,7 +3,7 @@
 //! save the primary window to a PNG, exit.
 
 use super::coords::to_view;
-use super::handles::sphere_view::{SphereCamera, SubdividedPoints};
+use super::handles::sphere_view::{SphereCamera, SubdividedPoints, cloud_points};
 use super::interaction::{HandleId, HandleQuery, MainCamera, Selection};
 use super::panels::{PanelName, UiState};
 use super::surface::analysis::{AnalysisSettings, SurfaceMode};
@@ -219,7 +219,8 @@ struct Report {
     /// The largest gap between what the views show and the model, when the
     /// picture was taken: the surface mesh's positions and normals against
     /// the model's points and normals, the sphere view's points against the
-    /// display depth's tangents (each made `f32` as the views make it; `0`
+    /// display depth's tangents it shows (`sphere_view::cloud_points`; each
+    /// made `f32` as the views make it; `0`
     /// when every row and column that edits rewrote in place got there).
     shown_gap: Option<f64>,
 }
@@ -409,10 +410,12 @@ fn measure_shown_gap(
     if let (Ok(m), Some((_, level))) = (points.single(), levels.iter().find(|(l, _)| l.0 == depth))
         && let Some(pos) = attr(m, Mesh::ATTRIBUTE_POSITION)
     {
-        worst = worst.max(gap(
-            pos,
-            level.0.tangents.data().iter().map(|&t| to_view(t)),
-        ));
+        // the cloud shows at most a depth-4 density (`cloud_points`)
+        let (rows, cols) = level.0.shape();
+        let want: Vec<Vec3> = cloud_points(level.0.tangents.data(), rows, cols, depth)
+            .map(to_view)
+            .collect();
+        worst = worst.max(gap(pos, want.into_iter()));
     }
     p.shown_gap = Some(worst);
 }

@@ -3,7 +3,7 @@
 //! shows the unit sphere, the control tangents as points (the selected one
 //! highlighted), great arcs between neighbours in blue, the handles of the edit
 //! depth in red, and the subdivided tangents of the display depth as small
-//! points. Each handle entity's point (with its arcs) is a retained gizmo of
+//! points (at most a level-4 density: [`CLOUD_LEVEL`]). Each handle entity's point (with its arcs) is a retained gizmo of
 //! its own, redrawn only when the handle moved, a neighbour its arcs end at
 //! moved, or it turned to or from the eye. Dragging a point moves that tangent to the point under the pointer.
 
@@ -14,7 +14,6 @@ use super::super::interaction::{
 };
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::patch::PatchRef;
-use crate::ecs::{SurfaceChange, SurfaceChanges};
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::Viewport;
 use bevy::camera::visibility::RenderLayers;
@@ -206,15 +205,51 @@ fn place_camera(
     }
 }
 
-/// The display depth's tangents as a point cloud, rebuilt when that level changes.
-#[allow(clippy::too_many_arguments)]
+/// The deepest level whose tangents the cloud shows every one of: at a
+/// deeper display depth `d` it shows every `2^(d − 4)`-th tangent along and
+/// across (and the last row and column), so at most a level-4 density (about
+/// 10,000 points on the car at depth 6 instead of 165,000; a few pixels apart
+/// in the inset, where the full cloud is a solid patch). Each point shown is
+/// a display-depth tangent as it is, so the cloud covers the same part of
+/// the sphere with the same outline.
+pub const CLOUD_LEVEL: u32 = 4;
+
+/// The indices of `n` that the cloud shows at a step of `step`: `0, step,
+/// 2·step, …` and the last one.
+pub fn sampled(n: usize, step: usize) -> impl Iterator<Item = usize> + Clone {
+    let step = step.max(1);
+    (0..n)
+        .step_by(step)
+        .chain((n > 0 && !(n - 1).is_multiple_of(step)).then(|| n - 1))
+}
+
+/// The tangents of a `rows × cols` grid (row-major) that the cloud of a
+/// level at `depth` shows, in the cloud's order.
+pub fn cloud_points(
+    tangents: &[DVec3],
+    rows: usize,
+    cols: usize,
+    depth: u32,
+) -> impl Iterator<Item = DVec3> + Clone + '_ {
+    let step = 1usize << depth.saturating_sub(CLOUD_LEVEL).min(16);
+    let across = sampled(cols, step);
+    sampled(rows, step).flat_map(move |r| across.clone().map(move |c| tangents[r * cols + c]))
+}
+
+/// How many points [`cloud_points`] yields (without reading them).
+pub fn cloud_count(rows: usize, cols: usize, depth: u32) -> usize {
+    let step = 1usize << depth.saturating_sub(CLOUD_LEVEL).min(16);
+    sampled(rows, step).count() * sampled(cols, step).count()
+}
+
+/// The display depth's tangents as a point cloud ([`cloud_points`]: at most
+/// a level-4 density), rewritten when that level changes.
 fn update_points(
     meter: Res<crate::ecs::meter::CpuMeter>,
     patch: PatchRef,
     settings: Res<SphereSettings>,
     levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
     points: Single<(&Mesh3d, &mut Visibility), With<SubdividedPoints>>,
-    mut surface: SurfaceChanges,
     mut meshes: ResMut<Assets<Mesh>>,
     mut shown: Local<Option<u32>>,
 ) {
@@ -228,9 +263,6 @@ fn update_points(
     if *vis != want {
         *vis = want;
     }
-    // an edit of the display level moves its streamlines too: the rows the
-    // mesh stage rewrote since the last run hold every row whose tangents changed
-    let changed = surface.take();
     let depth = patch.structure().display_depth;
     let Some((_, data)) = levels.iter().find(|(l, _)| l.0 == depth) else {
         return;
@@ -238,38 +270,23 @@ fn update_points(
     if !data.is_changed() && *shown == Some(depth) {
         return;
     }
-    let same_depth = *shown == Some(depth);
     *shown = Some(depth);
     let Some(mut m) = meshes.get_mut(&mesh.0) else {
         return;
     };
-    let tangents = data.0.tangents.data();
-    // same count (a drag): rewrite the points in place, no new buffer; only
-    // the rows that changed when the mesh stage says which
+    let (rows, cols) = data.0.shape();
+    let cloud = cloud_points(data.0.tangents.data(), rows, cols, depth);
+    // same count (a drag): rewrite the points in place, no new buffer
+    let n = cloud_count(rows, cols, depth);
     if let Some(VertexAttributeValues::Float32x3(p)) = m.attribute_mut(Mesh::ATTRIBUTE_POSITION)
-        && p.len() == tangents.len()
+        && p.len() == n
     {
-        let cols = data.0.shape().1;
-        match changed {
-            // tangent j moves points j + 1 on: the window's columns (points,
-            // from one before the first that moved) hold every changed tangent
-            SurfaceChange::Window(w) if same_depth && w.rows.hi * cols < p.len() => {
-                for r in w.rows.iter() {
-                    let range = r * cols + w.cols.lo.min(cols)..(r + 1) * cols;
-                    for (p, &t) in p[range.clone()].iter_mut().zip(&tangents[range]) {
-                        *p = to_view(t).to_array();
-                    }
-                }
-            }
-            _ => {
-                for (p, &t) in p.iter_mut().zip(tangents) {
-                    *p = to_view(t).to_array();
-                }
-            }
+        for (p, t) in p.iter_mut().zip(cloud) {
+            *p = to_view(t).to_array();
         }
         return;
     }
-    let pos: Vec<[f32; 3]> = tangents.iter().map(|&t| to_view(t).to_array()).collect();
+    let pos: Vec<[f32; 3]> = cloud.map(|t| to_view(t).to_array()).collect();
     m.insert_attribute(Mesh::ATTRIBUTE_POSITION, pos);
 }
 
@@ -427,6 +444,32 @@ fn drag_move(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_cloud_is_every_tangent_to_depth_4_then_a_level_4_density() {
+        let (rows, cols) = (321, 514);
+        let grid: Vec<DVec3> = (0..rows * cols)
+            .map(|i| DVec3::new(i as f64, 0.0, 1.0))
+            .collect();
+        // independently: the kept indices by a filter over all of them
+        let kept = |n: usize, step: usize| (0..n).filter(move |i| i % step == 0 || *i == n - 1);
+        let g = &grid;
+        for (depth, step) in [(0, 1), (3, 1), (4, 1), (5, 2), (6, 4), (7, 8)] {
+            let want: Vec<DVec3> = kept(rows, step)
+                .flat_map(|r| kept(cols, step).map(move |c| g[r * cols + c]))
+                .collect();
+            let got: Vec<DVec3> = cloud_points(&grid, rows, cols, depth).collect();
+            assert_eq!(got, want, "depth {depth}");
+            assert_eq!(cloud_count(rows, cols, depth), want.len());
+        }
+        // the car at depth 6: 81 rows × 130 columns (the last one too), not 165k
+        assert_eq!(cloud_points(&grid, rows, cols, 6).count(), 81 * 130);
+        assert_eq!(cloud_points(&grid, rows, cols, 4).count(), rows * cols);
+        assert_eq!(sampled(0, 4).count(), 0);
+        assert_eq!(sampled(1, 4).collect::<Vec<_>>(), [0]);
+        assert_eq!(sampled(9, 4).collect::<Vec<_>>(), [0, 4, 8]);
+        assert_eq!(sampled(10, 4).collect::<Vec<_>>(), [0, 4, 8, 9]);
+    }
 
     #[test]
     fn sphere_point_hits_the_front_or_the_silhouette() {

@@ -61,7 +61,10 @@ fn widgets(
             "The inset with the tangents as points on the unit sphere; drag a point to edit it",
         );
     ui.checkbox(&mut s.subdivided, "subdivided tangents on the sphere")
-        .on_hover_text("The tangents of the display depth as small points");
+        .on_hover_text(
+            "The tangents of the display depth as small points; past depth 4 every \
+             2^(depth − 4)-th along and across (at most a depth-4 density, the same outline)",
+        );
     ui.add(egui::Slider::new(&mut s.fraction, 0.2..=0.7).text("sphere view size"))
         .on_hover_text("The inset's side as a share of the 3D view");
 }
