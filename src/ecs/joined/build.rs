@@ -186,8 +186,16 @@ pub(crate) fn build_joined(
             None if run.iter().filter(|&&r| r == i).count() > 1 => {
                 // a G2 run from patch i: one merged net, cut at its seams
                 let members: Vec<usize> = (0..n).filter(|&k| run[k] == i).collect();
-                let designs: Option<Vec<&Design>> = members.iter().map(|&k| design(k)).collect();
-                let designs = designs.unwrap_or_default();
+                // each member's seam column is the previous one's last (one handle)
+                let mut owned: Vec<Design> = Vec::with_capacity(members.len());
+                for &k in &members {
+                    let Some(dk) = design(k) else { break };
+                    owned.push(match owned.last() {
+                        Some(prev) => shared_seam(prev, dk, Continuity::G2),
+                        None => dk.clone(),
+                    });
+                }
+                let designs: Vec<&Design> = owned.iter().collect();
                 match g2_run(&designs, depth) {
                     Ok(stacks) => {
                         for (&k, s) in members.iter().zip(stacks) {
@@ -256,12 +264,12 @@ pub(crate) fn build_joined(
     }
 }
 
-/// For a G1 chain, `B` with its first control column `A`'s last: the seam
-/// column is one handle of both (docs/math.md §11.1), so turning `A`'s
-/// turns `B`'s. Other joins take `B` as it is.
+/// For a G1 or G2 chain, `B` with its first control column `A`'s last: the
+/// seam column is one handle of both (docs/math.md §11.1), so turning `A`'s
+/// turns `B`'s. A G0 chain takes `B` as it is.
 fn shared_seam(a: &Design, b: &Design, c: Continuity) -> Design {
     let mut b = b.clone();
-    if c == Continuity::G1 {
+    if c != Continuity::G0 {
         let last = a.net().cols() - 1;
         for r in 0..a.net().rows().min(b.net().rows()) {
             let v = a.net().get(r, last);
