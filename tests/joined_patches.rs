@@ -151,3 +151,23 @@ fn an_edit_of_a_joined_patch_rebuilds_it_alone_and_setting_a_value_it_has_rebuil
     doc.patches[2].design.set_tangent(1, 2, dir).unwrap();
     assert_as_built(&mut app, &doc);
 }
+
+#[test]
+fn the_bench_s_three_chained_cars_build_as_the_library_builds_them_and_follow_an_edit() {
+    use streamline_studio::cli::bench::patches::chained_cars;
+    let mut doc = chained_cars(3, 3);
+    let mut app = app(&doc);
+    assert_as_built(&mut app, &doc);
+    let dir = DVec3::new(0.8, 0.1, 0.5).normalize();
+    ecs::apply(&mut app, Edit::SetDirection { row: 2, col: 4, dir }).unwrap();
+    doc.patches[0].design.set_tangent(2, 4, dir).unwrap();
+    assert_as_built(&mut app, &doc);
+    // the seam column is one handle of both cars (G1): turning the first's
+    // last column turns the second's first
+    let last = doc.patches[0].design.net().cols() - 1;
+    ecs::apply(&mut app, Edit::SetDirection { row: 2, col: last, dir }).unwrap();
+    let v = common::scene(&app).design.net().get(2, last);
+    doc.patches[0].design.set_tangent(2, last, v).unwrap();
+    doc.patches[1].design.set_tangent(2, 0, v).unwrap();
+    assert_as_built(&mut app, &doc);
+}

@@ -1,6 +1,7 @@
 //! `bench`: a quick built-in benchmark for users who want their machine's figures.
 //! For careful numbers use `cargo bench` (criterion), which runs the same workloads.
 
+pub mod patches;
 pub mod workloads;
 
 use super::input::CliError;
@@ -24,7 +25,7 @@ pub struct BenchArgs {
 /// `bench`.
 pub fn bench(a: BenchArgs) -> Result<(), CliError> {
     let budget = std::time::Duration::from_millis(a.millis.max(1));
-    for mut w in workloads::all() {
+    for mut w in workloads::all().into_iter().chain(patches::rows()) {
         if a.filter.as_deref().is_some_and(|f| !w.name.contains(f)) {
             continue;
         }
