@@ -10,7 +10,7 @@ pub mod components;
 pub mod spawn;
 
 pub use components::*;
-pub use spawn::spawn_joined;
+pub use spawn::{adopt_first, spawn_joined, spawn_joined_patch};
 
 use bevy::prelude::*;
 
