@@ -20,7 +20,11 @@ fn build(scene: &Path) -> Value {
         .args(["build", scene.to_str().unwrap()])
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     serde_json::from_slice(&out.stdout).unwrap()
 }
 
@@ -57,7 +61,10 @@ fn assert_as_built(r: &Value, doc: &Document) {
             // serde_json's reader may round the last bit (the ECS test,
             // tests/joined_patches.rs, compares bits)
             let got = s[k].as_f64().unwrap();
-            assert!((got - v).abs() <= 4.0 * f64::EPSILON * v.abs(), "{k}: {got} vs {v}");
+            assert!(
+                (got - v).abs() <= 4.0 * f64::EPSILON * v.abs(),
+                "{k}: {got} vs {v}"
+            );
         }
     }
 }
@@ -118,7 +125,10 @@ fn a_g0_chain_with_a_turned_seam_column_shows_the_angle_and_a_g1_chain_does_not(
 
 #[test]
 fn a_one_patch_scene_reports_one_patch_main_and_no_seams() {
-    let r = build(Path::new(&format!("{}/scenes/car1.ron", env!("CARGO_MANIFEST_DIR"))));
+    let r = build(Path::new(&format!(
+        "{}/scenes/car1.ron",
+        env!("CARGO_MANIFEST_DIR")
+    )));
     let p = r["patches"].as_array().unwrap();
     assert_eq!(p.len(), 1);
     assert_eq!(p[0]["name"], "main");
@@ -126,9 +136,20 @@ fn a_one_patch_scene_reports_one_patch_main_and_no_seams() {
     assert_eq!(p[0]["points_per_streamline"], r["points_per_streamline"]);
     assert_eq!(r["seams"].as_array().unwrap().len(), 0);
     for k in [
-        "scene", "depth", "scheme", "blend_order", "levels", "streamlines",
-        "points_per_streamline", "triangles", "total_length", "length_error",
-        "timings_us", "export", "warnings", "entities",
+        "scene",
+        "depth",
+        "scheme",
+        "blend_order",
+        "levels",
+        "streamlines",
+        "points_per_streamline",
+        "triangles",
+        "total_length",
+        "length_error",
+        "timings_us",
+        "export",
+        "warnings",
+        "entities",
     ] {
         assert!(r.get(k).is_some(), "{k}");
     }

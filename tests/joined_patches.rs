@@ -35,7 +35,10 @@ fn patches(app: &mut App) -> Vec<Entity> {
 }
 
 fn stack(app: &App, e: Entity) -> Stack {
-    let s = app.world().get::<PatchSurface>(e).expect("a document patch has a surface");
+    let s = app
+        .world()
+        .get::<PatchSurface>(e)
+        .expect("a document patch has a surface");
     match &s.built {
         Some(Ok(s)) => s.clone(),
         other => panic!("not built: {other:?}"),
@@ -43,12 +46,18 @@ fn stack(app: &App, e: Entity) -> Stack {
 }
 
 fn seam(app: &App, e: Entity) -> SeamReport {
-    let s = app.world().get::<SeamState>(e).expect("a joined patch has a seam");
+    let s = app
+        .world()
+        .get::<SeamState>(e)
+        .expect("a joined patch has a seam");
     s.report.clone().expect("the seam is measured")
 }
 
 fn bits(g: &streamline_kernel::Grid<DVec3>) -> Vec<[u64; 3]> {
-    g.data().iter().map(|p| p.to_array().map(f64::to_bits)).collect()
+    g.data()
+        .iter()
+        .map(|p| p.to_array().map(f64::to_bits))
+        .collect()
 }
 
 /// The world's patches and seams equal `Document::build`'s, bit for bit.
@@ -83,7 +92,11 @@ fn a_document_is_one_patch_entity_per_patch_built_as_the_scene_library_builds_it
     let mut app = app(&doc);
     let c = census(app.world_mut());
     assert_eq!(c.patches, 3);
-    let handles: usize = doc.patches.iter().map(|p| p.design.net().data().len()).sum();
+    let handles: usize = doc
+        .patches
+        .iter()
+        .map(|p| p.design.net().data().len())
+        .sum();
     assert_eq!(c.handles.surface, handles);
     assert_as_built(&mut app, &doc);
     // the first patch keeps the incremental pipeline: its mesh is a one-patch scene's
@@ -106,7 +119,12 @@ fn changed_ticks(app: &mut App) -> Vec<bevy::ecs::change_detection::Tick> {
     let ids = patches(app);
     let w = app.world();
     ids.iter()
-        .map(|&e| w.entity(e).get_ref::<PatchSurface>().unwrap().last_changed())
+        .map(|&e| {
+            w.entity(e)
+                .get_ref::<PatchSurface>()
+                .unwrap()
+                .last_changed()
+        })
         .collect()
 }
 
@@ -116,16 +134,30 @@ fn an_edit_of_the_first_patch_rebuilds_every_patch_that_starts_on_it() {
     let mut app = app(&doc);
     let before = changed_ticks(&mut app);
     let dir = DVec3::new(0.9, 0.2, 0.3).normalize();
-    ecs::apply(&mut app, Edit::SetDirection { row: 1, col: 2, dir }).unwrap();
+    ecs::apply(
+        &mut app,
+        Edit::SetDirection {
+            row: 1,
+            col: 2,
+            dir,
+        },
+    )
+    .unwrap();
     let after = changed_ticks(&mut app);
-    assert!(before.iter().zip(&after).all(|(a, b)| a != b), "all three rebuilt");
+    assert!(
+        before.iter().zip(&after).all(|(a, b)| a != b),
+        "all three rebuilt"
+    );
     doc.patches[0].design.set_tangent(1, 2, dir).unwrap();
     assert_as_built(&mut app, &doc);
     // the G2 run moved the screen: a negative control against the old build
     let old = hood().build(doc.display_depth).unwrap();
     let ids = patches(&mut app);
     let d = doc.display_depth as usize;
-    assert_ne!(bits(&stack(&app, ids[1]).points[d]), bits(&old.patches[1].points[d]));
+    assert_ne!(
+        bits(&stack(&app, ids[1]).points[d]),
+        bits(&old.patches[1].points[d])
+    );
 }
 
 #[test]
@@ -134,16 +166,27 @@ fn an_edit_of_a_joined_patch_rebuilds_it_alone_and_setting_a_value_it_has_rebuil
     let mut app = app(&doc);
     let ids = patches(&mut app);
     let wing = ids[2];
-    let h = app.world().get::<PatchIndex>(wing).unwrap().surface.get(1, 2);
+    let h = app
+        .world()
+        .get::<PatchIndex>(wing)
+        .unwrap()
+        .surface
+        .get(1, 2);
     // the same value: nothing rebuilt
     let before = changed_ticks(&mut app);
     let same = app.world().get::<Direction>(h).unwrap().0;
-    app.world_mut().get_mut::<Direction>(h).unwrap().set_if_neq(Direction(same));
+    app.world_mut()
+        .get_mut::<Direction>(h)
+        .unwrap()
+        .set_if_neq(Direction(same));
     app.update();
     assert_eq!(changed_ticks(&mut app), before);
     // a new value: the wing alone
     let dir = DVec3::new(0.2, 0.9, 0.4).normalize();
-    app.world_mut().get_mut::<Direction>(h).unwrap().set_if_neq(Direction(dir));
+    app.world_mut()
+        .get_mut::<Direction>(h)
+        .unwrap()
+        .set_if_neq(Direction(dir));
     app.update();
     let after = changed_ticks(&mut app);
     assert_eq!(&after[..2], &before[..2], "hood and screen not rebuilt");
@@ -159,13 +202,29 @@ fn the_bench_s_three_chained_cars_build_as_the_library_builds_them_and_follow_an
     let mut app = app(&doc);
     assert_as_built(&mut app, &doc);
     let dir = DVec3::new(0.8, 0.1, 0.5).normalize();
-    ecs::apply(&mut app, Edit::SetDirection { row: 2, col: 4, dir }).unwrap();
+    ecs::apply(
+        &mut app,
+        Edit::SetDirection {
+            row: 2,
+            col: 4,
+            dir,
+        },
+    )
+    .unwrap();
     doc.patches[0].design.set_tangent(2, 4, dir).unwrap();
     assert_as_built(&mut app, &doc);
     // the seam column is one handle of both cars (G1): turning the first's
     // last column turns the second's first
     let last = doc.patches[0].design.net().cols() - 1;
-    ecs::apply(&mut app, Edit::SetDirection { row: 2, col: last, dir }).unwrap();
+    ecs::apply(
+        &mut app,
+        Edit::SetDirection {
+            row: 2,
+            col: last,
+            dir,
+        },
+    )
+    .unwrap();
     let v = common::scene(&app).design.net().get(2, last);
     doc.patches[0].design.set_tangent(2, last, v).unwrap();
     doc.patches[1].design.set_tangent(2, 0, v).unwrap();

@@ -11,8 +11,8 @@
 use super::input::{CliError, document_arg, write_stdout};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::exchange::{ExportSettings, LastExport};
-use crate::ecs::warnings::BuildWarnings;
 use crate::ecs::joined::{PatchSlot, PatchStart, PatchSurface, SeamState};
+use crate::ecs::warnings::BuildWarnings;
 use crate::ecs::{self, Edit, EditLog, ModelConfig, Stats, SurfaceData};
 use bevy::prelude::*;
 use clap::Args;
@@ -166,7 +166,10 @@ fn patches_and_seams(
         return Ok((vec![first], Vec::new()));
     }
     rows.sort_by_key(|r| r.0.index);
-    let name_of = |e: Entity| w.get::<PatchSlot>(e).map_or_else(String::new, |s| s.name.clone());
+    let name_of = |e: Entity| {
+        w.get::<PatchSlot>(e)
+            .map_or_else(String::new, |s| s.name.clone())
+    };
     let (mut patches, mut seams) = (Vec::new(), Vec::new());
     for (slot, start, surf, seam) in rows {
         if slot.index == 0 {
@@ -179,7 +182,12 @@ fn patches_and_seams(
         let points = match &surf.built {
             Some(Ok(s)) => &s.points[depth as usize],
             Some(Err(e)) => return Err(CliError::Usage(e.clone())),
-            None => return Err(CliError::Usage(format!("patch `{}` was not built", slot.name))),
+            None => {
+                return Err(CliError::Usage(format!(
+                    "patch `{}` was not built",
+                    slot.name
+                )));
+            }
         };
         patches.push(PatchFigures {
             name: slot.name.clone(),
@@ -231,7 +239,8 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         scene.display_depth = d;
     }
     let fit = fit_options(&a)?;
-    let mut app = ecs::headless_document_app(&doc, Some(scene.display_depth), ModelConfig::default());
+    let mut app =
+        ecs::headless_document_app(&doc, Some(scene.display_depth), ModelConfig::default());
     let build_stats = app.world().resource::<Stats>().last.clone();
     app.world_mut().resource_mut::<ExportSettings>().fit = fit;
     if let Some(out) = &a.export {

@@ -19,14 +19,16 @@
 //! [`PatchSurface`], which equals [`crate::scene::Document::build`]'s.
 
 use super::components::*;
-use crate::ecs::patch::{ArcParam, Direction, PatchIndex, PatchKernel, PatchStructure, SurfaceHandle};
+use crate::ecs::patch::{
+    ArcParam, Direction, PatchIndex, PatchKernel, PatchStructure, SurfaceHandle,
+};
 use bevy::prelude::*;
 use std::collections::HashMap;
-use streamline_kernel::{DVec3, Design};
 use streamline_kernel::joins::chain::chain;
 use streamline_kernel::joins::merged::g2_run;
 use streamline_kernel::joins::side::side;
 use streamline_kernel::joins::{Continuity, Edge, JoinError, Stack, seam_at};
+use streamline_kernel::{DVec3, Design};
 
 /// A joined patch's net handles whose value changed since the last run.
 type ChangedJoinedNet<'w, 's> = Query<
@@ -49,10 +51,7 @@ pub(crate) fn track_joined(
 ) {
     let mut by_patch: HashMap<Entity, Vec<(SurfaceHandle, DVec3)>> = HashMap::new();
     for (h, d, parent) in &changed {
-        by_patch
-            .entry(parent.parent())
-            .or_default()
-            .push((*h, d.0));
+        by_patch.entry(parent.parent()).or_default().push((*h, d.0));
     }
     for (patch, cells) in by_patch {
         let Ok((index, mut design)) = patches.get_mut(patch) else {
@@ -231,7 +230,9 @@ pub(crate) fn build_joined(
                         i,
                         &"a G2 chain is one net from a patch with its own curve; join it with G1",
                     )),
-                    (Edge::End, c) => chain(da, sa, &shared_seam(da, b, c), c).map_err(|e| located(i, &e)),
+                    (Edge::End, c) => {
+                        chain(da, sa, &shared_seam(da, b, c), c).map_err(|e| located(i, &e))
+                    }
                     (edge, c) => side(sa, b, edge, c).map_err(|e| located(i, &e)),
                 }
             }
@@ -241,7 +242,9 @@ pub(crate) fn build_joined(
     // the seams with a rebuilt side
     let mut seams: Vec<Option<Option<streamline_kernel::joins::SeamReport>>> = vec![None; n];
     for i in 0..n {
-        let Some((a, edge, _)) = parent[i] else { continue };
+        let Some((a, edge, _)) = parent[i] else {
+            continue;
+        };
         if !dirty[i] && !dirty[a] {
             continue;
         }

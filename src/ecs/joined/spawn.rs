@@ -31,7 +31,13 @@ pub fn spawn_joined(world: &mut World, doc: &Document, first: Entity) -> Vec<Ent
             },
             None => PatchStart::Curve,
         };
-        ids.push(spawn_joined_patch(world, &p.name, i, start, p.design.clone()));
+        ids.push(spawn_joined_patch(
+            world,
+            &p.name,
+            i,
+            start,
+            p.design.clone(),
+        ));
     }
     ids
 }

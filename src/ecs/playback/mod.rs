@@ -64,9 +64,8 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
         }
         let outcome = match step {
             Step::Patch(p) => Some(patches::run(&mut app, p, &mut acting)),
-            Step::Edit(e) => acting.map(|patch| {
-                patches::edit_joined(&mut app, patch, e).map(patches::Outcome::Done)
-            }),
+            Step::Edit(e) => acting
+                .map(|patch| patches::edit_joined(&mut app, patch, e).map(patches::Outcome::Done)),
             _ => None,
         };
         if let Some(res) = outcome {

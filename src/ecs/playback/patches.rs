@@ -9,9 +9,7 @@ use crate::ecs::joined::{
     JoinedDesign, PatchSlot, PatchStart, PatchSurface, SeamState, adopt_first, spawn_joined_patch,
 };
 use crate::ecs::messages::Edit;
-use crate::ecs::patch::{
-    Direction, Joined, PatchIndex, PatchKernel, PatchName, patch_entity,
-};
+use crate::ecs::patch::{Direction, Joined, PatchIndex, PatchKernel, PatchName, patch_entity};
 use crate::scene::document::MAIN_PATCH;
 use crate::scene::format_v3::{EdgeSpec, patch_name_problem};
 use crate::scene::script::PatchStep;
@@ -24,7 +22,10 @@ use streamline_kernel::{DQuat, DVec3, Design, Grid};
 /// until the world has a document).
 fn named(world: &mut World) -> Vec<(String, Entity)> {
     let mut q = world.query::<(Entity, &PatchSlot)>();
-    let mut v: Vec<_> = q.iter(world).map(|(e, s)| (s.index, s.name.clone(), e)).collect();
+    let mut v: Vec<_> = q
+        .iter(world)
+        .map(|(e, s)| (s.index, s.name.clone(), e))
+        .collect();
     if v.is_empty()
         && let Some(first) = patch_entity(world)
     {
@@ -40,7 +41,10 @@ fn find(world: &mut World, name: &str) -> Result<Entity, String> {
         Some(&(_, e)) => Ok(e),
         None => Err(format!(
             "no patch `{name}`; the patches are {}",
-            all.iter().map(|(n, _)| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+            all.iter()
+                .map(|(n, _)| format!("`{n}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
         )),
     }
 }
@@ -50,7 +54,9 @@ fn fresh_name(world: &mut World, name: &str) -> Result<(), String> {
         return Err(p);
     }
     if named(world).iter().any(|(n, _)| n == name) {
-        return Err(format!("a patch is already named `{name}`; choose another name"));
+        return Err(format!(
+            "a patch is already named `{name}`; choose another name"
+        ));
     }
     Ok(())
 }
@@ -65,7 +71,10 @@ fn points_of(world: &World, e: Entity) -> Option<Grid<DVec3>> {
     if world.get::<Joined>(e).is_none() {
         return Some(world.resource::<SurfaceData>().points.clone());
     }
-    world.get::<PatchSurface>(e)?.stack().map(|s| s.finest_points().clone())
+    world
+        .get::<PatchSurface>(e)?
+        .stack()
+        .map(|s| s.finest_points().clone())
 }
 
 /// What a patch step that ran says: done, or (an expectation) not met.
@@ -86,7 +95,11 @@ pub(super) fn run(
     step_on(app, step, acting)
 }
 
-fn step_on(app: &mut App, step: &PatchStep, acting: &mut Option<Entity>) -> Result<Outcome, String> {
+fn step_on(
+    app: &mut App,
+    step: &PatchStep,
+    acting: &mut Option<Entity>,
+) -> Result<Outcome, String> {
     let world = app.world_mut();
     match step {
         PatchStep::AddPatch {
@@ -99,12 +112,25 @@ fn step_on(app: &mut App, step: &PatchStep, acting: &mut Option<Entity>) -> Resu
         } => {
             fresh_name(world, name)?;
             let parent = find(world, a)?;
-            let design = new_design(world, parent, *edge, continuity.to_kernel(), *rows, *cols, length.0)
-                .map_err(|m| format!("AddPatch `{name}` on `{a}`: {m}"))?;
+            let design = new_design(
+                world,
+                parent,
+                *edge,
+                continuity.to_kernel(),
+                *rows,
+                *cols,
+                length.0,
+            )
+            .map_err(|m| format!("AddPatch `{name}` on `{a}`: {m}"))?;
             let first = patch_entity(world).ok_or("the world has no patch")?;
             let all = named(world);
             adopt_first(world, first, &all[0].0);
-            let index = 1 + (world.query::<&PatchSlot>().iter(world).map(|s| s.index).max())
+            let index = 1
+                + (world
+                    .query::<&PatchSlot>()
+                    .iter(world)
+                    .map(|s| s.index)
+                    .max())
                 .unwrap_or(0);
             let start = PatchStart::Edge {
                 parent,
@@ -191,12 +217,21 @@ fn step_on(app: &mut App, step: &PatchStep, acting: &mut Option<Entity>) -> Resu
                 return Err(format!("`{b}` does not start on `{a}`"));
             }
             if c != continuity.to_kernel() {
-                return Err(format!("the seam `{a}`–`{b}` is {}, not {}", c.name(), continuity.to_kernel().name()));
+                return Err(format!(
+                    "the seam `{a}`–`{b}` is {}, not {}",
+                    c.name(),
+                    continuity.to_kernel().name()
+                ));
             }
-            let r = (world.get::<SeamState>(eb).and_then(|s| s.report.clone()))
-                .ok_or_else(|| format!("the seam `{a}`–`{b}` is not measured (a side is not built)"))?;
+            let r =
+                (world.get::<SeamState>(eb).and_then(|s| s.report.clone())).ok_or_else(|| {
+                    format!("the seam `{a}`–`{b}` is not measured (a side is not built)")
+                })?;
             if r.gap <= max_gap.0 && r.angle_deg <= max_angle_deg.0 {
-                Ok(Outcome::Done(format!("gap {:.3e}, angle {:.3e}°", r.gap, r.angle_deg)))
+                Ok(Outcome::Done(format!(
+                    "gap {:.3e}, angle {:.3e}°",
+                    r.gap, r.angle_deg
+                )))
             } else {
                 Ok(Outcome::Failed(format!(
                     "the seam `{a}`–`{b}` has gap {:.3e} (at most {:.3e}) and angle {:.3e}° (at most {:.3e}°)",
@@ -220,7 +255,9 @@ fn new_design(
     length: f64,
 ) -> Result<Design, String> {
     if cols < 2 || rows < 2 {
-        return Err(format!("a net of {rows} × {cols}; give at least 2 rows and 2 columns"));
+        return Err(format!(
+            "a net of {rows} × {cols}; give at least 2 rows and 2 columns"
+        ));
     }
     if !(length.is_finite() && length > 0.0) {
         return Err(format!("length {length}; give a positive length"));
@@ -234,7 +271,10 @@ fn new_design(
                     "a chain has the rows of the patch it starts on: give rows: {ar}"
                 ));
             }
-            (a.params().t.clone(), (0..ar).map(|r| a.net().get(r, ac - 1)).collect())
+            (
+                a.params().t.clone(),
+                (0..ar).map(|r| a.net().get(r, ac - 1)).collect(),
+            )
         }
         side => {
             if continuity == Continuity::G2 {
@@ -243,11 +283,21 @@ fn new_design(
                 );
             }
             let pts = points_of(world, parent).ok_or("the patch started on is not built")?;
-            let r = if side == Edge::First { 0 } else { pts.rows() - 1 };
-            let inner = if side == Edge::First { 1.min(pts.rows() - 1) } else { pts.rows().saturating_sub(2) };
+            let r = if side == Edge::First {
+                0
+            } else {
+                pts.rows() - 1
+            };
+            let inner = if side == Edge::First {
+                1.min(pts.rows() - 1)
+            } else {
+                pts.rows().saturating_sub(2)
+            };
             let len = polyline_length(pts.row(r));
             let mid = pts.cols() / 2;
-            let across = (pts.get(r, mid) - pts.get(inner, mid)).try_normalize().unwrap_or(DVec3::Z);
+            let across = (pts.get(r, mid) - pts.get(inner, mid))
+                .try_normalize()
+                .unwrap_or(DVec3::Z);
             let t = (0..rows)
                 .map(|j| len * (0.05 + 0.9 * j as f64 / (rows - 1) as f64))
                 .collect();
@@ -262,14 +312,17 @@ fn new_design(
             s.set(r, c, length * c as f64 / (cols - 1) as f64);
         }
     }
-    Design::new(&net, s, t, 0, a.scheme(), a.order(), a.initial().clone()).map_err(|e| e.to_string())
+    Design::new(&net, s, t, 0, a.scheme(), a.order(), a.initial().clone())
+        .map_err(|e| e.to_string())
 }
 
 /// An edit of the joined patch `e`: `SetDirection` and `Rotate` write its
 /// net handle; any other edit acts on the first patch only.
 pub(super) fn edit_joined(app: &mut App, e: Entity, edit: &Edit) -> Result<String, String> {
     let world = app.world_mut();
-    let name = world.get::<PatchSlot>(e).map_or_else(String::new, |s| s.name.clone());
+    let name = world
+        .get::<PatchSlot>(e)
+        .map_or_else(String::new, |s| s.name.clone());
     let (row, col) = match edit {
         Edit::SetDirection { row, col, .. } | Edit::Rotate { row, col, .. } => (*row, *col),
         other => {
@@ -279,7 +332,9 @@ pub(super) fn edit_joined(app: &mut App, e: Entity, edit: &Edit) -> Result<Strin
             ));
         }
     };
-    let index = world.get::<PatchIndex>(e).ok_or("the patch has no handles")?;
+    let index = world
+        .get::<PatchIndex>(e)
+        .ok_or("the patch has no handles")?;
     let (rows, cols) = (index.surface.rows(), index.surface.cols());
     if row >= rows || col >= cols {
         return Err(format!(
@@ -287,7 +342,10 @@ pub(super) fn edit_joined(app: &mut App, e: Entity, edit: &Edit) -> Result<Strin
         ));
     }
     let h = index.surface.get(row, col);
-    let now = world.get::<Direction>(h).map(|d| d.0).ok_or("the handle is missing")?;
+    let now = world
+        .get::<Direction>(h)
+        .map(|d| d.0)
+        .ok_or("the handle is missing")?;
     let v = match edit {
         Edit::SetDirection { dir, .. } => dir.try_normalize(),
         Edit::Rotate { axis, radians, .. } => axis
@@ -300,7 +358,11 @@ pub(super) fn edit_joined(app: &mut App, e: Entity, edit: &Edit) -> Result<Strin
         d.set_if_neq(Direction(v));
     }
     app.update();
-    match app.world().get::<PatchSurface>(e).and_then(|s| s.built.clone()) {
+    match app
+        .world()
+        .get::<PatchSurface>(e)
+        .and_then(|s| s.built.clone())
+    {
         Some(Err(m)) => Err(m),
         _ => Ok(format!("{} on `{name}`", edit.label())),
     }
