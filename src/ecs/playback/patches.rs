@@ -306,9 +306,9 @@ fn new_design(
     };
     let mut net = Grid::filled(rows, cols, DVec3::X);
     let mut s = Grid::filled(rows, cols, 0.0);
-    for r in 0..rows {
+    for (r, &dir) in dirs.iter().enumerate() {
         for c in 0..cols {
-            net.set(r, c, dirs[r]);
+            net.set(r, c, dir);
             s.set(r, c, length * c as f64 / (cols - 1) as f64);
         }
     }
