@@ -2,13 +2,19 @@
 //! a headless build through the ECS pipeline, with JSON stats on stdout. The
 //! export's format follows the extension: the mesh as `.obj`, `.stl`, `.glb`,
 //! the fitted B-spline surface as `.step`/`.stp` or `.igs`/`.iges` (docs/math.md §10),
-//! whose fit the report gains as `"fit"`.
+//! whose fit the report gains as `"fit"`. A version-3 scene of several
+//! patches (docs/math.md §11) is built as a document: `"patches"` lists
+//! each patch's streamlines and `"seams"` each join's report, read from the
+//! world's patch entities; a one-patch scene reports its one patch (`main`
+//! for versions 1 and 2) and no seams. An export writes the first patch.
 
-use super::input::{CliError, scene_arg, write_stdout};
+use super::input::{CliError, document_arg, write_stdout};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::exchange::{ExportSettings, LastExport};
+use crate::ecs::joined::{PatchSlot, PatchStart, PatchSurface, SeamState};
 use crate::ecs::warnings::BuildWarnings;
-use crate::ecs::{self, Edit, EditLog, Stats, SurfaceData};
+use crate::ecs::{self, Edit, EditLog, ModelConfig, Stats, SurfaceData};
+use bevy::prelude::*;
 use clap::Args;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -113,11 +119,108 @@ struct BuildReport {
     warnings: Vec<String>,
     /// The world after the build, counted by queries over it.
     entities: ecs::patch::census::Census,
+    /// Every patch, in the document's order.
+    patches: Vec<PatchFigures>,
+    /// Every join's seam at the display depth (docs/math.md §11, "Seam report").
+    seams: Vec<SeamFigures>,
+}
+
+/// A patch as the report lists it.
+#[derive(Serialize)]
+struct PatchFigures {
+    name: String,
+    streamlines: usize,
+    points_per_streamline: usize,
+}
+
+/// A join's seam as the report lists it.
+#[derive(Serialize)]
+struct SeamFigures {
+    a: String,
+    b: String,
+    edge: &'static str,
+    continuity: &'static str,
+    gap: f64,
+    angle_deg: f64,
+    curvature_dev: f64,
+}
+
+/// The patches and seams of the world: the first patch's streamlines are
+/// the incremental pipeline's ([`SurfaceData`]); a joined patch's its
+/// [`PatchSurface`]'s at the display depth. A join that failed is the
+/// error, naming both patches.
+fn patches_and_seams(
+    w: &mut World,
+    depth: u32,
+    first_name: &str,
+) -> Result<(Vec<PatchFigures>, Vec<SeamFigures>), CliError> {
+    let surface = &w.resource::<SurfaceData>().points;
+    let first = PatchFigures {
+        name: first_name.to_string(),
+        streamlines: surface.rows(),
+        points_per_streamline: surface.cols(),
+    };
+    let mut q = w.query::<(&PatchSlot, &PatchStart, &PatchSurface, Option<&SeamState>)>();
+    let mut rows: Vec<_> = q.iter(w).collect();
+    if rows.is_empty() {
+        return Ok((vec![first], Vec::new()));
+    }
+    rows.sort_by_key(|r| r.0.index);
+    let name_of = |e: Entity| {
+        w.get::<PatchSlot>(e)
+            .map_or_else(String::new, |s| s.name.clone())
+    };
+    let (mut patches, mut seams) = (Vec::new(), Vec::new());
+    for (slot, start, surf, seam) in rows {
+        if slot.index == 0 {
+            patches.push(PatchFigures {
+                name: slot.name.clone(),
+                ..first
+            });
+            continue;
+        }
+        let points = match &surf.built {
+            Some(Ok(s)) => &s.points[depth as usize],
+            Some(Err(e)) => return Err(CliError::Usage(e.clone())),
+            None => {
+                return Err(CliError::Usage(format!(
+                    "patch `{}` was not built",
+                    slot.name
+                )));
+            }
+        };
+        patches.push(PatchFigures {
+            name: slot.name.clone(),
+            streamlines: points.rows(),
+            points_per_streamline: points.cols(),
+        });
+        if let (
+            PatchStart::Edge {
+                parent,
+                edge,
+                continuity,
+            },
+            Some(r),
+        ) = (start, seam.and_then(|s| s.report.as_ref()))
+        {
+            seams.push(SeamFigures {
+                a: name_of(*parent),
+                b: slot.name.clone(),
+                edge: edge.name(),
+                continuity: continuity.name(),
+                gap: r.gap,
+                angle_deg: r.angle_deg,
+                curvature_dev: r.curvature_dev,
+            });
+        }
+    }
+    Ok((patches, seams))
 }
 
 /// Builds and prints the stats.
 pub fn build(a: BuildArgs) -> Result<(), CliError> {
-    let mut scene = scene_arg(&a.scene)?;
+    let doc = document_arg(&a.scene)?;
+    let mut scene = doc.patch_scene(0);
     if let Some(d) = a.depth {
         // mirrored: the doubled net is what is built (docs/math.md §9)
         let design = &scene
@@ -136,7 +239,8 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         scene.display_depth = d;
     }
     let fit = fit_options(&a)?;
-    let mut app = ecs::headless_app(scene);
+    let mut app =
+        ecs::headless_document_app(&doc, Some(scene.display_depth), ModelConfig::default());
     let build_stats = app.world().resource::<Stats>().last.clone();
     app.world_mut().resource_mut::<ExportSettings>().fit = fit;
     if let Some(out) = &a.export {
@@ -149,6 +253,7 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
     let w = app.world_mut();
     let entities = ecs::patch::census::census(w);
     let scene = ecs::patch::try_scene(w).map_err(CliError::Usage)?;
+    let (patches, seams) = patches_and_seams(w, scene.display_depth, &doc.patches[0].name)?;
     let mut per = Vec::new();
     let mut total = 0.0;
     let depth = scene.display_depth;
@@ -187,6 +292,8 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         scheme: scene.design.scheme().name(),
         blend_order: scene.design.order().name(),
         entities,
+        patches,
+        seams,
         levels: stats.levels.clone(),
         streamlines: surface.points.rows(),
         points_per_streamline: surface.points.cols(),

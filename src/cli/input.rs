@@ -119,3 +119,14 @@ pub fn scene_arg(arg: &str) -> Result<crate::scene::Scene, CliError> {
         ))
     })
 }
+
+/// A design argument: a .ron file of any version (1 and 2 as one patch
+/// named `main`, 3 as its patches) or a built-in scene's name (one patch).
+pub fn document_arg(arg: &str) -> Result<crate::scene::Document, CliError> {
+    use crate::scene::{Document, document_io};
+    let path = std::path::Path::new(arg);
+    if arg.ends_with(".ron") || path.is_file() {
+        return Ok(document_io::load(path)?);
+    }
+    scene_arg(arg).map(Document::from_scene)
+}

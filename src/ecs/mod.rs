@@ -18,6 +18,7 @@ mod edit;
 mod edit_error;
 pub mod exchange;
 mod integrate;
+pub mod joined;
 mod mesh;
 pub mod messages;
 pub mod meter;
@@ -112,7 +113,8 @@ impl Plugin for ModelPlugin {
                     .in_set(ModelSet::Integrate),
             )
             .add_systems(Update, mesh::patch_mesh.in_set(ModelSet::Mesh))
-            .add_systems(Update, output::write_files.in_set(ModelSet::Output));
+            .add_systems(Update, output::write_files.in_set(ModelSet::Output))
+            .add_plugins(joined::JoinedPlugin);
         patch::spawn_patch(app.world_mut(), &self.scene);
     }
 }
@@ -133,6 +135,30 @@ pub fn headless_app_with(scene: Scene, config: ModelConfig) -> App {
         s.set_executor(bevy::ecs::schedule::SingleThreadedExecutor::new());
     });
     app.update();
+    app
+}
+
+/// A windowless app with the model on a document of one or more patches
+/// (docs/math.md §11), built once: its first patch is a one-patch scene's
+/// world ([`headless_app_with`] on [`Document::patch_scene`]`(0)`, with
+/// `display_depth` when given), the others are added
+/// ([`joined::spawn_joined`]) and built through the kernel's joins. A
+/// document of one patch gives exactly [`headless_app_with`]'s world.
+pub fn headless_document_app(
+    doc: &crate::scene::Document,
+    display_depth: Option<u32>,
+    config: ModelConfig,
+) -> App {
+    let mut scene = doc.patch_scene(0);
+    if let Some(d) = display_depth {
+        scene.display_depth = d;
+    }
+    let mut app = headless_app_with(scene, config);
+    if doc.patches.len() > 1 {
+        let first = patch::patch_entity(app.world()).expect("the first patch was spawned");
+        joined::spawn_joined(app.world_mut(), doc, first);
+        app.update();
+    }
     app
 }
 

@@ -15,6 +15,7 @@
 use super::edit::{AuthorEdit, Edit};
 use super::error::SceneError;
 use super::format::{Finite, OrderSpec, Point, SchemeSpec, TuningSpec};
+use super::format_v3::{ContinuitySpec, EdgeSpec};
 use serde::de::{
     self, DeserializeOwned, DeserializeSeed, EnumAccess, VariantAccess, Visitor,
     value::EnumAccessDeserializer,
@@ -57,6 +58,43 @@ pub enum Step {
     Edit(Edit),
     /// An expectation, checked against the model.
     Expect(Expect),
+    /// A step on the design's patches (docs/math.md §11).
+    Patch(PatchStep),
+}
+
+/// A step on the design's patches (docs/math.md §11), run by the playback
+/// against the world's patch entities.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum PatchStep {
+    /// A new patch `name` starting on `from`'s edge (`(patch, edge)`) with
+    /// `continuity`: a `rows × cols` net, its streamlines `length` long. A
+    /// chain (`End`) takes the patch's rows (`rows` must be theirs) and
+    /// continues its last column; a side join (`First`, `Last`) leaves the
+    /// streamline across it.
+    AddPatch {
+        name: String,
+        from: (String, EdgeSpec),
+        continuity: ContinuitySpec,
+        rows: usize,
+        cols: usize,
+        length: Finite,
+    },
+    /// The patch later edits act on (the first patch until one is set).
+    SetPatch(String),
+    /// Removes a patch no other patch starts on (not the first).
+    RemovePatch(String),
+    /// Renames a patch.
+    RenamePatch(String, String),
+    /// The seam between `a` and `b` (which starts on `a`) has `continuity`,
+    /// a gap of at most `max_gap` and a normal angle of at most `max_angle_deg`.
+    ExpectSeam {
+        a: String,
+        b: String,
+        continuity: ContinuitySpec,
+        max_gap: Finite,
+        max_angle_deg: Finite,
+    },
 }
 
 /// Every step's name, in the order an unknown step's message lists them
@@ -104,6 +142,11 @@ const STEPS: &[&str] = &[
     "ExpectChanged",
     "ExpectEndsSame",
     "ExpectShifted",
+    "AddPatch",
+    "SetPatch",
+    "RemovePatch",
+    "RenamePatch",
+    "ExpectSeam",
 ];
 
 /// One expectation: checked by `streamline-studio play`, not sent to the model.
@@ -211,6 +254,7 @@ impl fmt::Debug for Step {
             Step::Edit(Edit::Author(a)) => fmt::Debug::fmt(a, f),
             Step::Edit(e) => fmt::Debug::fmt(e, f),
             Step::Expect(x) => fmt::Debug::fmt(x, f),
+            Step::Patch(p) => fmt::Debug::fmt(p, f),
         }
     }
 }
@@ -225,6 +269,7 @@ impl Serialize for Step {
             Step::Edit(Edit::Author(a)) => a.serialize(s),
             Step::Edit(e) => e.serialize(s),
             Step::Expect(x) => x.serialize(s),
+            Step::Patch(p) => p.serialize(s),
         }
     }
 }
@@ -257,6 +302,9 @@ impl<'de> Visitor<'de> for StepVisitor {
             "SetTuning" => Step::SetTuning(rest.newtype_variant()?),
             _ if names::<Expect>().contains(&name) => {
                 Step::Expect(Expect::deserialize(named(rest))?)
+            }
+            _ if names::<PatchStep>().contains(&name) => {
+                Step::Patch(PatchStep::deserialize(named(rest))?)
             }
             _ if names::<AuthorEdit>().contains(&name) => {
                 Step::Edit(Edit::Author(AuthorEdit::deserialize(named(rest))?))

@@ -2,6 +2,7 @@
 //! For careful numbers use `cargo bench` (criterion), which runs the same workloads.
 
 pub mod export_rows;
+pub mod patches;
 pub mod workloads;
 
 use super::input::CliError;
@@ -27,6 +28,7 @@ pub fn bench(a: BenchArgs) -> Result<(), CliError> {
     let budget = std::time::Duration::from_millis(a.millis.max(1));
     let rows = workloads::all()
         .into_iter()
+        .chain(patches::rows())
         .chain(export_rows::document_export_rows());
     for mut w in rows {
         if a.filter.as_deref().is_some_and(|f| !w.name.contains(f)) {

@@ -23,6 +23,17 @@ use streamline_kernel::{BlendOrder, DVec3, Design, Grid, SurfaceScheme};
 #[derive(Component, Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Patch;
 
+/// Marks a patch that is built through the kernel's joins rather than the
+/// incremental pipeline (every patch of a document but the first); the
+/// first patch's systems skip it (`Without<Joined>`).
+#[derive(Component, Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Joined;
+
+/// Marks a net handle of a [`Joined`] patch, so that the first patch's
+/// change tracking skips it.
+#[derive(Component, Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct JoinedHandle;
+
 /// The patch's display name (the scene's `name`).
 #[derive(Component, Debug, Clone, PartialEq, Eq)]
 pub struct PatchName(pub String);

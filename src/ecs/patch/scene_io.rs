@@ -241,9 +241,10 @@ pub fn try_scene(world: &World) -> Result<Scene, String> {
     )
 }
 
-/// The world's (first) patch entity.
+/// The world's first patch entity (the one the incremental pipeline
+/// builds; not a [`Joined`] one).
 pub fn patch_entity(world: &World) -> Option<Entity> {
-    let mut q = world.try_query_filtered::<Entity, With<Patch>>()?;
+    let mut q = world.try_query_filtered::<Entity, (With<Patch>, Without<Joined>)>()?;
     q.iter(world).next()
 }
 

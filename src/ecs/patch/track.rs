@@ -31,7 +31,10 @@ type ChangedNet<'w, 's> = Query<
         &'static Direction,
         &'static ArcParam,
     ),
-    Or<(Changed<Direction>, Changed<ArcParam>)>,
+    (
+        Or<(Changed<Direction>, Changed<ArcParam>)>,
+        Without<JoinedHandle>,
+    ),
 >;
 
 /// The patch's components `track_handles` reads and writes.

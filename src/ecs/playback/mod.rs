@@ -3,6 +3,7 @@
 //! (`playback/expect.rs`).
 
 mod expect;
+mod patches;
 
 use super::edit_error::EditError;
 use super::messages::Edit;
@@ -38,6 +39,7 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
     let mut marks = expect::Marks::new();
     let mut pending: Option<(usize, String)> = None;
     let mut warned = warn_new(&app, 0, &[], &mut report);
+    let mut acting: Option<Entity> = None;
     for (i, step) in script.steps.iter().enumerate() {
         let n = i + 1;
         if !matches!(step, Step::Expect(Expect::ExpectError(_)))
@@ -56,6 +58,29 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
                 Err(m) => {
                     report.failures += 1;
                     report.lines.push(format!("step {n:>3} {label}: FAIL {m}"));
+                }
+            }
+            continue;
+        }
+        let outcome = match step {
+            Step::Patch(p) => Some(patches::run(&mut app, p, &mut acting)),
+            Step::Edit(e) => acting
+                .map(|patch| patches::edit_joined(&mut app, patch, e).map(patches::Outcome::Done)),
+            _ => None,
+        };
+        if let Some(res) = outcome {
+            let label = short(step);
+            match res {
+                Ok(patches::Outcome::Done(m)) => {
+                    report.lines.push(format!("step {n:>3} {label}: ok ({m})"));
+                }
+                Ok(patches::Outcome::Failed(m)) => {
+                    report.failures += 1;
+                    report.lines.push(format!("step {n:>3} {label}: FAIL {m}"));
+                }
+                Err(m) => {
+                    pending = Some((n, m.clone()));
+                    report.lines.push(format!("step {n:>3} {label}: error {m}"));
                 }
             }
             continue;
@@ -158,6 +183,6 @@ pub(crate) fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
         Step::Export(p) => Edit::Export(output(dir, p)?),
         Step::SetTuning(t) => Edit::SetTuning(t.as_ref().map(|t| t.to_kernel()).transpose()?),
         Step::Edit(e) => e.clone(),
-        Step::Expect(_) => return Err("not an edit".into()),
+        Step::Expect(_) | Step::Patch(_) => return Err("not an edit".into()),
     })
 }

@@ -14,7 +14,7 @@ use streamline_kernel::DVec3;
 #[derive(SystemParam)]
 pub struct HandleQuery<'w, 's> {
     layout: Res<'w, HandleLayout>,
-    index: Query<'w, 's, &'static PatchIndex, With<Patch>>,
+    index: Query<'w, 's, &'static PatchIndex, (With<Patch>, Without<crate::ecs::patch::Joined>)>,
     placed: Query<'w, 's, (&'static HandleId, &'static Placed)>,
     copies: Query<'w, 's, (&'static MirroredHandle, &'static Placed)>,
 }

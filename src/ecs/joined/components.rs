@@ -1,0 +1,69 @@
+//! The components of a design of several patches (docs/math.md §11;
+//! docs/architecture.md, "Several patches"). Every patch entity of a
+//! document carries its [`PatchSlot`] (its name and place in the document),
+//! its [`PatchStart`] and its kernel-built [`PatchSurface`]; a patch that
+//! starts on an edge also carries [`Joined`], its [`JoinedDesign`] (derived
+//! from its handles) and its [`SeamState`]. A one-patch design has none of
+//! them, so today's pipeline sees exactly what it saw.
+
+pub use crate::ecs::patch::{Joined, JoinedHandle};
+use bevy::prelude::*;
+use streamline_kernel::Design;
+use streamline_kernel::joins::{Continuity, Edge, SeamReport, Stack};
+
+/// A patch's name in the document (`main` for a version-1 or -2 design)
+/// and its index in the document's list (a patch starts on an earlier one).
+#[derive(Component, Debug, Clone, PartialEq, Eq)]
+pub struct PatchSlot {
+    /// Unique in the document.
+    pub name: String,
+    /// Its place in the document's list.
+    pub index: usize,
+}
+
+/// Where a patch starts (docs/math.md §11).
+#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PatchStart {
+    /// On its own initial curve.
+    Curve,
+    /// On an edge of an earlier patch.
+    Edge {
+        /// The patch entity it starts on (`A`).
+        parent: Entity,
+        /// The edge of `A`.
+        edge: Edge,
+        /// The continuity across it.
+        continuity: Continuity,
+    },
+}
+
+/// A joined patch's kernel design, derived from its handles by
+/// [`super::build::track_joined`] (its only writer after spawning).
+#[derive(Component, Debug, Clone)]
+pub struct JoinedDesign(pub Design);
+
+/// A patch built through the kernel's joins at the display depth: its
+/// levels and points at every depth `0 ..= d` ([`Stack`]), or why it could
+/// not be built (naming both patches and the fix). Written only when it
+/// was rebuilt, so `Changed<PatchSurface>` means "moved".
+#[derive(Component, Debug, Clone, Default)]
+pub struct PatchSurface {
+    /// The built stack, `Err` with a located message when the join failed.
+    pub built: Option<Result<Stack, String>>,
+}
+
+impl PatchSurface {
+    /// The stack, when built.
+    pub fn stack(&self) -> Option<&Stack> {
+        self.built.as_ref().and_then(|b| b.as_ref().ok())
+    }
+}
+
+/// The seam report of a joined patch's join at the display depth
+/// (docs/math.md §11, "Seam report"), updated when either side is rebuilt.
+#[derive(Component, Debug, Clone, Default)]
+pub struct SeamState {
+    /// Largest gap, normal angle, curvature deviation; `None` while either
+    /// side is not built.
+    pub report: Option<SeamReport>,
+}

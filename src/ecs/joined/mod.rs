@@ -1,0 +1,30 @@
+//! Several patches in the world (docs/math.md §11; docs/architecture.md,
+//! "Several patches"): the patches of a document after its first are
+//! [`crate::ecs::patch::Patch`] entities with their net handles as
+//! children ([`spawn::spawn_joined`]), built through the kernel's joins
+//! into a [`PatchSurface`] each, with a [`SeamState`] per join
+//! ([`build`]). The first patch keeps the incremental pipeline.
+
+pub mod build;
+pub mod components;
+pub mod spawn;
+
+pub use components::*;
+pub use spawn::{adopt_first, spawn_joined, spawn_joined_patch};
+
+use bevy::prelude::*;
+
+/// The joined patches' systems, after the first patch's pipeline has
+/// brought its kernel design up to date.
+pub struct JoinedPlugin;
+
+impl Plugin for JoinedPlugin {
+    fn build(&self, app: &mut App) {
+        app.add_systems(
+            Update,
+            (build::track_joined, build::build_joined)
+                .chain()
+                .in_set(crate::ecs::ModelSet::Mesh),
+        );
+    }
+}

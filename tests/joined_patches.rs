@@ -1,0 +1,232 @@
+//! Several patches in the ECS world (issue 28, docs/math.md §11): a
+//! document's patches are entities; the joined ones are built through the
+//! kernel's joins into `PatchSurface`, with a `SeamState` per join, and
+//! rebuilt by change detection. Checked against `Document::build` (the
+//! scene library's build, an independent path through the same kernel).
+
+mod common;
+
+use bevy::prelude::*;
+use std::path::Path;
+use streamline_kernel::DVec3;
+use streamline_kernel::joins::{SeamReport, Stack};
+use streamline_studio::ecs::joined::{PatchSlot, PatchSurface, SeamState};
+use streamline_studio::ecs::patch::census::census;
+use streamline_studio::ecs::patch::{Direction, Patch, PatchIndex};
+use streamline_studio::ecs::{self, Edit, ModelConfig};
+use streamline_studio::scene::document::Document;
+use streamline_studio::scene::document_io::load;
+
+fn hood() -> Document {
+    load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron")).unwrap()
+}
+
+fn app(doc: &Document) -> App {
+    ecs::headless_document_app(doc, None, ModelConfig::default())
+}
+
+/// Each patch's entity, in the document's order.
+fn patches(app: &mut App) -> Vec<Entity> {
+    let w = app.world_mut();
+    let mut q = w.query_filtered::<(Entity, &PatchSlot), With<Patch>>();
+    let mut v: Vec<_> = q.iter(w).map(|(e, s)| (s.index, e)).collect();
+    v.sort();
+    v.into_iter().map(|(_, e)| e).collect()
+}
+
+fn stack(app: &App, e: Entity) -> Stack {
+    let s = app
+        .world()
+        .get::<PatchSurface>(e)
+        .expect("a document patch has a surface");
+    match &s.built {
+        Some(Ok(s)) => s.clone(),
+        other => panic!("not built: {other:?}"),
+    }
+}
+
+fn seam(app: &App, e: Entity) -> SeamReport {
+    let s = app
+        .world()
+        .get::<SeamState>(e)
+        .expect("a joined patch has a seam");
+    s.report.clone().expect("the seam is measured")
+}
+
+fn bits(g: &streamline_kernel::Grid<DVec3>) -> Vec<[u64; 3]> {
+    g.data()
+        .iter()
+        .map(|p| p.to_array().map(f64::to_bits))
+        .collect()
+}
+
+/// The world's patches and seams equal `Document::build`'s, bit for bit.
+fn assert_as_built(app: &mut App, doc: &Document) {
+    let depth = doc.display_depth;
+    let built = doc.build(depth).unwrap();
+    let ids = patches(app);
+    assert_eq!(ids.len(), doc.patches.len());
+    for (i, &e) in ids.iter().enumerate() {
+        let s = stack(app, e);
+        assert_eq!(s.depth(), depth);
+        for d in 0..=depth as usize {
+            assert_eq!(
+                bits(&s.points[d]),
+                bits(&built.patches[i].points[d]),
+                "patch {} depth {d}",
+                doc.patches[i].name
+            );
+        }
+    }
+    for sm in &built.seams {
+        let r = seam(app, ids[sm.b]);
+        assert_eq!(r.gap.to_bits(), sm.report.gap.to_bits());
+        assert_eq!(r.angle_deg.to_bits(), sm.report.angle_deg.to_bits());
+        assert_eq!(r.curvature_dev.to_bits(), sm.report.curvature_dev.to_bits());
+    }
+}
+
+#[test]
+fn a_document_is_one_patch_entity_per_patch_built_as_the_scene_library_builds_it() {
+    let doc = hood();
+    let mut app = app(&doc);
+    let c = census(app.world_mut());
+    assert_eq!(c.patches, 3);
+    let handles: usize = doc
+        .patches
+        .iter()
+        .map(|p| p.design.net().data().len())
+        .sum();
+    assert_eq!(c.handles.surface, handles);
+    assert_as_built(&mut app, &doc);
+    // the first patch keeps the incremental pipeline: its mesh is a one-patch scene's
+    let one = ecs::headless_app(doc.patch_scene(0));
+    assert_eq!(bits(&common::points(&app)), bits(&common::points(&one)));
+}
+
+#[test]
+fn a_one_patch_document_is_todays_world() {
+    let doc = Document::from_scene(streamline_studio::scene::builtin::scene("car1").unwrap());
+    let mut a = app(&doc);
+    let mut b = ecs::headless_app(doc.patch_scene(0));
+    assert_eq!(census(a.world_mut()), census(b.world_mut()));
+    let w = a.world_mut();
+    assert_eq!(w.query::<&PatchSurface>().iter(w).count(), 0);
+    assert_eq!(bits(&common::points(&a)), bits(&common::points(&b)));
+}
+
+fn changed_ticks(app: &mut App) -> Vec<bevy::ecs::change_detection::Tick> {
+    let ids = patches(app);
+    let w = app.world();
+    ids.iter()
+        .map(|&e| {
+            w.entity(e)
+                .get_ref::<PatchSurface>()
+                .unwrap()
+                .last_changed()
+        })
+        .collect()
+}
+
+#[test]
+fn an_edit_of_the_first_patch_rebuilds_every_patch_that_starts_on_it() {
+    let mut doc = hood();
+    let mut app = app(&doc);
+    let before = changed_ticks(&mut app);
+    let dir = DVec3::new(0.9, 0.2, 0.3).normalize();
+    ecs::apply(
+        &mut app,
+        Edit::SetDirection {
+            row: 1,
+            col: 2,
+            dir,
+        },
+    )
+    .unwrap();
+    let after = changed_ticks(&mut app);
+    assert!(
+        before.iter().zip(&after).all(|(a, b)| a != b),
+        "all three rebuilt"
+    );
+    doc.patches[0].design.set_tangent(1, 2, dir).unwrap();
+    assert_as_built(&mut app, &doc);
+    // the G2 run moved the screen: a negative control against the old build
+    let old = hood().build(doc.display_depth).unwrap();
+    let ids = patches(&mut app);
+    let d = doc.display_depth as usize;
+    assert_ne!(
+        bits(&stack(&app, ids[1]).points[d]),
+        bits(&old.patches[1].points[d])
+    );
+}
+
+#[test]
+fn an_edit_of_a_joined_patch_rebuilds_it_alone_and_setting_a_value_it_has_rebuilds_nothing() {
+    let mut doc = hood();
+    let mut app = app(&doc);
+    let ids = patches(&mut app);
+    let wing = ids[2];
+    let h = app
+        .world()
+        .get::<PatchIndex>(wing)
+        .unwrap()
+        .surface
+        .get(1, 2);
+    // the same value: nothing rebuilt
+    let before = changed_ticks(&mut app);
+    let same = app.world().get::<Direction>(h).unwrap().0;
+    app.world_mut()
+        .get_mut::<Direction>(h)
+        .unwrap()
+        .set_if_neq(Direction(same));
+    app.update();
+    assert_eq!(changed_ticks(&mut app), before);
+    // a new value: the wing alone
+    let dir = DVec3::new(0.2, 0.9, 0.4).normalize();
+    app.world_mut()
+        .get_mut::<Direction>(h)
+        .unwrap()
+        .set_if_neq(Direction(dir));
+    app.update();
+    let after = changed_ticks(&mut app);
+    assert_eq!(&after[..2], &before[..2], "hood and screen not rebuilt");
+    assert_ne!(after[2], before[2], "the wing rebuilt");
+    doc.patches[2].design.set_tangent(1, 2, dir).unwrap();
+    assert_as_built(&mut app, &doc);
+}
+
+#[test]
+fn the_bench_s_three_chained_cars_build_as_the_library_builds_them_and_follow_an_edit() {
+    use streamline_studio::cli::bench::patches::chained_cars;
+    let mut doc = chained_cars(3, 3);
+    let mut app = app(&doc);
+    assert_as_built(&mut app, &doc);
+    let dir = DVec3::new(0.8, 0.1, 0.5).normalize();
+    ecs::apply(
+        &mut app,
+        Edit::SetDirection {
+            row: 2,
+            col: 4,
+            dir,
+        },
+    )
+    .unwrap();
+    doc.patches[0].design.set_tangent(2, 4, dir).unwrap();
+    assert_as_built(&mut app, &doc);
+    // the seam column is one handle of both cars (G1): turning the first's
+    // last column turns the second's first
+    let last = doc.patches[0].design.net().cols() - 1;
+    ecs::apply(
+        &mut app,
+        Edit::SetDirection {
+            row: 2,
+            col: last,
+            dir,
+        },
+    )
+    .unwrap();
+    let v = common::scene(&app).design.net().get(2, last);
+    doc.patches[0].design.set_tangent(2, last, v).unwrap();
+    doc.patches[1].design.set_tangent(2, 0, v).unwrap();
+    assert_as_built(&mut app, &doc);
+}
