@@ -154,3 +154,59 @@ fn a_one_patch_scene_reports_one_patch_main_and_no_seams() {
         assert!(r.get(k).is_some(), "{k}");
     }
 }
+
+/// `build --export` of several patches writes them all: a STEP shell of one
+/// face per patch, each within its tolerance (the report's `"faces"`), an
+/// OBJ object per patch (read back by tobj, each its grid's points), and a
+/// refused extension names the file and leaves nothing behind.
+#[test]
+fn build_exports_every_patch() {
+    let dir = tmp("export").parent().unwrap().join("export");
+    std::fs::create_dir_all(&dir).unwrap();
+    let doc = load(&shipped()).unwrap();
+    let built = doc.build(doc.display_depth).unwrap();
+    let run = |out: &Path| {
+        Command::new(env!("CARGO_BIN_EXE_streamline-studio"))
+            .args(["build", shipped().to_str().unwrap(), "--export"])
+            .arg(out)
+            .output()
+            .unwrap()
+    };
+    let step = dir.join("hsw.step");
+    let out = run(&step);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let faces = r["faces"].as_array().unwrap();
+    assert_eq!(faces.len(), doc.patches.len());
+    for (f, p) in faces.iter().zip(&doc.patches) {
+        assert_eq!(f["name"], p.name.as_str());
+        assert!(f["max_deviation"].as_f64().unwrap() <= f["tolerance"].as_f64().unwrap());
+    }
+    let text = std::fs::read_to_string(&step).unwrap();
+    assert_eq!(text.matches("ADVANCED_FACE(").count(), doc.patches.len());
+    assert_eq!(
+        text.matches("CLOSED_SHELL(").count() + text.matches("OPEN_SHELL(").count(),
+        1
+    );
+
+    let obj = dir.join("hsw.obj");
+    assert!(run(&obj).status.success());
+    let (models, _) = tobj::load_obj(&obj, &tobj::LoadOptions::default()).unwrap();
+    assert_eq!(models.len(), doc.patches.len());
+    for ((m, p), s) in models.iter().zip(&doc.patches).zip(&built.patches) {
+        assert_eq!(m.name, p.name);
+        let pts = &s.points[doc.display_depth as usize];
+        assert_eq!(m.mesh.positions.len(), 3 * pts.rows() * pts.cols());
+    }
+
+    let bad = dir.join("hsw.dwg");
+    let out = run(&bad);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("hsw.dwg"), "{err}");
+    assert!(!bad.exists());
+}

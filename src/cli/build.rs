@@ -6,7 +6,10 @@
 //! patches (docs/math.md §11) is built as a document: `"patches"` lists
 //! each patch's streamlines and `"seams"` each join's report, read from the
 //! world's patch entities; a one-patch scene reports its one patch (`main`
-//! for versions 1 and 2) and no seams. An export writes the first patch.
+//! for versions 1 and 2) and no seams. An export of several patches writes
+//! them all (`scene::document_export`: one STEP shell, one IGES entity 128,
+//! OBJ object, glTF node or STL solid per patch), and the report gains
+//! `"faces"`, each fitted face's poles and deviation.
 
 use super::input::{CliError, document_arg, write_stdout};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
@@ -14,6 +17,8 @@ use crate::ecs::exchange::{ExportSettings, LastExport};
 use crate::ecs::joined::{PatchSlot, PatchStart, PatchSurface, SeamState};
 use crate::ecs::warnings::BuildWarnings;
 use crate::ecs::{self, Edit, EditLog, ModelConfig, Stats, SurfaceData};
+use crate::scene::Document;
+use crate::scene::document_export::{DocumentExportSettings, export_document};
 use bevy::prelude::*;
 use clap::Args;
 use serde::Serialize;
@@ -114,6 +119,9 @@ struct BuildReport {
     export: Option<PathBuf>,
     #[serde(skip_serializing_if = "Option::is_none")]
     fit: Option<FitFigures>,
+    /// A STEP or IGES export of several patches: each face written.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    faces: Vec<FaceFigures>,
     /// What the build blended about a fixed axis (antipodal neighbours,
     /// docs/math.md §1), one sentence each; empty when nothing.
     warnings: Vec<String>,
@@ -217,6 +225,45 @@ fn patches_and_seams(
     Ok((patches, seams))
 }
 
+/// A fitted face of an export of several patches, as the report gives it.
+#[derive(Serialize)]
+struct FaceFigures {
+    name: String,
+    depth: u32,
+    poles: [usize; 2],
+    tolerance: f64,
+    max_deviation: f64,
+}
+
+/// Writes every patch of `doc` to `out` (`scene::document_export`).
+fn export_patches(
+    doc: &Document,
+    depth: u32,
+    fit: FitOptions,
+    out: &std::path::Path,
+) -> Result<Vec<FaceFigures>, CliError> {
+    let built = doc
+        .build(depth)
+        .map_err(|e| CliError::Usage(format!("{}: {e}", out.display())))?;
+    let settings = DocumentExportSettings {
+        depth: Some(depth),
+        fit,
+        colors: None,
+    };
+    let done = export_document(doc, &built, out, &settings)?;
+    Ok(done
+        .faces
+        .iter()
+        .map(|f| FaceFigures {
+            name: f.name.clone(),
+            depth: done.depth,
+            poles: [f.surface.poles.rows(), f.surface.poles.cols()],
+            tolerance: f.tolerance,
+            max_deviation: f.deviation.max,
+        })
+        .collect())
+}
+
 /// Builds and prints the stats.
 pub fn build(a: BuildArgs) -> Result<(), CliError> {
     let doc = document_arg(&a.scene)?;
@@ -243,7 +290,10 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         ecs::headless_document_app(&doc, Some(scene.display_depth), ModelConfig::default());
     let build_stats = app.world().resource::<Stats>().last.clone();
     app.world_mut().resource_mut::<ExportSettings>().fit = fit;
-    if let Some(out) = &a.export {
+    let mut faces = Vec::new();
+    if let Some(out) = a.export.as_ref().filter(|_| doc.patches.len() > 1) {
+        faces = export_patches(&doc, scene.display_depth, fit, out)?;
+    } else if let Some(out) = &a.export {
         ecs::send(&mut app, Edit::Export(out.clone()));
         app.update();
         if let Some(Err(e)) = app.world().resource::<EditLog>().entries.first() {
@@ -308,6 +358,7 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         timings_us: build_stats,
         warnings: w.resource::<BuildWarnings>().lines.clone(),
         export: a.export.clone(),
+        faces,
         fit: w
             .resource::<LastExport>()
             .written
