@@ -509,6 +509,7 @@ mod tests {
             .chain(names::<Edit>().iter().copied())
             .chain(names::<AuthorEdit>().iter().copied())
             .chain(names::<Expect>().iter().copied())
+            .chain(names::<PatchStep>().iter().copied())
             .collect();
         let mut listed = STEPS.to_vec();
         read.sort_unstable();
