@@ -67,3 +67,17 @@ pub struct SeamState {
     /// side is not built.
     pub report: Option<SeamReport>,
 }
+
+/// The patch that edits of handles act on and whose handles the editor
+/// shows and picks: `None` is the document's first patch. The editor sets
+/// it when a patch is selected (its Patches section, or a click on a
+/// surface); a script's `SetPatch` step sets it. Choosing a patch is not an
+/// edit of the design, so it is not an undo step (as selection is not, in
+/// Rhino or Alias).
+#[derive(Resource, Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ActivePatch(pub Option<Entity>);
+
+/// Marks a patch the designer hid: its surface, seams and handles are not
+/// drawn nor picked. Hiding is an undo step; it is not written to the file.
+#[derive(Component, Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct PatchHidden;

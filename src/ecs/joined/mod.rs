@@ -20,7 +20,7 @@ pub struct JoinedPlugin;
 
 impl Plugin for JoinedPlugin {
     fn build(&self, app: &mut App) {
-        app.add_systems(
+        app.init_resource::<ActivePatch>().add_systems(
             Update,
             (build::track_joined, build::build_joined)
                 .chain()
