@@ -1,24 +1,36 @@
 //! Opening the editor from the command line, and `screenshot`.
 
-use super::input::{CliError, scene_arg};
+use super::input::{CliError, document_arg};
 use crate::editor::{self, EditorDirs, EditorOptions, PanelName, ScreenshotRequest, SurfaceMode};
 use clap::Args;
 use std::path::PathBuf;
 
-/// A scene argument: a `.ron` file (with its path) or a built-in scene's name.
-fn open_scene(arg: &str) -> Result<(crate::scene::Scene, Option<PathBuf>), CliError> {
-    let scene = scene_arg(arg)?;
+/// A scene argument: a `.ron` file of any version (with its path) or a
+/// built-in scene's name. Returns the first patch's scene, the whole
+/// document when it has several patches (docs/math.md §11), and the path.
+fn open_scene(arg: &str) -> Result<OpenedScene, CliError> {
+    let doc = document_arg(arg)?;
+    let scene = doc.patch_scene(0);
+    let document = (doc.patches.len() > 1).then_some(doc);
     let p = PathBuf::from(arg);
     let path = (arg.ends_with(".ron") || p.is_file()).then_some(p);
-    Ok((scene, path))
+    Ok((scene, document, path))
 }
+
+/// What [`open_scene`] opens.
+type OpenedScene = (
+    crate::scene::Scene,
+    Option<crate::scene::Document>,
+    Option<PathBuf>,
+);
 
 /// Opens the editor on a scene file or a built-in scene, with `msaa` samples
 /// in the 3D views (`None`: chosen for the graphics adapter).
 pub fn open(scene: &str, msaa: Option<u32>) -> Result<(), CliError> {
-    let (scene, path) = open_scene(scene)?;
+    let (scene, document, path) = open_scene(scene)?;
     editor::run(EditorOptions {
         scene,
+        document,
         path,
         size: (1280, 800),
         screenshot: None,
@@ -78,7 +90,7 @@ pub struct ScreenshotArgs {
 /// `screenshot`.
 pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
     let arg = a.scene_opt.clone().unwrap_or(a.scene.clone());
-    let (scene, path) = open_scene(&arg)?;
+    let (scene, document, path) = open_scene(&arg)?;
     let size = a
         .size
         .split_once('x')
@@ -149,6 +161,7 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
     let home = dirs.home.clone();
     let r = editor::run(EditorOptions {
         scene,
+        document,
         path,
         size,
         screenshot: Some(req),

@@ -38,8 +38,11 @@ pub use surface::analysis::{AnalysisSettings, SurfaceMode};
 
 /// How to open the editor.
 pub struct EditorOptions {
-    /// The scene to open.
+    /// The scene to open (a document's first patch).
     pub scene: Scene,
+    /// The whole document when it has several patches (docs/math.md §11):
+    /// its first patch is `scene`, the others are spawned after it.
+    pub document: Option<crate::scene::Document>,
     /// The file it came from (`None`: a built-in scene).
     pub path: Option<PathBuf>,
     /// Window size in logical pixels.
@@ -175,6 +178,11 @@ pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
         continuous: opts.screenshot.is_some(),
     })
     .add_plugins(EditorPlugin);
+    if let Some(doc) = &opts.document
+        && let Some(first) = crate::ecs::patch::patch_entity(app.world())
+    {
+        crate::ecs::joined::spawn_joined(app.world_mut(), doc, first);
+    }
     app.world_mut().resource_mut::<Model>().path = opts.path;
     if let Some(req) = opts.screenshot {
         app.insert_resource(req);
