@@ -1,11 +1,12 @@
-//! The output stage: saving and exporting, after the mesh is up to date.
+//! The output stage: saving (the whole design, every patch) and exporting
+//! (the first patch), after the mesh is up to date.
 
 use super::edit_error::EditError;
 use super::exchange::{ExportSettings, LastExport};
 use super::messages::{Edit, EditMessage};
 use super::resources::*;
+use crate::scene::document_io;
 use crate::scene::export::{ExportOptions, export_scene};
-use crate::scene::io;
 use bevy::prelude::*;
 
 #[allow(clippy::too_many_arguments)]
@@ -14,6 +15,7 @@ pub(crate) fn write_files(
     mut reader: MessageReader<EditMessage>,
     mut model: ResMut<Model>,
     patch: super::patch::PatchRef,
+    joined: super::joined::JoinedRead,
     surface: Res<SurfaceData>,
     mut log: ResMut<EditLog>,
     settings: Res<ExportSettings>,
@@ -36,7 +38,8 @@ pub(crate) fn write_files(
             },
         };
         match &msg.edit {
-            Edit::Save(path) => match io::save(scene, path) {
+            // the design: version 2 for one patch (the bytes io::save writes), 3 for several
+            Edit::Save(path) => match document_io::save(&joined.document(scene.clone()), path) {
                 Ok(()) => {
                     model.path = Some(path.clone());
                     model.unsaved = false;

@@ -7,10 +7,15 @@
 
 pub mod build;
 pub mod components;
+pub mod patch_ops;
 pub mod spawn;
+pub mod state;
+pub mod world_io;
 
 pub use components::*;
-pub use spawn::{adopt_first, spawn_joined, spawn_joined_patch};
+pub use spawn::{adopt_first, spawn_joined, spawn_joined_patch, spawn_joined_with};
+pub use state::{DocState, JoinedState, StartState};
+pub use world_io::{JoinedRead, doc_state, document};
 
 use bevy::prelude::*;
 

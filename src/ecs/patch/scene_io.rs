@@ -267,8 +267,17 @@ type NetValuesMut = (&'static mut Direction, &'static mut ArcParam);
 /// from and writes one back into.
 #[derive(SystemParam)]
 pub(crate) struct PatchParts<'w, 's> {
-    patches: Query<'w, 's, PatchDataMut, With<Patch>>,
-    surface: Query<'w, 's, NetValuesMut, (With<SurfaceHandle>, Without<InitialHandle>)>,
+    patches: Query<'w, 's, PatchDataMut, (With<Patch>, Without<Joined>)>,
+    surface: Query<
+        'w,
+        's,
+        NetValuesMut,
+        (
+            With<SurfaceHandle>,
+            Without<InitialHandle>,
+            Without<JoinedHandle>,
+        ),
+    >,
     initial: Query<'w, 's, &'static mut Direction, (With<InitialHandle>, Without<SurfaceHandle>)>,
     details: Query<'w, 's, &'static mut DetailRotation, With<DetailHandle>>,
     commands: Commands<'w, 's>,
