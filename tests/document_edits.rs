@@ -395,3 +395,55 @@ fn load_and_recover_replace_every_patch_and_a_failed_load_keeps_the_design() {
     let m = app.world().resource::<Model>();
     assert!(m.unsaved && m.path.as_deref() == Some(origin.as_path()));
 }
+
+/// The census counts every patch, and says per patch what it owns as
+/// entities: a joined patch its net handles only (its levels and points
+/// are the values of its built stack).
+#[test]
+fn the_census_counts_every_patch_and_what_each_owns() {
+    let doc = hood();
+    let mut app = app(&doc);
+    let c = streamline_studio::ecs::patch::census::census(app.world_mut());
+    assert_eq!(c.patches, 3);
+    let names: Vec<&str> = c.per_patch.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(names, ["hood", "screen", "wing"]);
+    let first = &c.per_patch[0];
+    assert!(!first.joined);
+    assert_eq!(first.levels, c.levels);
+    assert_eq!(first.streamlines, c.streamlines);
+    let curve = match &doc.patches[0].start {
+        streamline_studio::scene::document::Start::Curve(c) => c.tangents.len(),
+        _ => unreachable!(),
+    };
+    assert_eq!(
+        first.handles,
+        doc.patches[0].design.net().data().len() + curve
+    );
+    for (p, d) in c.per_patch.iter().zip(&doc.patches).skip(1) {
+        assert!(p.joined);
+        assert_eq!((p.levels, p.streamlines), (0, 0));
+        assert_eq!(p.handles, d.design.net().data().len());
+        assert_eq!(p.stack_depths, doc.display_depth as usize + 1);
+    }
+    let total: usize = c.per_patch.iter().map(|p| p.handles).sum();
+    assert_eq!(
+        total,
+        c.handles.surface + c.handles.initial + c.handles.detail
+    );
+}
+
+/// The first patch is found before any system has run (the editor spawns
+/// a document's later patches then): the census of the editor's world once
+/// said `patches 1` because it was not.
+#[test]
+fn the_first_patch_is_found_before_the_first_update() {
+    let doc = hood();
+    let mut app = App::new();
+    app.add_plugins(MinimalPlugins)
+        .add_plugins(ecs::ModelPlugin::new(doc.patch_scene(0)));
+    let first = ecs::patch::patch_entity(app.world()).expect("found before any update");
+    streamline_studio::ecs::joined::spawn_joined(app.world_mut(), &doc, first);
+    app.update();
+    let c = streamline_studio::ecs::patch::census::census(app.world_mut());
+    assert_eq!(c.patches, 3);
+}

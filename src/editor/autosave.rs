@@ -209,4 +209,28 @@ mod tests {
         assert!(pending_recovery(&d, None).is_none());
         let _ = std::fs::remove_dir_all(&d.home);
     }
+
+    /// A design of several patches is autosaved whole (version 3) and
+    /// recovered whole: the recovered document is the autosaved one.
+    #[test]
+    fn recovery_keeps_every_patch() {
+        let d = dirs("patches");
+        let hood =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron");
+        let doc = document_io::load(&hood).unwrap();
+        assert_eq!(doc.patches.len(), 3);
+        write_recovery(&d, &doc, Some(&hood)).unwrap();
+        let back = document_io::load(&d.recovery_file()).unwrap();
+        assert_eq!(back.to_file(), doc.to_file());
+        // one patch: the version-2 bytes a scene's save writes
+        let scene = builtin::default_scene();
+        write_recovery(&d, &Document::from_scene(scene.clone()), None).unwrap();
+        let other = d.home.join("scene.ron");
+        io::save(&scene, &other).unwrap();
+        assert_eq!(
+            std::fs::read(d.recovery_file()).unwrap(),
+            std::fs::read(&other).unwrap()
+        );
+        let _ = std::fs::remove_dir_all(&d.home);
+    }
 }

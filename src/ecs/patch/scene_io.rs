@@ -243,9 +243,14 @@ pub fn try_scene(world: &World) -> Result<Scene, String> {
 
 /// The world's first patch entity (the one the incremental pipeline
 /// builds; not a [`Joined`] one).
+///
+/// Works before any system has run: a query naming [`Joined`] would find
+/// nothing while that component is not registered (no system has asked for
+/// it yet), which is how the editor once opened a version-3 scene without
+/// its later patches (its Stats said `patches 1`).
 pub fn patch_entity(world: &World) -> Option<Entity> {
-    let mut q = world.try_query_filtered::<Entity, (With<Patch>, Without<Joined>)>()?;
-    q.iter(world).next()
+    let mut q = world.try_query_filtered::<Entity, With<Patch>>()?;
+    q.iter(world).find(|&e| world.get::<Joined>(e).is_none())
 }
 
 /// The patch's own components, writable.

@@ -51,10 +51,14 @@ pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, 
             c.streamlines.to_string(),
             "Streamline entities: one per streamline at the display depth",
         );
+        let joined = c.per_patch.iter().filter(|p| p.joined).count();
         row(
             "patches",
-            c.patches.to_string(),
-            "Patch entities: each owns its handles, levels and streamlines",
+            match joined {
+                0 => c.patches.to_string(),
+                j => format!("{} ({j} joined)", c.patches),
+            },
+            "Patch entities: the first owns its handles, levels and streamlines; a joined patch owns its net handles, and its levels and points are values the joins build",
         );
         row(
             "handles",
