@@ -262,11 +262,11 @@ fn handle_edits_act_on_the_active_patch() {
         now.first.to_file() == start.first.to_file(),
         "hood unchanged"
     );
-    assert!(streamline_studio::ecs::joined::state::same_design(
+    assert!(streamline_studio::ecs::joined::same_design(
         &now.joined[0].design,
         &start.joined[0].design
     ));
-    assert!(!streamline_studio::ecs::joined::state::same_design(
+    assert!(!streamline_studio::ecs::joined::same_design(
         &now.joined[1].design,
         &start.joined[1].design
     ));
@@ -403,7 +403,7 @@ fn load_and_recover_replace_every_patch_and_a_failed_load_keeps_the_design() {
 fn the_census_counts_every_patch_and_what_each_owns() {
     let doc = hood();
     let mut app = app(&doc);
-    let c = streamline_studio::ecs::patch::census::census(app.world_mut());
+    let c = streamline_studio::ecs::joined::census::census(app.world_mut());
     assert_eq!(c.patches, 3);
     let names: Vec<&str> = c.per_patch.iter().map(|p| p.name.as_str()).collect();
     assert_eq!(names, ["hood", "screen", "wing"]);
@@ -444,6 +444,20 @@ fn the_first_patch_is_found_before_the_first_update() {
     let first = ecs::patch::patch_entity(app.world()).expect("found before any update");
     streamline_studio::ecs::joined::spawn_joined(app.world_mut(), &doc, first);
     app.update();
-    let c = streamline_studio::ecs::patch::census::census(app.world_mut());
+    let c = streamline_studio::ecs::joined::census::census(app.world_mut());
     assert_eq!(c.patches, 3);
+}
+
+/// Exporting a design of several patches writes every patch, as `build
+/// --export` does (one `o <name>` object per patch in OBJ).
+#[test]
+fn export_writes_every_patch() {
+    let mut app = app(&hood());
+    let path = tmp("hood.obj");
+    let done = ecs::apply(&mut app, Edit::Export(path.clone())).unwrap();
+    assert!(done.contains("3 patches"), "{done}");
+    let text = std::fs::read_to_string(&path).unwrap();
+    for name in ["hood", "screen", "wing"] {
+        assert!(text.lines().any(|l| l == format!("o {name}")), "{name}");
+    }
 }

@@ -19,8 +19,8 @@
 
 use super::components::{LevelData, SubdivisionLevel};
 use super::edit_error::EditError;
+use super::edit_state::DocState;
 use super::joined::patch_ops::{self, DocWork};
-use super::joined::state::DocState;
 use super::joined::world_io::JoinedParts;
 use super::messages::{Edit, EditMessage};
 use super::patch::scene_io::PatchParts;

@@ -1,6 +1,6 @@
 //! Resources: the scene being edited, history, the surface mesh, stats, the edit log.
 
-use super::joined::state::DocState;
+use super::edit_state::DocState;
 use bevy::prelude::*;
 use std::collections::VecDeque;
 use std::path::PathBuf;

@@ -6,7 +6,7 @@
 //! refused edit is an error naming the patch and the fix, and leaves the
 //! state as it was.
 
-use super::state::{DocState, JoinedState, StartState};
+use crate::ecs::edit_state::{DocState, JoinedState, StartState};
 use crate::scene::document_build::stacks;
 use crate::scene::document_check::check_document;
 use crate::scene::format_v3::{EdgeSpec, patch_name_problem};

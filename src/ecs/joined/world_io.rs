@@ -12,7 +12,7 @@
 
 use super::components::*;
 use super::spawn::spawn_joined_with;
-use super::state::{DocState, JoinedState, StartState, same_design};
+use crate::ecs::edit_state::{DocState, JoinedState, StartState, same_design};
 use crate::ecs::patch::{ArcParam, Direction, InitialHandle, Patch, PatchIndex, PatchName};
 use crate::scene::document::{Document, MAIN_PATCH};
 use bevy::ecs::system::SystemParam;
@@ -394,6 +394,11 @@ impl JoinedRead<'_, '_> {
                 })
             },
         )
+    }
+
+    /// Whether the document has patches after the first.
+    pub fn several(&self) -> bool {
+        !self.joined.is_empty()
     }
 
     /// The document with `first` as its first patch's scene.

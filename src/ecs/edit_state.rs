@@ -4,8 +4,9 @@
 //! entity ids change when a patch is spawned again), its design and whether
 //! it is hidden. The edit stage assembles it from the world, applies a
 //! frame's edits to it, and writes back only what differs
-//! ([`super::world_io`]); undo stores it. A one-patch design's state is its
-//! scene and nothing else.
+//! ([`super::joined::world_io`]); undo stores it ([`super::History`]). A
+//! one-patch design's state is its scene and nothing else. (It imports
+//! nothing of the ECS, so the resources and the patches may both use it.)
 
 use crate::scene::Scene;
 use crate::scene::document::{Document, MAIN_PATCH, PatchScene, Start};
@@ -39,7 +40,7 @@ pub struct JoinedState {
     /// Its control net, parameters, scheme (a joined patch has no details,
     /// fine tuning or tangent interpolation: docs/math.md §11).
     pub design: Design,
-    /// Hidden by the designer ([`super::PatchHidden`]).
+    /// Hidden by the designer (`PatchHidden`).
     pub hidden: bool,
 }
 
