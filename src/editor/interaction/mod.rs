@@ -10,6 +10,7 @@
 //! this module and not on each other; a new kind of handle is a new
 //! [`HandleKind`] here.
 
+mod active_switch;
 mod drag;
 mod handle_query;
 mod handles;
@@ -89,6 +90,7 @@ impl Plugin for InteractionPlugin {
                     placement::place,
                     placement_joined::place_joined,
                     roles::mark_roles,
+                    active_switch::follow_active,
                     selection::keep_valid,
                     selection::mark_selected,
                 )

@@ -110,34 +110,15 @@ impl Selection {
     }
 }
 
-/// Drops a selection that no longer exists (after a depth change or a
-/// load); another active patch (its handles share the ids) selects nothing
-/// and ends a drag.
+/// Drops a selection that no longer exists (after a depth change or a load).
 pub(super) fn keep_valid(
     meter: Res<crate::ecs::meter::CpuMeter>,
     handles: HandleQuery,
     mut selection: ResMut<Selection>,
-    mut drag: ResMut<super::drag::Drag>,
-    mut shown: Local<Option<Entity>>,
 ) {
     let _meter = meter.start();
     if !handles.layout_changed() || !handles.layout().placed {
         return;
-    }
-    let active = handles.layout().active;
-    if *shown != active {
-        let first = shown.is_none();
-        *shown = active;
-        if !first {
-            if !selection.is_empty() || selection.hover.is_some() {
-                selection.clear();
-                selection.hover = None;
-            }
-            if drag.0.is_some() {
-                drag.0 = None;
-            }
-            return;
-        }
     }
     if selection.iter().any(|h| handles.find(h).is_none()) {
         selection.follow(&handles);
