@@ -219,6 +219,9 @@ type Drawn<'w, 's> = Query<
     ),
 >;
 
+/// The arrows of handle entities that moved or changed role.
+type Moved<'w, 's> = Query<'w, 's, &'static ArrowDrawn, Or<(Changed<Placed>, Changed<PatchRole>)>>;
+
 /// Redraws the arrows whose handle moved or whose look changed (a turn at
 /// edit depth 0 redraws its row's arrows; a selection, the two arrows whose
 /// colour changed; a patch hidden or shown, its arrows), and only those.
@@ -227,7 +230,7 @@ fn redraw(
     meter: Res<crate::ecs::meter::CpuMeter>,
     inputs: LookInputs,
     handles: Drawn,
-    moved: Query<&ArrowDrawn, Or<(Changed<Placed>, Changed<PatchRole>)>>,
+    moved: Moved,
     added: Query<(), Added<ArrowOf>>,
     mut arrows: Query<(Entity, &ArrowOf, &mut ArrowLook, &mut Gizmo)>,
     mut assets: ResMut<Assets<GizmoAsset>>,

@@ -132,20 +132,23 @@ type Unplaced<'w, 's> = Query<
     ),
 >;
 
+/// Control tangents of the first patch whose `s` changed.
+type TurnedS<'w, 's> = Query<
+    'w,
+    's,
+    (),
+    (
+        With<SurfaceHandle>,
+        Changed<ArcParam>,
+        Without<JoinedHandle>,
+    ),
+>;
+
 /// What else moves every handle: a new `s`, a new initial curve, a handle
 /// entity not placed yet, another active patch.
 #[derive(bevy::ecs::system::SystemParam)]
 pub(super) struct MovesAll<'w, 's> {
-    s: Query<
-        'w,
-        's,
-        (),
-        (
-            With<SurfaceHandle>,
-            Changed<ArcParam>,
-            Without<JoinedHandle>,
-        ),
-    >,
+    s: TurnedS<'w, 's>,
     curve: Query<'w, 's, (), (With<InitialHandle>, Changed<Direction>)>,
     unplaced: Unplaced<'w, 's>,
     active: Res<'w, ActivePatch>,

@@ -32,7 +32,7 @@ pub(super) fn mark_roles(
     mut handles: Query<(Entity, &ChildOf, Option<&mut PatchRole>), With<Placed>>,
 ) {
     let unhidden = shown.read().count() > 0;
-    if !(layout.is_changed() || unhidden || !hid.is_empty() || !fresh.is_empty()) {
+    if !layout.is_changed() && !unhidden && hid.is_empty() && fresh.is_empty() {
         return;
     }
     for (e, parent, role) in &mut handles {
