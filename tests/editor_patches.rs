@@ -487,3 +487,67 @@ fn a_turn_on_a_joined_patch_moves_only_what_changed() {
         }
     }
 }
+
+/// With the edit stage acting on the active patch: a drag of the wing's
+/// handle turns the wing's tangent, leaves the hood's net as it was, moves
+/// the wing's row of handles in that frame, and is one undo step.
+#[test]
+#[ignore = "needs the edit stage of h/docedit (f567ad3: handle edits act on the active patch); passes merged with it"]
+fn a_drag_on_the_active_joined_patch_turns_its_tangent() {
+    let doc = hood();
+    let mut app = editor(&doc, 0);
+    let ids = patches(&mut app);
+    // the editor chooses the patch with a SetPatch edit (not an undo step)
+    app.world_mut().write_message(EditMessage::from(Edit::Patch(
+        streamline_studio::scene::patch_edit::PatchEdit::SetPatch("wing".into()),
+    )));
+    frame(&mut app);
+    frame(&mut app);
+    assert_eq!(app.world().resource::<ActivePatch>().0, Some(ids[2]));
+    assert_eq!(app.world().resource::<HandleLayout>().active, Some(ids[2]));
+    let hood_net = streamline_studio::ecs::patch::scene(app.world())
+        .design
+        .net()
+        .clone();
+    let undo = app
+        .world()
+        .resource::<streamline_studio::ecs::History>()
+        .undo_len();
+    let before = placed_of(&mut app, ids[2]);
+    let h = HandleId::tangent(0, 2, 1);
+    press(&mut app, Some(h), Some(DragKind::Sphere));
+    let dir = DVec3::new(0.2, 0.9, -0.3).normalize();
+    steer(&mut app, dir);
+    release(&mut app);
+    let e = app
+        .world()
+        .get::<PatchIndex>(ids[2])
+        .unwrap()
+        .surface
+        .get(2, 1);
+    assert!((app.world().get::<Direction>(e).unwrap().0 - dir).length() < 1e-12);
+    assert_eq!(
+        &streamline_studio::ecs::patch::scene(app.world())
+            .design
+            .net()
+            .clone(),
+        &hood_net
+    );
+    let after = placed_of(&mut app, ids[2]);
+    let moved: Vec<HandleId> = before
+        .iter()
+        .zip(&after)
+        .filter(|(b, a)| bits(&b.1) != bits(&a.1))
+        .map(|(b, _)| b.0)
+        .collect();
+    assert!(
+        moved.contains(&h) && moved.iter().all(|m| m.row == 2),
+        "{moved:?}"
+    );
+    assert_eq!(
+        app.world()
+            .resource::<streamline_studio::ecs::History>()
+            .undo_len(),
+        undo + 1
+    );
+}
