@@ -17,6 +17,7 @@ mod initial;
 mod lengths;
 mod menu_bar;
 mod mesh;
+mod seam_table;
 mod selection;
 mod stats;
 mod structure;
