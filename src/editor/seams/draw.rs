@@ -10,11 +10,23 @@ use bevy::prelude::*;
 use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
 use bevy_state::prelude::in_state;
 
+/// The seams' lines: wider than the streamlines, and drawn a little in
+/// front of the surfaces they lie on (so both sides' triangles do not hide
+/// them).
+#[derive(Default, Reflect, GizmoConfigGroup)]
+pub struct SeamGizmos;
+
 pub struct SeamDrawPlugin;
 
 impl Plugin for SeamDrawPlugin {
     fn build(&self, app: &mut App) {
-        app.add_systems(
+        app.init_gizmo_group::<SeamGizmos>()
+            .add_systems(Startup, |mut config: ResMut<GizmoConfigStore>| {
+                let (cfg, _) = config.config_mut::<SeamGizmos>();
+                cfg.line.width = 4.0;
+                cfg.depth_bias = -0.05;
+            })
+            .add_systems(
             Update,
             lines
                 .in_set(EditorSet::Present)
@@ -27,13 +39,12 @@ impl Plugin for SeamDrawPlugin {
     }
 }
 
-/// The seams' polylines, drawn twice a hair apart along the view's up so
-/// that they read over both surfaces they lie on.
+/// The seams' polylines, in their verdicts' colours.
 fn lines(
     meter: Res<crate::ecs::meter::CpuMeter>,
     settings: Res<SeamSettings>,
     seams: Res<Seams>,
-    mut gizmos: Gizmos,
+    mut gizmos: Gizmos<SeamGizmos>,
 ) {
     let _meter = meter.start();
     if !settings.show {
