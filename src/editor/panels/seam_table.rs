@@ -98,14 +98,11 @@ pub fn show(ui: &mut egui::Ui, seams: &Seams) {
 mod tests {
     use super::*;
     use crate::editor::seams::Verdict;
-    use bevy::prelude::Entity;
     use streamline_kernel::joins::{Continuity, Edge, SeamReport};
 
     #[test]
     fn cells_show_the_report_or_dashes() {
         let mut s = SeamLine {
-            a: Entity::PLACEHOLDER,
-            b: Entity::PLACEHOLDER,
             a_name: "hood".into(),
             b_name: "wing".into(),
             edge: Edge::Last,

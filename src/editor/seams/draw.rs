@@ -27,15 +27,15 @@ impl Plugin for SeamDrawPlugin {
                 cfg.depth_bias = -0.05;
             })
             .add_systems(
-            Update,
-            lines
-                .in_set(EditorSet::Present)
-                .run_if(in_state(EditorMode::Streamline)),
-        )
-        .add_systems(
-            EguiPrimaryContextPass,
-            labels.run_if(in_state(EditorMode::Streamline)),
-        );
+                Update,
+                lines
+                    .in_set(EditorSet::Present)
+                    .run_if(in_state(EditorMode::Streamline)),
+            )
+            .add_systems(
+                EguiPrimaryContextPass,
+                labels.run_if(in_state(EditorMode::Streamline)),
+            );
     }
 }
 

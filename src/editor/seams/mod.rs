@@ -36,10 +36,6 @@ impl Default for SeamSettings {
 /// One join's seam, as drawn and tabled.
 #[derive(Debug, Clone)]
 pub struct SeamLine {
-    /// The patch `A` it starts on.
-    pub a: Entity,
-    /// The patch `B` that starts there.
-    pub b: Entity,
     /// `A`'s name.
     pub a_name: String,
     /// `B`'s name.
@@ -103,7 +99,7 @@ fn collect(
     let mut rows: Vec<_> = patches.iter().collect();
     rows.sort_by_key(|r| r.1.index);
     let mut lines = Vec::new();
-    for &(b, slot, start, surface, state, b_hidden) in &rows {
+    for &(_, slot, start, surface, state, b_hidden) in &rows {
         let PatchStart::Edge {
             parent,
             edge,
@@ -122,8 +118,6 @@ fn collect(
         let report = state.and_then(|s| s.report.clone());
         let verdict = verdict::judge(report.as_ref(), continuity, bounds.size());
         lines.push(SeamLine {
-            a: parent,
-            b,
             a_name: a_slot.name.clone(),
             b_name: slot.name.clone(),
             edge,
