@@ -248,6 +248,10 @@ fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, Ed
             ))
         }
         Edit::Author(a) => author(ctx, scene, a),
+        Edit::Patch(p) => Err(EditError::Patch(format!(
+            "`{}`: patch edits are run by the playback only in this build",
+            p.label()
+        ))),
     }
 }
 

@@ -79,6 +79,9 @@ pub enum EditError {
     RebuildFailed(KernelError),
     /// The kernel refused to update the dirty windows; everything is built afresh.
     IncrementalRefused(KernelError),
+    /// An edit of the design's patches, or of a joined patch's handles,
+    /// was refused: the message names the patch and the fix (docs/math.md §11).
+    Patch(String),
 }
 
 impl From<KernelError> for EditError {
@@ -168,6 +171,7 @@ impl fmt::Display for EditError {
                 f,
                 "incremental update refused ({e}); rebuilding in full"
             ),
+            Patch(e) => f.write_str(e),
         }
     }
 }
@@ -195,7 +199,7 @@ mod tests {
         }
     }
 
-    const KINDS: usize = 27;
+    const KINDS: usize = 28;
 
     /// A number for each variant; exhaustive, so a new variant needs a sample.
     fn kind(e: &EditError) -> usize {
@@ -227,6 +231,7 @@ mod tests {
             NoDesign(_) => 24,
             RebuildFailed(_) => 25,
             IncrementalRefused(_) => 26,
+            Patch(_) => 27,
         }
     }
 
@@ -347,6 +352,10 @@ mod tests {
             (
                 IncrementalRefused(kernel()),
                 format!("incremental update refused ({k}); rebuilding in full"),
+            ),
+            (
+                Patch("no patch `x`; the patches are `main`".into()),
+                "no patch `x`; the patches are `main`".into(),
             ),
         ];
         for (e, want) in &cases {

@@ -19,7 +19,7 @@ mod edit_error;
 pub mod exchange;
 mod integrate;
 pub mod joined;
-mod mesh;
+pub(crate) mod mesh;
 pub mod messages;
 pub mod meter;
 mod output;

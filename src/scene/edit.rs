@@ -17,6 +17,7 @@
 
 use super::Scene;
 use super::format::{ConstraintSpec, Dir, Finite, OrderSpec, Point, SchemeSpec, TemplateSpec};
+use super::patch_edit::PatchEdit;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::path::PathBuf;
 use streamline_kernel::authoring::{Axis, Template};
@@ -122,6 +123,11 @@ pub enum Edit {
     /// directly (`SetAnchor(3)`, not `Author(SetAnchor(3))`).
     #[serde(skip)]
     Author(AuthorEdit),
+    /// An edit of the design's patches (docs/math.md §11): add, choose the
+    /// one handle edits act on, remove, rename, hide. A script names its
+    /// variant directly (`SetPatch("tail")`).
+    #[serde(skip)]
+    Patch(PatchEdit),
 }
 
 impl Edit {
@@ -169,6 +175,7 @@ impl Edit {
                 radians.to_degrees()
             ),
             Edit::Author(a) => a.label(),
+            Edit::Patch(p) => p.label(),
         }
     }
 
@@ -176,6 +183,9 @@ impl Edit {
     pub fn is_undoable(&self) -> bool {
         if let Edit::Author(a) = self {
             return a.is_undoable();
+        }
+        if let Edit::Patch(p) = self {
+            return p.is_undoable();
         }
         !matches!(
             self,

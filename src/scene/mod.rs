@@ -25,6 +25,7 @@ pub mod model;
 pub mod numbers;
 pub mod obj;
 pub mod obj_shell;
+pub mod patch_edit;
 pub mod patch_text;
 pub mod script;
 pub mod spec_kernel;

@@ -15,7 +15,8 @@
 use super::edit::{AuthorEdit, Edit};
 use super::error::SceneError;
 use super::format::{Finite, OrderSpec, Point, SchemeSpec, TuningSpec};
-use super::format_v3::{ContinuitySpec, EdgeSpec};
+use super::format_v3::ContinuitySpec;
+use super::patch_edit::PatchEdit;
 use serde::de::{
     self, DeserializeOwned, DeserializeSeed, EnumAccess, VariantAccess, Visitor,
     value::EnumAccessDeserializer,
@@ -39,7 +40,7 @@ pub struct Script {
 /// written by its name alone (`SetDirection(row: 2, col: 4, dir: (1.0, 0.0, 0.4))`,
 /// `Undo`, `ExpectSame(mark: "start", tolerance: 0.0)`): an edit step is the
 /// very [`Edit`] the model applies, named by its variant (an authoring edit
-/// by its [`AuthorEdit`] variant).
+/// by its [`AuthorEdit`] variant, a patch edit by its [`PatchEdit`] variant).
 #[derive(Clone)]
 pub enum Step {
     /// Opens a scene file (relative to the script) or `builtin:NAME`.
@@ -58,43 +59,6 @@ pub enum Step {
     Edit(Edit),
     /// An expectation, checked against the model.
     Expect(Expect),
-    /// A step on the design's patches (docs/math.md §11).
-    Patch(PatchStep),
-}
-
-/// A step on the design's patches (docs/math.md §11), run by the playback
-/// against the world's patch entities.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub enum PatchStep {
-    /// A new patch `name` starting on `from`'s edge (`(patch, edge)`) with
-    /// `continuity`: a `rows × cols` net, its streamlines `length` long. A
-    /// chain (`End`) takes the patch's rows (`rows` must be theirs) and
-    /// continues its last column; a side join (`First`, `Last`) leaves the
-    /// streamline across it.
-    AddPatch {
-        name: String,
-        from: (String, EdgeSpec),
-        continuity: ContinuitySpec,
-        rows: usize,
-        cols: usize,
-        length: Finite,
-    },
-    /// The patch later edits act on (the first patch until one is set).
-    SetPatch(String),
-    /// Removes a patch no other patch starts on (not the first).
-    RemovePatch(String),
-    /// Renames a patch.
-    RenamePatch(String, String),
-    /// The seam between `a` and `b` (which starts on `a`) has `continuity`,
-    /// a gap of at most `max_gap` and a normal angle of at most `max_angle_deg`.
-    ExpectSeam {
-        a: String,
-        b: String,
-        continuity: ContinuitySpec,
-        max_gap: Finite,
-        max_angle_deg: Finite,
-    },
 }
 
 /// Every step's name, in the order an unknown step's message lists them
@@ -146,6 +110,7 @@ const STEPS: &[&str] = &[
     "SetPatch",
     "RemovePatch",
     "RenamePatch",
+    "HidePatch",
     "ExpectSeam",
 ];
 
@@ -234,6 +199,18 @@ pub enum Expect {
         by: Point,
         tolerance: Finite,
     },
+    /// The seam between patches `a` and `b` (which starts on `a`) has
+    /// `continuity`, a gap of at most `max_gap` and a normal angle of at
+    /// most `max_angle_deg` (docs/math.md §11). Naming a patch that is not
+    /// there, or two patches without a seam, is the step's error (which
+    /// `ExpectError` can expect).
+    ExpectSeam {
+        a: String,
+        b: String,
+        continuity: ContinuitySpec,
+        max_gap: Finite,
+        max_angle_deg: Finite,
+    },
 }
 
 impl Step {
@@ -252,9 +229,9 @@ impl fmt::Debug for Step {
             Step::Export(p) => f.debug_tuple("Export").field(p).finish(),
             Step::SetTuning(t) => f.debug_tuple("SetTuning").field(t).finish(),
             Step::Edit(Edit::Author(a)) => fmt::Debug::fmt(a, f),
+            Step::Edit(Edit::Patch(p)) => fmt::Debug::fmt(p, f),
             Step::Edit(e) => fmt::Debug::fmt(e, f),
             Step::Expect(x) => fmt::Debug::fmt(x, f),
-            Step::Patch(p) => fmt::Debug::fmt(p, f),
         }
     }
 }
@@ -267,15 +244,16 @@ impl Serialize for Step {
             Step::Export(p) => s.serialize_newtype_variant("Step", 2, "Export", p),
             Step::SetTuning(t) => s.serialize_newtype_variant("Step", 11, "SetTuning", t),
             Step::Edit(Edit::Author(a)) => a.serialize(s),
+            Step::Edit(Edit::Patch(p)) => p.serialize(s),
             Step::Edit(e) => e.serialize(s),
             Step::Expect(x) => x.serialize(s),
-            Step::Patch(p) => p.serialize(s),
         }
     }
 }
 
 /// Reads the step's name, then hands the rest of the step to the type that
-/// has a variant of that name ([`Edit`], [`AuthorEdit`], [`Expect`]): the
+/// has a variant of that name ([`Edit`], [`AuthorEdit`], [`PatchEdit`],
+/// [`Expect`]): the
 /// same reader goes on, so every error keeps its place in the file.
 impl<'de> Deserialize<'de> for Step {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
@@ -303,8 +281,8 @@ impl<'de> Visitor<'de> for StepVisitor {
             _ if names::<Expect>().contains(&name) => {
                 Step::Expect(Expect::deserialize(named(rest))?)
             }
-            _ if names::<PatchStep>().contains(&name) => {
-                Step::Patch(PatchStep::deserialize(named(rest))?)
+            _ if names::<PatchEdit>().contains(&name) => {
+                Step::Edit(Edit::Patch(PatchEdit::deserialize(named(rest))?))
             }
             _ if names::<AuthorEdit>().contains(&name) => {
                 Step::Edit(Edit::Author(AuthorEdit::deserialize(named(rest))?))
@@ -509,7 +487,7 @@ mod tests {
             .chain(names::<Edit>().iter().copied())
             .chain(names::<AuthorEdit>().iter().copied())
             .chain(names::<Expect>().iter().copied())
-            .chain(names::<PatchStep>().iter().copied())
+            .chain(names::<PatchEdit>().iter().copied())
             .collect();
         let mut listed = STEPS.to_vec();
         read.sort_unstable();

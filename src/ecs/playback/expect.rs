@@ -78,6 +78,8 @@ pub(super) fn check(
             by,
             tolerance,
         } => shifted(marks, points, mark, by, tolerance),
+        // checked against the patch entities (`playback/patches.rs`)
+        Expect::ExpectSeam { .. } => Err("a seam is checked by the playback's patch steps".into()),
     }
 }
 

@@ -50,7 +50,9 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
                 .lines
                 .push(format!("step {at:>3}: FAIL unexpected error: {err}"));
         }
-        if let Step::Expect(x) = step {
+        if let Step::Expect(x) = step
+            && !matches!(x, Expect::ExpectSeam { .. })
+        {
             let res = expect::check(&app, x, &mut marks, &mut pending);
             let label = short(step);
             match res {
@@ -63,7 +65,8 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
             continue;
         }
         let outcome = match step {
-            Step::Patch(p) => Some(patches::run(&mut app, p, &mut acting)),
+            Step::Edit(Edit::Patch(p)) => Some(patches::run(&mut app, p, &mut acting)),
+            Step::Expect(x) => Some(patches::expect_seam(&mut app, x)),
             Step::Edit(e) => acting
                 .map(|patch| patches::edit_joined(&mut app, patch, e).map(patches::Outcome::Done)),
             _ => None,
@@ -183,6 +186,6 @@ pub(crate) fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
         Step::Export(p) => Edit::Export(output(dir, p)?),
         Step::SetTuning(t) => Edit::SetTuning(t.as_ref().map(|t| t.to_kernel()).transpose()?),
         Step::Edit(e) => e.clone(),
-        Step::Expect(_) | Step::Patch(_) => return Err("not an edit".into()),
+        Step::Expect(_) => return Err("not an edit".into()),
     })
 }

@@ -12,7 +12,8 @@ use crate::ecs::messages::Edit;
 use crate::ecs::patch::{Direction, Joined, PatchIndex, PatchKernel, PatchName, patch_entity};
 use crate::scene::document::MAIN_PATCH;
 use crate::scene::format_v3::{EdgeSpec, patch_name_problem};
-use crate::scene::script::PatchStep;
+use crate::scene::patch_edit::PatchEdit;
+use crate::scene::script::Expect;
 use bevy::prelude::*;
 use streamline_kernel::joins::{Continuity, Edge};
 use streamline_kernel::streamline::integrate::polyline_length;
@@ -89,20 +90,12 @@ pub(super) enum Outcome {
 /// the first). `Err`: the step is bad (a located message).
 pub(super) fn run(
     app: &mut App,
-    step: &PatchStep,
-    acting: &mut Option<Entity>,
-) -> Result<Outcome, String> {
-    step_on(app, step, acting)
-}
-
-fn step_on(
-    app: &mut App,
-    step: &PatchStep,
+    step: &PatchEdit,
     acting: &mut Option<Entity>,
 ) -> Result<Outcome, String> {
     let world = app.world_mut();
     match step {
-        PatchStep::AddPatch {
+        PatchEdit::AddPatch {
             name,
             from: (a, edge),
             continuity,
@@ -150,12 +143,12 @@ fn step_on(
                 continuity.to_kernel().name()
             )))
         }
-        PatchStep::SetPatch(name) => {
+        PatchEdit::SetPatch(name) => {
             let e = find(world, name)?;
             *acting = world.get::<Joined>(e).map(|_| e);
             Ok(Outcome::Done(format!("edits act on `{name}`")))
         }
-        PatchStep::RemovePatch(name) => {
+        PatchEdit::RemovePatch(name) => {
             let e = find(world, name)?;
             if world.get::<Joined>(e).is_none() {
                 return Err(format!(
@@ -180,7 +173,7 @@ fn step_on(
             app.update();
             Ok(Outcome::Done(format!("removed patch `{name}`")))
         }
-        PatchStep::RenamePatch(from, to) => {
+        PatchEdit::RenamePatch(from, to) => {
             let e = find(world, from)?;
             fresh_name(world, to)?;
             if let Some(first) = patch_entity(world) {
@@ -197,7 +190,25 @@ fn step_on(
             }
             Ok(Outcome::Done(format!("renamed `{from}` to `{to}`")))
         }
-        PatchStep::ExpectSeam {
+        PatchEdit::HidePatch(name, hide) => {
+            let e = find(world, name)?;
+            if *hide {
+                world.entity_mut(e).insert(crate::ecs::joined::PatchHidden);
+            } else {
+                world
+                    .entity_mut(e)
+                    .remove::<crate::ecs::joined::PatchHidden>();
+            }
+            Ok(Outcome::Done(step.label()))
+        }
+    }
+}
+
+/// An `ExpectSeam` step: `Err` when it names no seam (the step's error).
+pub(super) fn expect_seam(app: &mut App, x: &Expect) -> Result<Outcome, String> {
+    let world = app.world_mut();
+    match x {
+        Expect::ExpectSeam {
             a,
             b,
             continuity,
@@ -239,6 +250,7 @@ fn step_on(
                 )))
             }
         }
+        _ => Err("not a seam expectation".into()),
     }
 }
 
