@@ -4,10 +4,18 @@
 //! that handle edits act on ([`ActivePatch`]); the chosen patch can be
 //! renamed, hidden or deleted, and a new patch started on one of its edges
 //! ("New patch on edge…": edge, continuity, net size, length). Every change
-//! is sent as an edit ([`PatchAction::edit`]); the section computes nothing.
+//! of the design is sent as an [`Edit::Patch`] ([`PatchAction::edit`]: one
+//! undo step each, applied by the edit stage); choosing a patch is not a
+//! change of the design (not an undo step, as `PatchEdit::SetPatch` is not):
+//! it sets [`ActivePatch`] directly, the value `SetPatch` sets, so the choice
+//! shows in the frame of the click. The section computes nothing.
 
 use crate::ecs::joined::{ActivePatch, Joined, JoinedDesign, PatchHidden, PatchSlot, PatchStart};
 use crate::ecs::patch::PatchKernel;
+use crate::ecs::{Edit, EditMessage};
+use crate::scene::format::Finite;
+use crate::scene::format_v3::{ContinuitySpec, EdgeSpec};
+use crate::scene::patch_edit::PatchEdit;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::egui;
@@ -160,6 +168,27 @@ pub enum PatchAction {
     Add { from: String, form: NewPatchForm },
 }
 
+impl PatchAction {
+    /// The edit that carries it out (`None` for a choice of patch, which is
+    /// not an edit of the design).
+    pub fn edit(&self) -> Option<Edit> {
+        Some(Edit::Patch(match self.clone() {
+            PatchAction::Select(_) => return None,
+            PatchAction::Rename(a, b) => PatchEdit::RenamePatch(a, b),
+            PatchAction::Hide(n, h) => PatchEdit::HidePatch(n, h),
+            PatchAction::Remove(n) => PatchEdit::RemovePatch(n),
+            PatchAction::Add { from, form } => PatchEdit::AddPatch {
+                name: form.name.trim().to_string(),
+                from: (from, EdgeSpec::from_kernel(form.edge)),
+                continuity: ContinuitySpec::from_kernel(form.continuity),
+                rows: form.rows,
+                cols: form.cols,
+                length: Finite(form.length),
+            },
+        }))
+    }
+}
+
 /// What only the Patches section touches.
 #[derive(SystemParam)]
 pub struct PatchesSection<'w, 's> {
@@ -178,7 +207,7 @@ pub struct PatchesSection<'w, 's> {
     first: Query<'w, 's, (Entity, &'static PatchKernel), Without<Joined>>,
     pub active: ResMut<'w, ActivePatch>,
     pub form: ResMut<'w, PatchesForm>,
-    pub commands: Commands<'w, 's>,
+    pub edits: MessageWriter<'w, EditMessage>,
 }
 
 impl PatchesSection<'_, '_> {
@@ -423,25 +452,18 @@ fn new_patch_form(
     }
 }
 
-/// Carries out what the designer asked for.
+/// Carries out what the designer asked for: a choice directly, the rest
+/// as edits (module documentation).
 fn apply(p: &mut PatchesSection, rows: &[PatchRow], a: PatchAction) {
-    match a {
-        PatchAction::Select(name) => {
-            if let Some(r) = rows.iter().find(|r| r.name == name) {
-                let want = ActivePatch((r.index > 0).then_some(r.entity));
-                p.active.set_if_neq(want);
-            }
+    if let PatchAction::Select(name) = &a {
+        if let Some(r) = rows.iter().find(|r| r.name == *name) {
+            let want = ActivePatch((r.index > 0).then_some(r.entity));
+            p.active.set_if_neq(want);
         }
-        PatchAction::Hide(name, hide) => {
-            if let Some(r) = rows.iter().find(|r| r.name == name) {
-                if hide {
-                    p.commands.entity(r.entity).insert(PatchHidden);
-                } else {
-                    p.commands.entity(r.entity).remove::<PatchHidden>();
-                }
-            }
-        }
-        _ => {}
+        return;
+    }
+    if let Some(edit) = a.edit() {
+        p.edits.write(EditMessage::from(edit));
     }
 }
 
@@ -481,6 +503,46 @@ mod tests {
 
     /// The form refuses what §11 refuses, naming the fix, and lets a good
     /// patch through.
+    /// The `PatchEdit` an action sends (a choice sends none).
+    fn patch_edit(a: PatchAction) -> Option<PatchEdit> {
+        match a.edit()? {
+            Edit::Patch(p) => Some(p),
+            other => panic!("not a patch edit: {other:?}"),
+        }
+    }
+
+    /// Each action is the `PatchEdit` the edit stage applies; a choice is none.
+    #[test]
+    fn actions_are_patch_edits() {
+        assert_eq!(patch_edit(PatchAction::Select("wing".into())), None);
+        assert_eq!(
+            patch_edit(PatchAction::Hide("wing".into(), true)),
+            Some(PatchEdit::HidePatch("wing".into(), true))
+        );
+        let add = PatchAction::Add {
+            from: "hood".into(),
+            form: NewPatchForm {
+                name: " fin ".into(),
+                edge: Edge::Last,
+                continuity: Continuity::G1,
+                rows: 4,
+                cols: 3,
+                length: 0.5,
+            },
+        };
+        assert_eq!(
+            patch_edit(add),
+            Some(PatchEdit::AddPatch {
+                name: "fin".into(),
+                from: ("hood".into(), EdgeSpec::Last),
+                continuity: ContinuitySpec::G1,
+                rows: 4,
+                cols: 3,
+                length: Finite(0.5),
+            })
+        );
+    }
+
     #[test]
     fn the_new_patch_form_refuses_bad_settings() {
         let r = rows();
