@@ -339,3 +339,33 @@ fn a_glb_exported_with_a_map_shown_has_its_colours() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 28: the editor draws every patch of hood-screen-wing, its two
+/// seams with their continuities and measured figures, and a click on the
+/// wing's surface chooses the wing (`tests/gui/patches.sh` checks the
+/// report; the picture shows the three patches in their colours).
+#[test]
+fn several_patches_are_drawn_and_a_click_chooses_one() {
+    let _gui = gui_lock();
+    let dir = temp_dir("patches");
+    let report = dir.join("patches.json");
+    let out = dir.join("patches.png");
+    let run = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24", "bash"])
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/gui/patches.sh"))
+        .arg(BIN)
+        .arg(&out)
+        .arg(&report)
+        .env_remove("DISPLAY")
+        .output()
+        .expect("xvfb-run, xdotool and python3 are installed by scripts/setup.sh");
+    assert!(
+        run.status.success(),
+        "patches run failed: {}{}{}",
+        String::from_utf8_lossy(&run.stdout),
+        String::from_utf8_lossy(&run.stderr),
+        std::fs::read_to_string(report.with_extension("json.log")).unwrap_or_default()
+    );
+    assert!(out.is_file());
+    let _ = std::fs::remove_dir_all(&dir);
+}

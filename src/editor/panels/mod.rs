@@ -449,7 +449,7 @@ fn panel(
                                 &mut sections.file.files,
                             );
                         }
-                        PanelName::Patches => patches::show(ui, &mut sections.patches),
+                        PanelName::Patches => patches::show(ui, &mut p, &mut sections.patches),
                         PanelName::Subdivision => subdivision::show(ui, &mut p),
                         PanelName::Structure => structure::show(ui, &mut p),
                         PanelName::Selection => {

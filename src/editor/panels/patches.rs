@@ -10,9 +10,9 @@
 //! it sets [`ActivePatch`] directly, the value `SetPatch` sets, so the choice
 //! shows in the frame of the click. The section computes nothing.
 
+use crate::ecs::Edit;
 use crate::ecs::joined::{ActivePatch, Joined, JoinedDesign, PatchHidden, PatchSlot, PatchStart};
 use crate::ecs::patch::PatchKernel;
-use crate::ecs::{Edit, EditMessage};
 use crate::scene::format::Finite;
 use crate::scene::format_v3::{ContinuitySpec, EdgeSpec};
 use crate::scene::patch_edit::PatchEdit;
@@ -207,7 +207,6 @@ pub struct PatchesSection<'w, 's> {
     first: Query<'w, 's, (Entity, &'static PatchKernel), Without<Joined>>,
     pub active: ResMut<'w, ActivePatch>,
     pub form: ResMut<'w, PatchesForm>,
-    pub edits: MessageWriter<'w, EditMessage>,
 }
 
 impl PatchesSection<'_, '_> {
@@ -258,7 +257,8 @@ impl PatchesSection<'_, '_> {
     }
 }
 
-pub fn show(ui: &mut egui::Ui, p: &mut PatchesSection) {
+/// The section; edits go out through the panels' `ctx`.
+pub fn show(ui: &mut egui::Ui, ctx: &mut super::PanelCtx, p: &mut PatchesSection) {
     let rows = p.rows();
     if rows.len() < 2 {
         ui.label(egui::RichText::new("one patch").weak())
@@ -299,7 +299,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PatchesSection) {
         chosen_patch(ui, p, &rows, a, &mut actions);
     }
     for a in actions {
-        apply(p, &rows, a);
+        apply(ctx, p, &rows, a);
     }
 }
 
@@ -454,7 +454,7 @@ fn new_patch_form(
 
 /// Carries out what the designer asked for: a choice directly, the rest
 /// as edits (module documentation).
-fn apply(p: &mut PatchesSection, rows: &[PatchRow], a: PatchAction) {
+fn apply(ctx: &mut super::PanelCtx, p: &mut PatchesSection, rows: &[PatchRow], a: PatchAction) {
     if let PatchAction::Select(name) = &a {
         if let Some(r) = rows.iter().find(|r| r.name == *name) {
             let want = ActivePatch((r.index > 0).then_some(r.entity));
@@ -463,7 +463,7 @@ fn apply(p: &mut PatchesSection, rows: &[PatchRow], a: PatchAction) {
         return;
     }
     if let Some(edit) = a.edit() {
-        p.edits.write(EditMessage::from(edit));
+        ctx.send(edit);
     }
 }
 
