@@ -35,6 +35,8 @@ xdotool mousemove 1100 110; sleep 1.0
 touch "$REPORT.done"
 wait $PID
 trap - EXIT
+# the report's checks (the Rust test makes the same with serde_json)
+command -v python3 >/dev/null || { echo "no python3: report not checked here"; exit 0; }
 python3 - "$REPORT" "$CLICK" <<'PY'
 import json, math, sys
 r = json.load(open(sys.argv[1]))
