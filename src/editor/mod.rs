@@ -182,10 +182,6 @@ pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
         continuous: opts.screenshot.is_some(),
     })
     .add_plugins(EditorPlugin);
-    // `patch_entity` queries `Without<Joined>`: no query of it is built
-    // before the first update, so register it, else it finds no patch
-    app.world_mut()
-        .register_component::<crate::ecs::patch::Joined>();
     if let Some(doc) = &opts.document
         && let Some(first) = crate::ecs::patch::patch_entity(app.world())
     {
