@@ -113,7 +113,8 @@ impl JoinedParts<'_, '_> {
                     edge,
                     continuity,
                 } => PatchStart::Edge {
-                    parent: ids[*parent],
+                    // an earlier patch (a state names no later one; never panics)
+                    parent: ids.get(*parent).copied().unwrap_or(first),
                     edge: *edge,
                     continuity: *continuity,
                 },
