@@ -339,3 +339,60 @@ fn a_glb_exported_with_a_map_shown_has_its_colours() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 28: the editor draws every patch of hood-screen-wing, its two
+/// seams with their continuities and measured figures, and a click on the
+/// wing's surface chooses the wing (`tests/gui/patches.sh` checks the
+/// report; the picture shows the three patches in their colours).
+#[test]
+fn several_patches_are_drawn_and_a_click_chooses_one() {
+    let _gui = gui_lock();
+    let dir = temp_dir("patches");
+    let report = dir.join("patches.json");
+    let out = dir.join("patches.png");
+    let run = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24", "bash"])
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/gui/patches.sh"))
+        .arg(BIN)
+        .arg(&out)
+        .arg(&report)
+        .env_remove("DISPLAY")
+        .output()
+        .expect("xvfb-run and xdotool are installed by scripts/setup.sh");
+    assert!(
+        run.status.success(),
+        "patches run failed: {}{}{}",
+        String::from_utf8_lossy(&run.stdout),
+        String::from_utf8_lossy(&run.stderr),
+        std::fs::read_to_string(report.with_extension("json.log")).unwrap_or_default()
+    );
+    assert!(out.is_file());
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let names: Vec<&str> = r["patches"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p[0].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["hood", "screen", "wing"]);
+    for p in &r["patches"].as_array().unwrap()[1..] {
+        assert!(p[1].as_bool().unwrap() && p[2].as_u64().unwrap() > 0, "{p}");
+    }
+    let seams = r["seams"].as_array().unwrap();
+    let seam = |b: &str| {
+        seams
+            .iter()
+            .find(|s| s[0] == "hood" && s[1] == b)
+            .unwrap_or_else(|| panic!("no seam hood–{b}: {seams:?}"))
+    };
+    let (screen, wing) = (seam("screen"), seam("wing"));
+    assert_eq!((&screen[2], &screen[3]), (&"End".into(), &"G2".into()));
+    assert_eq!(screen[5].as_f64(), Some(0.0), "a chain's gap is 0");
+    assert!(screen[6].as_f64().unwrap() < 1e-6, "G2: normals agree");
+    assert_eq!((&wing[2], &wing[3]), (&"Last".into(), &"G1".into()));
+    assert!(wing[5].as_f64().unwrap() < 1e-9);
+    assert!(wing[6].as_f64().unwrap() < 5.0);
+    assert_eq!(r["active_patch"], "wing", "the click chose the wing");
+    let _ = std::fs::remove_dir_all(&dir);
+}

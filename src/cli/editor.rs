@@ -55,7 +55,7 @@ pub struct ScreenshotArgs {
     /// Window size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x800")]
     size: String,
-    /// Open only this panel section: file, subdivision, structure, selection, display, tuning, analysis, mesh, stats, initial, curvature.
+    /// Open only this panel section: file, patches, subdivision, structure, selection, display, tuning, analysis, mesh, stats, initial, curvature.
     #[arg(long)]
     panel: Option<String>,
     /// Surface display: shaded, gaussian, mean, zebra, deviation (from the fitted B-spline surface).
@@ -112,7 +112,7 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
         None => None,
         Some(p) => Some(PanelName::parse(p).ok_or_else(|| {
             CliError::Usage(format!(
-                "--panel '{p}': choose file, subdivision, selection, initial, curvature, display, tuning, analysis, mesh or stats"
+                "--panel '{p}': choose file, patches, subdivision, selection, initial, curvature, display, tuning, analysis, mesh or stats"
             ))
         })?),
     };

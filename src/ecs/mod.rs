@@ -20,7 +20,7 @@ pub mod edit_state;
 pub mod exchange;
 mod integrate;
 pub mod joined;
-mod mesh;
+pub(crate) mod mesh;
 pub mod messages;
 pub mod meter;
 mod output;

@@ -11,7 +11,8 @@
 //! (the shaded surface and its analysis displays); [`mesh_mode`] (the Loop
 //! mesh); [`document`] (files, new design, the file browser); `handles`
 //! (arrows, picking, box selection, the sphere view, structure edits) and
-//! [`view`] (camera, pacing, anti-aliasing, frame timing, overlay); `panels`;
+//! [`view`] (camera, pacing, anti-aliasing, frame timing, overlay); `seams`
+//! (a document's several patches: seams, their streamlines, picking a patch); `panels`;
 //! then the screenshot run (`screenshot`) and [`autosave`], which read the rest.
 
 pub mod autosave;
@@ -22,6 +23,7 @@ pub mod interaction;
 pub mod mesh_mode;
 mod panels;
 mod screenshot;
+mod seams;
 mod surface;
 pub mod view;
 
@@ -83,6 +85,8 @@ impl Plugin for EditorPlugin {
             handles::structure::StructurePlugin,
             handles::box_select::BoxSelectPlugin,
             document::file_browser::FileBrowserPlugin,
+            surface::patches::PatchSurfacesPlugin,
+            seams::SeamsPlugin,
         ));
     }
 }
@@ -178,6 +182,10 @@ pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
         continuous: opts.screenshot.is_some(),
     })
     .add_plugins(EditorPlugin);
+    // `patch_entity` queries `Without<Joined>`: no query of it is built
+    // before the first update, so register it, else it finds no patch
+    app.world_mut()
+        .register_component::<crate::ecs::patch::Joined>();
     if let Some(doc) = &opts.document
         && let Some(first) = crate::ecs::patch::patch_entity(app.world())
     {

@@ -76,6 +76,8 @@ struct ShotProgress {
     requested: bool,
     captured: Option<u32>,
     position_written: bool,
+    /// `REPORT.patches` is written.
+    patches_written: bool,
     held: u32,
     /// Frames drawn while work ran off the frame (opening a mesh).
     busy_frames: u32,
@@ -223,12 +225,67 @@ struct Report {
     /// made `f32` as the views make it; `0`
     /// when every row and column that edits rewrote in place got there).
     shown_gap: Option<f64>,
+    /// A document's patches as drawn: name, shown, vertices of its mesh
+    /// (0 for the first patch while its incremental mesh shows it).
+    patches: Vec<(String, bool, usize)>,
+    /// The active patch's name.
+    active_patch: Option<String>,
+    /// The seams as drawn: A, B, edge, continuity, verdict, gap, angle (°),
+    /// curvature deviation (`NaN` when not measured).
+    seams: Vec<(String, String, String, String, String, f64, f64, f64)>,
 }
+
+/// The patches and seams a GUI test reads back.
+type PatchReport<'w, 's> = (
+    Res<'w, super::seams::Seams>,
+    Res<'w, super::surface::patches::PatchMeshes>,
+    Res<'w, crate::ecs::joined::ActivePatch>,
+    Query<
+        'w,
+        's,
+        (
+            Entity,
+            &'static crate::ecs::joined::PatchSlot,
+            Has<crate::ecs::joined::PatchHidden>,
+        ),
+    >,
+);
 
 fn write_report(path: &std::path::Path, r: &Report) {
     if let Ok(text) = serde_json::to_string_pretty(r) {
         let _ = std::fs::write(path, text);
     }
+}
+
+/// Writes `REPORT.patches`: for each patch drawn from its stack, its name
+/// and its middle vertex in window pixels (`name x y` a line), where a GUI
+/// test clicks to choose it.
+fn write_patch_positions(
+    req: &ScreenshotRequest,
+    (_, patch_meshes, _, slots): &PatchReport,
+    camera: &Query<(&Camera, &GlobalTransform), With<MainCamera>>,
+) -> bool {
+    let Some(report) = &req.report else {
+        return true;
+    };
+    let Ok((cam, gt)) = camera.single() else {
+        return false;
+    };
+    let mut text = String::new();
+    for (e, slot, _) in slots {
+        let Some(m) = patch_meshes.meshes.get(&e) else {
+            continue;
+        };
+        let Some(mid) = m.positions.get(m.positions.len() / 2) else {
+            continue;
+        };
+        if let Ok(q) = cam.world_to_viewport(gt, to_view(*mid)) {
+            text += &format!("{} {} {}\n", slot.name, q.x.round(), q.y.round());
+        }
+    }
+    let mut at = report.clone().into_os_string();
+    at.push(".patches");
+    std::fs::write(at, text).is_ok()
 }
 
 /// Writes `REPORT.at`: the selected handle's shaft midpoint in window pixels.
@@ -285,6 +342,7 @@ fn drive(
     sphere: Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
     mesh: Res<super::mesh_mode::MeshView>,
     pending: Res<PendingPipelines>,
+    patch_report: PatchReport,
 ) {
     p.frame += 1;
     if mesh.busy() {
@@ -307,6 +365,9 @@ fn drive(
     }
     if !p.position_written && p.frame >= 10 {
         p.position_written = write_handle_position(&req, &selection, &arrows, &camera, &sphere);
+    }
+    if !p.patches_written && p.frame >= 10 {
+        p.patches_written = write_patch_positions(&req, &patch_report, &camera);
     }
     // and until the render world has compiled its pipelines
     if pending.0.load(std::sync::atomic::Ordering::Relaxed) == 0 {
@@ -331,6 +392,7 @@ fn drive(
         && p.frame > at + 2
     {
         if let Some(path) = &req.report {
+            let (seams, patch_meshes, active, slots) = &patch_report;
             // the control net, read from its handle entities
             let net = patch.net();
             write_report(
@@ -372,6 +434,41 @@ fn drive(
                     busy_frames: p.busy_frames,
                     mesh_error: mesh.text.error.clone(),
                     shown_gap: p.shown_gap,
+                    patches: {
+                        let mut v: Vec<_> = slots.iter().collect();
+                        v.sort_by_key(|r| r.1.index);
+                        v.into_iter()
+                            .map(|(e, slot, hidden)| {
+                                let n =
+                                    patch_meshes.meshes.get(&e).map_or(0, |m| m.positions.len());
+                                (slot.name.clone(), !hidden, n)
+                            })
+                            .collect()
+                    },
+                    active_patch: slots
+                        .iter()
+                        .find(|r| match active.0 {
+                            Some(e) => r.0 == e,
+                            None => r.1.index == 0,
+                        })
+                        .map(|r| r.1.name.clone()),
+                    seams: seams
+                        .lines
+                        .iter()
+                        .map(|l| {
+                            let r = l.report.as_ref();
+                            (
+                                l.a_name.clone(),
+                                l.b_name.clone(),
+                                l.edge.name().to_string(),
+                                l.continuity.name().to_string(),
+                                l.verdict.name().to_string(),
+                                r.map_or(f64::NAN, |r| r.gap),
+                                r.map_or(f64::NAN, |r| r.angle_deg),
+                                r.map_or(f64::NAN, |r| r.curvature_dev),
+                            )
+                        })
+                        .collect(),
                 },
             );
         }

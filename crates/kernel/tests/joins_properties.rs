@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::joins::{Field, PairSpec, bits, pair_spec};
+use common::joins::{Field, PairSpec, bits, pair_spec, side_pair};
 use glam::{DQuat, DVec3};
 use proptest::prelude::*;
 use streamline_kernel::grid::Grid;
@@ -106,28 +106,6 @@ fn default_omega(mut spec: PairSpec) -> PairSpec {
         spec.scheme = SurfaceScheme::Kobbelt { omega: 1.0 };
     }
     spec
-}
-
-/// `B` on `A`'s side edge: its rows along the edge, leaving it outwards.
-fn side_pair(spec: &PairSpec, f: Field, edge: Edge, depth: u32) -> Option<(Design, Stack, Design)> {
-    let a = spec.a(f);
-    let sa = match Stack::build(&a, depth) {
-        Ok(s) => s,
-        Err(KernelError::ParamsNotIncreasing { .. }) => return None,
-        Err(e) => panic!("{e}"),
-    };
-    // inside what A's streamline covers at the deepest depth (an
-    // approximating scheme's boundary streamline shortens with depth)
-    let deep = EdgeCurve::of(&sa, depth, edge).unwrap();
-    let margin = 0.05 * (deep.length() - deep.start());
-    let out = if edge == Edge::First {
-        -DVec3::Y
-    } else {
-        DVec3::Y
-    };
-    let b = spec.b_side(f, (deep.start() + margin, deep.length() - margin), out);
-    b.level(depth).ok()?;
-    Some((a, sa, b))
 }
 
 proptest! {

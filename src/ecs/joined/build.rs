@@ -4,9 +4,14 @@
 //!   [`JoinedDesign`] (only the cells that differ; nothing when nothing does);
 //! * [`build_joined`] rebuilds, through the kernel's joins as
 //!   [`crate::scene::document_build::stacks`] does (`chain`, `side`,
-//!   `g2_run`), exactly the patches whose own design changed, whose parent
-//!   was rebuilt, or whose G2 run has a changed member, and the seam report
-//!   of every join with a rebuilt side. The first patch's stack is made from
+//!   `g2_run`), exactly the patches whose own design changed or whose G2
+//!   run has a changed member, and the seam report of every join with a
+//!   rebuilt side. A patch whose parent was rebuilt while its own design
+//!   did not change goes through [`rejoin`]: its levels are kept when what
+//!   they read of the parent (a chain's `t` and G1 seam column, a side G1
+//!   join's edge curve) did not change, and only its points are placed
+//!   again on the parent's moved edge (bit for bit the whole join's); it is
+//!   left alone, and so are the patches on it, when nothing it reads moved. The first patch's stack is made from
 //!   its [`PatchKernel`] (which the incremental pipeline keeps up to date),
 //!   rebuilt when that or the display depth changes.
 //!
@@ -19,6 +24,8 @@
 //! [`PatchSurface`], which equals [`crate::scene::Document::build`]'s.
 
 use super::components::*;
+use crate::ecs::SurfaceData;
+use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::patch::{
     ArcParam, Direction, PatchIndex, PatchKernel, PatchStructure, SurfaceHandle,
 };
@@ -26,9 +33,13 @@ use bevy::prelude::*;
 use std::collections::HashMap;
 use streamline_kernel::joins::chain::chain;
 use streamline_kernel::joins::merged::g2_run;
+use streamline_kernel::joins::rejoin::{Rejoin, StackRef, point_refs, rejoin};
+use streamline_kernel::joins::seam::{PatchMesh, chain_seam, side_seam};
 use streamline_kernel::joins::side::side;
-use streamline_kernel::joins::{Continuity, Edge, JoinError, Stack, seam_at};
-use streamline_kernel::{DVec3, Design};
+use streamline_kernel::joins::{Continuity, Edge, JoinError, Stack};
+use streamline_kernel::levels::design::Level;
+use streamline_kernel::streamline::surface_mesh::normals_window;
+use streamline_kernel::{DVec3, Design, Grid};
 
 /// A joined patch's net handles whose value changed since the last run.
 type ChangedJoinedNet<'w, 's> = Query<
@@ -103,6 +114,7 @@ type PatchRow = (
 pub(crate) fn build_joined(
     meter: Res<crate::ecs::meter::CpuMeter>,
     structure: Query<Ref<PatchStructure>, Without<Joined>>,
+    pipeline: FirstPipeline,
     mut patches: Query<PatchRow>,
 ) {
     if patches.is_empty() {
@@ -117,9 +129,6 @@ pub(crate) fn build_joined(
     rows.sort_by_key(|r| r.1.index);
     let n = rows.len();
     let at: HashMap<Entity, usize> = rows.iter().enumerate().map(|(i, r)| (r.0, i)).collect();
-    let design = |i: usize| -> Option<&Design> {
-        (rows[i].3.as_deref().map(|k| &k.design)).or(rows[i].4.as_deref().map(|j| &j.0))
-    };
     // where each starts, as indices
     let parent: Vec<Option<(usize, Edge, Continuity)>> = (0..n)
         .map(|i| match *rows[i].2 {
@@ -150,15 +159,28 @@ pub(crate) fn build_joined(
                 || r.5.built.is_none()
         })
         .collect();
-    let mut dirty = vec![false; n];
-    for i in 0..n {
-        let run_changed = (0..n).any(|k| run[k] == run[i] && own[k]);
-        let parent_dirty = parent[i].is_some_and(|(a, ..)| a < i && dirty[a]);
-        dirty[i] = run_changed || parent_dirty;
-    }
-    if !dirty.contains(&true) {
+    let run_changed: Vec<bool> = (0..n)
+        .map(|i| (0..n).any(|k| run[k] == run[i] && own[k]))
+        .collect();
+    if !run_changed.contains(&true) {
         return;
     }
+    // the stacks a rejoin may keep, moved out (and put back unless replaced)
+    // so that their levels are moved, not copied
+    let mut kept: Vec<Option<Stack>> = (0..n)
+        .map(|i| {
+            if parent[i].is_none() || run_changed[i] || !matches!(rows[i].5.built, Some(Ok(_))) {
+                return None;
+            }
+            match rows[i].5.bypass_change_detection().built.take() {
+                Some(Ok(s)) => Some(s),
+                _ => None,
+            }
+        })
+        .collect();
+    let design = |i: usize| -> Option<&Design> {
+        (rows[i].3.as_deref().map(|k| &k.design)).or(rows[i].4.as_deref().map(|j| &j.0))
+    };
     let name = |i: usize| rows[i].1.name.as_str();
     let located = |i: usize, e: &dyn std::fmt::Display| match parent[i] {
         Some((a, edge, c)) => format!(
@@ -173,8 +195,15 @@ pub(crate) fn build_joined(
         None => format!("patch `{}`: {e}", name(i)),
     };
     let mut new: Vec<Option<Result<Stack, String>>> = vec![None; n];
+    // the display depth's mesh normals of a rebuilt patch, when it has them already
+    let mut normals: Vec<Option<Vec<DVec3>>> = vec![None; n];
+    // what a rejoin replaced of a patch's points (its children compare them)
+    let mut replaced: Vec<Option<Vec<Option<Grid<DVec3>>>>> = vec![None; n];
     for i in 0..n {
-        if !dirty[i] || new[i].is_some() {
+        // a patch is rebuilt when its G2 run changed, or (below) when its
+        // parent was rebuilt and moved what it reads
+        let parent_new = parent[i].is_some_and(|(a, ..)| a < i && new[a].is_some());
+        if new[i].is_some() || !(run_changed[i] || parent_new) {
             continue;
         }
         let Some(b) = design(i) else {
@@ -210,60 +239,200 @@ pub(crate) fn build_joined(
                 }
                 continue;
             }
-            None => Stack::build(b, depth).map_err(|e| located(i, &JoinError::Kernel(e))),
+            None => match rows[i]
+                .3
+                .is_some()
+                .then(|| pipeline.stack(b, depth))
+                .flatten()
+            {
+                Some((s, n)) => {
+                    normals[i] = Some(n);
+                    Ok(s)
+                }
+                None => Stack::build(b, depth).map_err(|e| located(i, &JoinError::Kernel(e))),
+            },
             Some((a, edge, c)) => {
-                let sa = match new[a].as_ref().or(rows[a].5.built.as_ref()) {
-                    Some(Ok(s)) => s,
-                    _ => {
-                        new[i] = Some(Err(format!(
-                            "patch `{}` starts on `{}`, which is not built; fix `{}` first",
-                            name(i),
-                            name(a),
-                            name(a)
-                        )));
-                        continue;
+                let (kept_lo, kept_hi) = kept.split_at_mut(i);
+                // A as it was: its old stack, or (moved by a rejoin) its
+                // levels with the points it had
+                let was = (kept_lo[a].as_ref()).or(rows[a]
+                    .5
+                    .built
+                    .as_ref()
+                    .and_then(|b| b.as_ref().ok()));
+                let sa = match new[a].as_ref() {
+                    Some(built) => built.as_ref().ok(),
+                    None => was,
+                };
+                let mut refs = Vec::new();
+                let old_a = match (sa, &replaced[a]) {
+                    (Some(s), Some(r)) if new[a].is_some() => {
+                        StackRef::points_before(s, r, &mut refs);
+                        Some(StackRef {
+                            levels: &s.levels,
+                            points: &refs,
+                        })
                     }
+                    _ => was.map(|s| {
+                        refs = point_refs(s);
+                        StackRef {
+                            levels: &s.levels,
+                            points: &refs,
+                        }
+                    }),
+                };
+                let Some(sa) = sa else {
+                    new[i] = Some(Err(format!(
+                        "patch `{}` starts on `{}`, which is not built; fix `{}` first",
+                        name(i),
+                        name(a),
+                        name(a)
+                    )));
+                    continue;
                 };
                 let Some(da) = design(a) else { continue };
+                // a chain's seam column is one handle of both (a side join's is B's own)
+                let joined_b;
+                let b = if edge == Edge::End {
+                    joined_b = shared_seam(da, b, c);
+                    &joined_b
+                } else {
+                    b
+                };
+                // only the parent moved: keep the levels if what they read of it did not change
+                if let (Some(old_b), Some(old_a)) = (kept_hi[0].take(), old_a) {
+                    match rejoin(da, old_a, sa, b, old_b, edge, c) {
+                        Rejoin::Unchanged(s) => {
+                            kept_hi[0] = Some(s);
+                            continue;
+                        }
+                        Rejoin::Moved { stack, replaced: r } => {
+                            new[i] = Some(Ok(stack));
+                            replaced[i] = Some(r);
+                            continue;
+                        }
+                        // built whole below
+                        Rejoin::Rebuild(_) => {}
+                    }
+                }
                 match (edge, c) {
                     (Edge::End, Continuity::G2) => Err(located(
                         i,
                         &"a G2 chain is one net from a patch with its own curve; join it with G1",
                     )),
-                    (Edge::End, c) => {
-                        chain(da, sa, &shared_seam(da, b, c), c).map_err(|e| located(i, &e))
-                    }
+                    (Edge::End, c) => chain(da, sa, b, c).map_err(|e| located(i, &e)),
                     (edge, c) => side(sa, b, edge, c).map_err(|e| located(i, &e)),
                 }
             }
         };
         new[i] = Some(built);
     }
-    // the seams with a rebuilt side
+    // every rebuilt patch's normals (the seams and the drawing read them)
+    for i in 0..n {
+        if normals[i].is_none()
+            && let Some(Ok(s)) = &new[i]
+        {
+            let p = s.finest_points();
+            let mut out = vec![DVec3::Z; p.data().len()];
+            normals_window(
+                p.data(),
+                p.cols(),
+                0,
+                p.rows().saturating_sub(1),
+                0,
+                &mut out,
+            );
+            normals[i] = Some(out);
+        }
+    }
+    // the seams with a rebuilt side, from the two meshes at the display depth
     let mut seams: Vec<Option<Option<streamline_kernel::joins::SeamReport>>> = vec![None; n];
     for i in 0..n {
         let Some((a, edge, _)) = parent[i] else {
             continue;
         };
-        if !dirty[i] && !dirty[a] {
+        if new[i].is_none() && new[a].is_none() {
             continue;
         }
-        let pick = |k: usize| match new[k].as_ref().or(rows[k].5.built.as_ref()) {
-            Some(Ok(s)) => Some(s),
-            _ => None,
+        let mesh = |k: usize| {
+            let (points, normals) = match &new[k] {
+                Some(b) => (b.as_ref().ok()?.finest_points(), normals[k].as_deref()?),
+                None => (
+                    (kept[k].as_ref())
+                        .or_else(|| rows[k].5.built.as_ref()?.as_ref().ok())?
+                        .finest_points(),
+                    rows[k].5.normals.as_slice(),
+                ),
+            };
+            (normals.len() == points.data().len()).then_some(PatchMesh { points, normals })
         };
-        seams[i] = Some(match (pick(a), pick(i)) {
-            (Some(sa), Some(sb)) => seam_at(sa, sb, edge, depth).ok(),
+        seams[i] = Some(match (mesh(a), mesh(i)) {
+            (Some(ma), Some(mb)) => match edge {
+                Edge::End => chain_seam(ma, mb).ok(),
+                side => Some(side_seam(ma, side, mb)),
+            },
             _ => None,
         });
     }
     for (i, r) in rows.iter_mut().enumerate() {
         if let Some(b) = new[i].take() {
             r.5.built = Some(b);
+            r.5.normals = normals[i].take().unwrap_or_default();
+        } else if let Some(s) = kept[i].take() {
+            // not rebuilt: put back, not marked changed
+            r.5.bypass_change_detection().built = Some(Ok(s));
         }
         if let (Some(report), Some(state)) = (seams[i].take(), r.6.as_mut()) {
             state.report = report;
         }
+    }
+}
+
+/// The first patch's pipeline, read: its level entities and its points.
+#[derive(bevy::ecs::system::SystemParam)]
+pub(crate) struct FirstPipeline<'w, 's> {
+    levels: Query<'w, 's, (&'static SubdivisionLevel, &'static LevelData)>,
+    surface: Res<'w, SurfaceData>,
+}
+
+impl FirstPipeline<'_, '_> {
+    /// The first patch's [`Stack`] at `depth`, read from what its
+    /// incremental pipeline keeps (its levels are `design`'s, bit for bit:
+    /// the incremental build equals the whole one, docs/math.md §5, and a
+    /// patch with joins has no details, fine tuning nor interpolated
+    /// tangents, docs/math.md §11), so that an edit of it does not build it
+    /// a second time: the levels are copied, the display depth's points are
+    /// [`SurfaceData`]'s, and only the coarser depths' streamlines (a third
+    /// of the finest's points) are integrated. `None` while the pipeline
+    /// holds another depth or another net (then build it whole).
+    fn stack(&self, design: &Design, depth: u32) -> Option<(Stack, Vec<DVec3>)> {
+        let mut levels: Vec<Option<Level>> = vec![None; depth as usize + 1];
+        for (l, data) in &self.levels {
+            let slot = levels.get_mut(l.0 as usize)?;
+            *slot = Some(Level {
+                tangents: data.0.tangents.clone(),
+                params: data.0.params.clone(),
+            });
+        }
+        let levels: Vec<Level> = levels.into_iter().collect::<Option<_>>()?;
+        let (net, base) = (design.net(), &levels[0].tangents);
+        if base.rows() != net.rows() || base.cols() != net.cols() || base.data() != net.data() {
+            return None;
+        }
+        let finest = levels.last()?;
+        let p = &self.surface.points;
+        if p.rows() != finest.tangents.rows()
+            || p.cols() != finest.tangents.cols() + 1
+            || self.surface.normals.len() != p.data().len()
+        {
+            return None;
+        }
+        let mut points: Vec<_> = levels[..depth as usize]
+            .iter()
+            .map(|l| design.streamlines(l))
+            .collect();
+        points.push(p.clone());
+        Some((Stack { levels, points }, self.surface.normals.clone()))
     }
 }
 

@@ -50,6 +50,11 @@ pub struct JoinedDesign(pub Design);
 pub struct PatchSurface {
     /// The built stack, `Err` with a located message when the join failed.
     pub built: Option<Result<Stack, String>>,
+    /// The unit vertex normals of the display depth's mesh, row-major, as
+    /// [`streamline_kernel::streamline::surface_mesh::SurfaceMesh`] makes
+    /// them from the stack's finest points (docs/math.md §4): written with
+    /// `built`, read by the seam reports and by whatever draws the patch.
+    pub normals: Vec<streamline_kernel::DVec3>,
 }
 
 impl PatchSurface {

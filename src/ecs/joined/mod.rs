@@ -29,7 +29,9 @@ impl Plugin for JoinedPlugin {
             Update,
             (build::track_joined, build::build_joined)
                 .chain()
-                .in_set(crate::ecs::ModelSet::Mesh),
+                .in_set(crate::ecs::ModelSet::Mesh)
+                // the first patch's mesh normals are read (build::FirstPipeline)
+                .after(crate::ecs::mesh::patch_mesh),
         );
     }
 }

@@ -1,5 +1,6 @@
 //! Analysis: curvature comb, Gaussian and mean curvature maps (with legend and
-//! range), zebra stripes, the deviation map (with its fit's figures).
+//! range), zebra stripes, the deviation map (with its fit's figures), and
+//! the seams of a design of several patches (`seam_table`).
 
 use crate::editor::surface::analysis::{AnalysisSettings, CurvatureField, SurfaceMode, diverging};
 use crate::editor::surface::deviation::{BANDS, DeviationField, FRAME_BUDGET_S};
@@ -13,6 +14,7 @@ pub struct AnalysisSection<'w> {
     pub settings: ResMut<'w, AnalysisSettings>,
     pub field: Res<'w, CurvatureField>,
     pub deviation: Res<'w, DeviationField>,
+    pub seams: Res<'w, crate::editor::seams::Seams>,
 }
 
 pub fn show(ui: &mut egui::Ui, p: &mut AnalysisSection) {
@@ -20,6 +22,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut AnalysisSection) {
     let mut a = p.settings.clone();
     widgets(ui, &mut a, &p.field, &p.deviation);
     p.settings.set_if_neq(a);
+    super::seam_table::show(ui, &p.seams);
 }
 
 fn widgets(

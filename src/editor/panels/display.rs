@@ -16,6 +16,7 @@ pub struct DisplaySection<'w> {
     pub overlay: ResMut<'w, OverlaySettings>,
     pub sphere: ResMut<'w, SphereSettings>,
     pub antialias: ResMut<'w, AntiAliasing>,
+    pub seams: ResMut<'w, crate::editor::seams::SeamSettings>,
 }
 
 pub fn show(ui: &mut egui::Ui, p: &mut DisplaySection) {
@@ -27,6 +28,12 @@ pub fn show(ui: &mut egui::Ui, p: &mut DisplaySection) {
     p.handles.set_if_neq(h);
     p.overlay.set_if_neq(o);
     p.sphere.set_if_neq(s);
+    let mut seams = p.seams.clone();
+    ui.checkbox(&mut seams.show, "seams").on_hover_text(
+        "The joins of a design of several patches, labelled G0/G1/G2 and coloured \
+         green (meets its continuity), amber (near) or red (fails): see Analysis ▸ Seams",
+    );
+    p.seams.set_if_neq(seams);
     antialiasing(ui, p);
 }
 

@@ -1,6 +1,6 @@
 //! The egui panels: a menu bar (File, Edit, View, Help), a toolbar (undo,
 //! redo, frame) and a side panel of
-//! sections (File, Subdivision, Structure, Selection, Display, Fine tuning, Analysis,
+//! sections (File, Patches, Subdivision, Structure, Selection, Display, Fine tuning, Analysis,
 //! Loop mesh, Stats). Panels are thin views: they read resources and send
 //! edit messages (or change display settings, only when a value really
 //! changes); they never compute geometry. What every section reads is
@@ -17,6 +17,8 @@ mod initial;
 mod lengths;
 mod menu_bar;
 mod mesh;
+mod patches;
+mod seam_table;
 mod selection;
 mod stats;
 mod structure;
@@ -36,6 +38,8 @@ use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
 pub enum PanelName {
     /// New, open, save, export, recent files.
     File,
+    /// The design's patches: choose, rename, hide, delete, add on an edge.
+    Patches,
     /// Scheme, ω, blend order, depths.
     Subdivision,
     /// The net's rows and columns: insert, delete; mirror symmetry.
@@ -60,8 +64,9 @@ pub enum PanelName {
 
 impl PanelName {
     /// All sections in panel order.
-    pub const ALL: [PanelName; 11] = [
+    pub const ALL: [PanelName; 12] = [
         PanelName::File,
+        PanelName::Patches,
         PanelName::Subdivision,
         PanelName::Structure,
         PanelName::Selection,
@@ -78,6 +83,7 @@ impl PanelName {
     pub fn name(self) -> &'static str {
         match self {
             PanelName::File => "file",
+            PanelName::Patches => "patches",
             PanelName::Subdivision => "subdivision",
             PanelName::Structure => "structure",
             PanelName::Selection => "selection",
@@ -94,6 +100,10 @@ impl PanelName {
     fn tooltip(self) -> &'static str {
         match self {
             PanelName::File => "New, open, save, export, recent files",
+            PanelName::Patches => {
+                "The design's patches: choose the one handle edits act on, rename, hide, delete, \
+                 start a new patch on an edge"
+            }
             PanelName::Subdivision => "Scheme, ω, blend order, display and edit depth",
             PanelName::Structure => {
                 "Insert and delete rows (streamlines) and columns of the control net; mirror symmetry"
@@ -122,6 +132,7 @@ impl PanelName {
     fn title(self) -> &'static str {
         match self {
             PanelName::File => "File",
+            PanelName::Patches => "Patches",
             PanelName::Subdivision => "Subdivision",
             PanelName::Structure => "Structure",
             PanelName::Selection => "Selection",
@@ -199,6 +210,7 @@ pub struct Sections<'w, 's> {
     mesh: mesh::MeshSection<'w>,
     stats: stats::StatsSection<'w, 's>,
     curvature: curvature::CurvatureSection<'w, 's>,
+    patches: patches::PatchesSection<'w, 's>,
     help: ResMut<'w, menu_bar::HelpWindows>,
 }
 
@@ -270,6 +282,7 @@ impl Plugin for PanelPlugin {
         app.init_resource::<UiState>()
             .init_resource::<SliderGroups>()
             .init_resource::<OpenedScene>()
+            .init_resource::<patches::PatchesForm>()
             .init_resource::<menu_bar::HelpWindows>()
             .add_systems(Update, track_opened.after(crate::ecs::ModelSet::Output))
             .add_systems(Startup, spawn_ui_camera)
@@ -436,6 +449,7 @@ fn panel(
                                 &mut sections.file.files,
                             );
                         }
+                        PanelName::Patches => patches::show(ui, &mut p, &mut sections.patches),
                         PanelName::Subdivision => subdivision::show(ui, &mut p),
                         PanelName::Structure => structure::show(ui, &mut p),
                         PanelName::Selection => {

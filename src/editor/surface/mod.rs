@@ -1,8 +1,10 @@
 //! The streamline surface as drawn: the shaded mesh that mirrors the model's
 //! surface (`shaded`), and the analysis displays over it (`analysis`: the
 //! curvature comb, Gaussian and mean curvature maps, zebra stripes; and
-//! `deviation`: the deviation map against the CAD export's fit).
+//! `deviation`: the deviation map against the CAD export's fit), and the
+//! shaded surfaces of a document's other patches (`patches`).
 
 pub(super) mod analysis;
 pub(super) mod deviation;
+pub(super) mod patches;
 pub(super) mod shaded;

@@ -36,13 +36,18 @@ impl EdgeCurve {
     /// `A`'s edge `First` or `Last` at depth `d` of `a`; `None` for `End` (a
     /// chain's edge is a column of points, not a curve) or a depth past `a`'s.
     pub fn of(a: &Stack, d: u32, edge: Edge) -> Option<Self> {
+        Self::at(&a.levels, a.points.get(d as usize)?, d, edge)
+    }
+
+    /// [`Self::of`] from a stack's `levels` and the streamline `points` of
+    /// depth `d` (a stack whose parts are held apart).
+    pub fn at(levels: &[Level], points: &Grid<DVec3>, d: u32, edge: Edge) -> Option<Self> {
         let row = match edge {
-            Edge::Last => a.levels[0].params.s.rows() - 1,
+            Edge::Last => levels.first()?.params.s.rows() - 1,
             _ => 0,
         };
-        let s0 = a.levels[0].params.s.get(row, 0);
-        let d = d as usize;
-        Self::new(a.levels.get(d)?, a.points.get(d)?, edge, s0)
+        let s0 = levels[0].params.s.get(row, 0);
+        Self::new(levels.get(d as usize)?, points, edge, s0)
     }
 
     /// `A`'s edge `First` or `Last` of `level` and its streamlines `points`,
@@ -72,6 +77,27 @@ impl EdgeCurve {
             arc,
             cross,
         })
+    }
+
+    /// Bit for bit the same curve as `other` (points, tangents, arc
+    /// lengths and cross derivatives), as [`super::rejoin`] needs to know
+    /// that a side join's inputs did not change.
+    pub fn same_bits(&self, other: &EdgeCurve) -> bool {
+        let v = |a: &[DVec3], b: &[DVec3]| {
+            a.len() == b.len()
+                && a.iter()
+                    .zip(b)
+                    .all(|(x, y)| x.to_array().map(f64::to_bits) == y.to_array().map(f64::to_bits))
+        };
+        v(&self.points, &other.points)
+            && v(&self.tangents, &other.tangents)
+            && v(&self.cross, &other.cross)
+            && self.arc.len() == other.arc.len()
+            && self
+                .arc
+                .iter()
+                .zip(&other.arc)
+                .all(|(x, y)| x.to_bits() == y.to_bits())
     }
 
     /// The arc length of the streamline's last point: at level 0 its length

@@ -18,6 +18,7 @@ pub mod edge_curve;
 pub mod error;
 pub mod kinds;
 pub mod merged;
+pub mod rejoin;
 pub mod seam;
 pub mod side;
 pub mod stack;

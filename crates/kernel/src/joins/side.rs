@@ -66,7 +66,7 @@ pub fn side(a: &Stack, b: &Design, edge: Edge, continuity: Continuity) -> Result
 
 /// `B`'s row parameters: strictly increasing, inside `[0, length]` (to
 /// [`ROW_TOLERANCE`] times the length).
-fn check_rows(t: &[f64], length: f64) -> Result<(), JoinError> {
+pub(crate) fn check_rows(t: &[f64], length: f64) -> Result<(), JoinError> {
     let slack = ROW_TOLERANCE * length.max(1.0);
     for (row, &v) in t.iter().enumerate() {
         if !(-slack..=length + slack).contains(&v) {

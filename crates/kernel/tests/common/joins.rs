@@ -4,7 +4,10 @@
 use super::{nasty, unit};
 use glam::{DQuat, DVec3};
 use proptest::prelude::*;
+use streamline_kernel::KernelError;
 use streamline_kernel::grid::Grid;
+use streamline_kernel::joins::edge_curve::EdgeCurve;
+use streamline_kernel::joins::{Edge, Stack};
 use streamline_kernel::streamline::initial_curve::InitialCurve;
 use streamline_kernel::{BlendOrder, Design, SurfaceScheme};
 
@@ -240,6 +243,33 @@ impl PairSpec {
         )
         .unwrap()
     }
+}
+
+/// `B` on `A`'s side edge: its rows along the edge, leaving it outwards.
+pub fn side_pair(
+    spec: &PairSpec,
+    f: Field,
+    edge: Edge,
+    depth: u32,
+) -> Option<(Design, Stack, Design)> {
+    let a = spec.a(f);
+    let sa = match Stack::build(&a, depth) {
+        Ok(s) => s,
+        Err(KernelError::ParamsNotIncreasing { .. }) => return None,
+        Err(e) => panic!("{e}"),
+    };
+    // inside what A's streamline covers at the deepest depth (an
+    // approximating scheme's boundary streamline shortens with depth)
+    let deep = EdgeCurve::of(&sa, depth, edge).unwrap();
+    let margin = 0.05 * (deep.length() - deep.start());
+    let out = if edge == Edge::First {
+        -DVec3::Y
+    } else {
+        DVec3::Y
+    };
+    let b = spec.b_side(f, (deep.start() + margin, deep.length() - margin), out);
+    b.level(depth).ok()?;
+    Some((a, sa, b))
 }
 
 /// The bits of a vector.

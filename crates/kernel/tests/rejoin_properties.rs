@@ -1,0 +1,203 @@
+//! docs/math.md §11, a local edit: after `A` changes while `B`'s design does
+//! not, `joins::rejoin` keeps `B`'s levels and places its points again, and
+//! its result is bit for bit what the whole join (`chain`, `side`) builds
+//! on the new `A`. It must also take that path for the edits it can (an
+//! edit of `A` away from what `B` reads), and refuse the others: a negative
+//! control shows that keeping the levels after an edit of `A`'s seam column
+//! (G1) would be wrong.
+
+mod common;
+
+use common::joins::{Field, bits, pair_spec, side_pair};
+use glam::{DQuat, DVec3};
+use proptest::prelude::*;
+use streamline_kernel::joins::chain::chain;
+use streamline_kernel::joins::rejoin::{Rejoin, StackRef, point_refs, rejoin};
+use streamline_kernel::joins::side::side;
+use streamline_kernel::joins::{Continuity, Edge, Stack};
+use streamline_kernel::{Design, KernelError};
+
+const DEPTH: u32 = 3;
+
+/// Bit for bit the same stack.
+fn same(x: &Stack, y: &Stack) -> bool {
+    x.levels.len() == y.levels.len()
+        && x.levels.iter().zip(&y.levels).all(|(a, b)| {
+            a.tangents
+                .data()
+                .iter()
+                .zip(b.tangents.data())
+                .all(|(u, v)| bits(*u) == bits(*v))
+                && a.params
+                    .s
+                    .data()
+                    .iter()
+                    .zip(b.params.s.data())
+                    .all(|(u, v)| u.to_bits() == v.to_bits())
+                && a.params
+                    .t
+                    .iter()
+                    .zip(&b.params.t)
+                    .all(|(u, v)| u.to_bits() == v.to_bits())
+                && a.params
+                    .sigma
+                    .iter()
+                    .zip(&b.params.sigma)
+                    .all(|(u, v)| u.to_bits() == v.to_bits())
+        })
+        && x.points.len() == y.points.len()
+        && x.points.iter().zip(&y.points).all(|(a, b)| {
+            a.rows() == b.rows()
+                && a.data()
+                    .iter()
+                    .zip(b.data())
+                    .all(|(u, v)| bits(*u) == bits(*v))
+        })
+}
+
+/// `a` with tangent `(row, col)` turned by `angle` about `axis`.
+fn turned(a: &Design, row: usize, col: usize, axis: DVec3, angle: f64) -> Design {
+    let mut out = a.clone();
+    let v = DQuat::from_axis_angle(axis, angle) * a.net().get(row, col);
+    out.set_tangent(row, col, v).unwrap();
+    out
+}
+
+/// `b` with its first column `a`'s last (a G1 chain's one handle).
+fn shared(a: &Design, b: &Design) -> Design {
+    let mut out = b.clone();
+    let last = a.net().cols() - 1;
+    for r in 0..b.net().rows() {
+        out.set_tangent(r, 0, a.net().get(r, last)).unwrap();
+    }
+    out
+}
+
+fn stack(d: &Design) -> Option<Stack> {
+    match Stack::build(d, DEPTH) {
+        Ok(s) => Some(s),
+        Err(KernelError::ParamsNotIncreasing { .. }) => None,
+        Err(e) => panic!("{e}"),
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    /// Chains: `rejoin` equals `chain` on the new `A` bit for bit; G0 always
+    /// rejoins (its levels read only `A`'s `t`), and so does G1 for an edit
+    /// off the seam column with Kobbelt (the 4-point scheme refines a
+    /// boundary column by itself); an edit of the seam column under G1 is
+    /// refused.
+    #[test]
+    fn a_chain_rejoins_bit_for_bit(
+        spec in pair_spec(),
+        g1 in any::<bool>(),
+        cell in (0usize..8, 0usize..8),
+        axis in common::unit(),
+        angle in 0.01f64..0.5,
+    ) {
+        let c = if g1 { Continuity::G1 } else { Continuity::G0 };
+        let a = spec.a(Field::Bent);
+        let b = spec.b_chain(&a, Field::Bent, g1, spec.order_a);
+        let (row, col) = (cell.0 % a.net().rows(), cell.1 % a.net().cols());
+        let a2 = turned(&a, row, col, axis, angle);
+        let (Some(sa), Some(sa2)) = (stack(&a), stack(&a2)) else { return Ok(()) };
+        let Ok(sb) = chain(&a, &sa, &b, c) else { return Ok(()) };
+        let b2 = if g1 { shared(&a2, &b) } else { b.clone() };
+        let whole = chain(&a2, &sa2, &b2, c).unwrap();
+        let last = a.net().cols() - 1;
+        match rejoin(&a2, StackRef { levels: &sa.levels, points: &point_refs(&sa) }, &sa2, &b2, sb.clone(), Edge::End, c) {
+            Rejoin::Moved { stack: s, .. } => prop_assert!(same(&s, &whole)),
+            Rejoin::Unchanged(s) => prop_assert!(same(&s, &whole) && same(&sb, &whole)),
+            Rejoin::Rebuild(s) => {
+                prop_assert!(same(&s, &sb), "the old stack handed back");
+                prop_assert!(g1, "G0 always rejoins");
+                prop_assert!(col == last || !spec.scheme.is_interpolatory(),
+                    "an edit off the seam column of a Kobbelt net rejoins");
+            }
+        }
+        if g1 && col == last {
+            let again = rejoin(&a2, StackRef { levels: &sa.levels, points: &point_refs(&sa) }, &sa2, &b2, sb, Edge::End, c);
+            prop_assert!(matches!(again, Rejoin::Rebuild(_)));
+        }
+    }
+
+    /// Side joins: `rejoin` equals `side` on the new `A` bit for bit; G0
+    /// always rejoins; G1 keeps `B` whole when the edge curve did not change
+    /// and is refused otherwise.
+    #[test]
+    fn a_side_join_rejoins_bit_for_bit(
+        spec in pair_spec(),
+        g1 in any::<bool>(),
+        last in any::<bool>(),
+        cell in (0usize..8, 0usize..8),
+        axis in common::unit(),
+        angle in 0.01f64..0.3,
+    ) {
+        let c = if g1 { Continuity::G1 } else { Continuity::G0 };
+        let edge = if last { Edge::Last } else { Edge::First };
+        let Some((a, sa, b)) = side_pair(&spec, Field::Bent, edge, DEPTH) else { return Ok(()) };
+        let (row, col) = (cell.0 % a.net().rows(), cell.1 % a.net().cols());
+        let a2 = turned(&a, row, col, axis, angle);
+        let Some(sa2) = stack(&a2) else { return Ok(()) };
+        let Ok(sb) = side(&sa, &b, edge, c) else { return Ok(()) };
+        let whole = side(&sa2, &b, edge, c);
+        match rejoin(&a2, StackRef { levels: &sa.levels, points: &point_refs(&sa) }, &sa2, &b, sb.clone(), edge, c) {
+            Rejoin::Moved { stack: s, .. } => prop_assert!(same(&s, &whole.unwrap())),
+            Rejoin::Unchanged(s) => prop_assert!(same(&s, &whole.unwrap())),
+            Rejoin::Rebuild(s) => {
+                prop_assert!(same(&s, &sb), "the old stack handed back");
+                prop_assert!(g1 || whole.is_err(), "G0 rejoins unless the join is refused");
+            }
+        }
+    }
+}
+
+/// Negative control: under G1, keeping `B`'s levels after `A`'s seam column
+/// turned (placing the old levels at the new starts, what `rejoin` refuses
+/// to do) is not the join: its seam tangents are not `A`'s.
+#[test]
+fn keeping_the_levels_after_a_seam_column_edit_is_wrong() {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::TestRunner;
+    let mut runner = TestRunner::deterministic();
+    let mut checked = 0;
+    for _ in 0..64 {
+        let spec = pair_spec().new_tree(&mut runner).unwrap().current();
+        let a = spec.a(Field::Bent);
+        let b = spec.b_chain(&a, Field::Bent, true, spec.order_a);
+        let last = a.net().cols() - 1;
+        let a2 = turned(&a, 0, last, DVec3::Y, 0.3);
+        let (Some(sa), Some(sa2)) = (stack(&a), stack(&a2)) else {
+            continue;
+        };
+        let Ok(sb) = chain(&a, &sa, &b, Continuity::G1) else {
+            continue;
+        };
+        let b2 = shared(&a2, &b);
+        let whole = chain(&a2, &sa2, &b2, Continuity::G1).unwrap();
+        let again = rejoin(
+            &a2,
+            StackRef {
+                levels: &sa.levels,
+                points: &point_refs(&sa),
+            },
+            &sa2,
+            &b2,
+            sb.clone(),
+            Edge::End,
+            Continuity::G1,
+        );
+        assert!(matches!(again, Rejoin::Rebuild(_)));
+        // the shortcut: old levels, new starts
+        let seam = sa2.levels[DEPTH as usize]
+            .tangents
+            .column(sa2.levels[DEPTH as usize].tangents.cols() - 1);
+        let kept = sb.levels[DEPTH as usize].tangents.column(0);
+        assert!(seam.iter().zip(&kept).any(|(x, y)| bits(*x) != bits(*y)));
+        assert!(!same(&sb, &whole));
+        checked += 1;
+    }
+    assert!(checked >= 16, "only {checked} nets checked");
+}

@@ -1,0 +1,434 @@
+//! The shaded surfaces of a document's several patches (docs/math.md §11):
+//! one Bevy mesh per patch drawn from its [`PatchSurface`] stack's finest
+//! points (the display depth), with the normals and triangles the first
+//! patch's mesh has ([`SurfaceMesh::from_points`], docs/math.md §4),
+//! rebuilt only on `Changed<PatchSurface>`, despawned with the patch,
+//! hidden while the patch has [`PatchHidden`] (and in mesh mode).
+//!
+//! Which surface shows the first patch. The first patch keeps its
+//! incremental surface ([`crate::ecs::SurfaceData`], drawn by
+//! [`super::shaded`]) unless it heads a G2 chain: a G2 run is one merged net
+//! (docs/math.md §11.1, Eqs. 68–70), so the first patch's cut of it (its
+//! `PatchSurface`) differs near the seam from its one-patch surface, and
+//! the second patch starts on the cut's last points, not on the one-patch
+//! surface's. On `scenes/hood-screen-wing.ron` at depth 4 the two agree
+//! bit for bit on the hood's first half and differ by up to 0.011 (0.5 %
+//! of the scene's size) near the seam: a crack of a few pixels between
+//! the hood and the screen if the one-patch surface were drawn (test
+//! `the_g2_head_cut_differs_from_its_own_surface_near_the_seam`). The
+//! editor draws what the seam report measures and what
+//! every export writes: the cut. So in the shaded display the first patch
+//! of a G2 run is drawn from its stack here and the incremental mesh is
+//! hidden; the analysis maps (which read the incremental surface) show that
+//! one instead, and the joined patches stay shaded under them.
+
+use super::super::interaction::{EditorMode, EditorSet, SceneBounds};
+use super::analysis::{AnalysisSettings, SurfaceMode};
+use super::shaded::{ShadedMaterial, SurfaceEntity, to_bevy_mesh};
+use crate::ecs::joined::{Joined, PatchHidden, PatchStart, PatchSurface};
+use bevy::prelude::*;
+use bevy_state::prelude::State;
+use std::collections::HashMap;
+use streamline_kernel::DVec3;
+use streamline_kernel::joins::{Continuity, Edge};
+use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
+
+use super::super::coords::kernel_to_view;
+
+/// A mesh entity that draws patch `.0`'s [`PatchSurface`].
+#[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PatchSurfaceMesh(pub Entity);
+
+/// The kernel mesh of every patch drawn from its stack (display depth), for
+/// picking and the scene's bounds: written when a patch's surface is.
+#[derive(Resource, Debug, Default)]
+pub struct PatchMeshes {
+    /// Patch entity → its mesh (kernel coordinates).
+    pub meshes: HashMap<Entity, SurfaceMesh>,
+    /// The box `[min, max]` around them all (`None` with none).
+    pub bounds: Option<[DVec3; 2]>,
+    /// How many meshes were rebuilt since the start (a meter for the tests:
+    /// only a changed surface rebuilds its mesh).
+    pub rebuilt: u64,
+}
+
+pub struct PatchSurfacesPlugin;
+
+impl Plugin for PatchSurfacesPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<PatchMeshes>().add_systems(
+            Update,
+            (sync_patch_meshes, extend_bounds)
+                .chain()
+                .in_set(EditorSet::Sync),
+        );
+    }
+}
+
+/// Whether patch `first` heads a G2 run: a patch starts on its `End` with G2.
+pub fn heads_g2_run(first: Entity, starts: impl IntoIterator<Item = PatchStart>) -> bool {
+    starts.into_iter().any(|s| {
+        matches!(s, PatchStart::Edge { parent, edge: Edge::End, continuity: Continuity::G2 }
+            if parent == first)
+    })
+}
+
+/// Whether the first patch is drawn from its stack (module documentation):
+/// it heads a G2 run and the surface is shown shaded.
+pub fn first_from_stack(g2_head: bool, mode: SurfaceMode) -> bool {
+    g2_head && mode == SurfaceMode::Shaded
+}
+
+/// What [`sync_patch_meshes`] reads of every patch with a surface.
+type PatchRow = (
+    Entity,
+    Ref<'static, PatchSurface>,
+    &'static PatchStart,
+    Has<Joined>,
+    Has<PatchHidden>,
+);
+
+/// The patch mesh entities.
+type Shown<'w, 's> = Query<
+    'w,
+    's,
+    (
+        Entity,
+        &'static PatchSurfaceMesh,
+        &'static Mesh3d,
+        &'static mut Visibility,
+    ),
+    Without<SurfaceEntity>,
+>;
+
+/// Spawns, rebuilds, shows, hides and despawns the patch meshes (module
+/// documentation), and shows or hides the first patch's incremental mesh.
+#[allow(clippy::too_many_arguments)]
+fn sync_patch_meshes(
+    meter: Res<crate::ecs::meter::CpuMeter>,
+    mut commands: Commands,
+    patches: Query<PatchRow>,
+    mut shown: Shown,
+    mut first_mesh: Query<&mut Visibility, (With<SurfaceEntity>, Without<PatchSurfaceMesh>)>,
+    (mode, analysis, material): (
+        Res<State<EditorMode>>,
+        Res<AnalysisSettings>,
+        Res<ShadedMaterial>,
+    ),
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut kernel: ResMut<PatchMeshes>,
+) {
+    let _meter = meter.start();
+    let streamline = *mode.get() == EditorMode::Streamline;
+    let first = patches.iter().find(|r| !r.3).map(|r| r.0);
+    let g2_head = first.is_some_and(|f| heads_g2_run(f, patches.iter().map(|r| *r.2)));
+    let first_stack = first_from_stack(g2_head, analysis.mode);
+    // the first patch's incremental mesh (mesh mode shows and hides it itself)
+    if streamline {
+        let first_hidden = first.is_some_and(|f| patches.get(f).is_ok_and(|r| r.4));
+        for mut v in &mut first_mesh {
+            set_visible(&mut v, !first_hidden && !first_stack);
+        }
+    }
+    let drawn = |r: &(Entity, Ref<PatchSurface>, &PatchStart, bool, bool)| r.3 || first_stack;
+    // despawn the meshes of patches gone or no longer drawn from a stack
+    let mut have: HashMap<Entity, (Entity, Handle<Mesh>)> = HashMap::new();
+    for (e, of, mesh, _) in &shown {
+        match patches.get(of.0) {
+            Ok(r) if drawn(&r) && !have.contains_key(&of.0) => {
+                have.insert(of.0, (e, mesh.0.clone()));
+            }
+            _ => {
+                commands.entity(e).despawn();
+                kernel.meshes.remove(&of.0);
+            }
+        }
+    }
+    let mut bounds_dirty = kernel.meshes.keys().any(|p| patches.get(*p).is_err());
+    kernel.meshes.retain(|p, _| patches.get(*p).is_ok());
+    for r in patches.iter().filter(|r| drawn(r)) {
+        let (patch, surface, hidden) = (r.0, &r.1, r.4);
+        let visible = streamline && !hidden && surface.stack().is_some();
+        let fresh = !have.contains_key(&patch);
+        if fresh || surface.is_changed() || !kernel.meshes.contains_key(&patch) {
+            let m = surface
+                .stack()
+                .map(|s| SurfaceMesh::from_points(s.finest_points()))
+                .unwrap_or_default();
+            let bevy_mesh = to_bevy_mesh(&m.positions, &m.normals, &m.indices);
+            match have.get(&patch) {
+                Some((_, h)) => {
+                    if let Some(mut mesh) = meshes.get_mut(h) {
+                        *mesh = bevy_mesh;
+                    }
+                }
+                None => {
+                    let e = commands
+                        .spawn((
+                            PatchSurfaceMesh(patch),
+                            Mesh3d(meshes.add(bevy_mesh)),
+                            MeshMaterial3d(material.0.clone()),
+                            Transform::from_rotation(kernel_to_view()),
+                            if visible {
+                                Visibility::Inherited
+                            } else {
+                                Visibility::Hidden
+                            },
+                        ))
+                        .id();
+                    have.insert(patch, (e, Handle::default()));
+                }
+            }
+            kernel.meshes.insert(patch, m);
+            kernel.rebuilt += 1;
+            bounds_dirty = true;
+        }
+        if let Ok((_, _, _, mut v)) = shown.get_mut(have[&patch].0) {
+            set_visible(&mut v, visible);
+        }
+    }
+    // a patch no longer drawn from its stack leaves the picking and bounds
+    let keep: Vec<Entity> = patches.iter().filter(|r| drawn(r)).map(|r| r.0).collect();
+    if kernel.meshes.keys().any(|p| !keep.contains(p)) {
+        kernel.meshes.retain(|p, _| keep.contains(p));
+        bounds_dirty = true;
+    }
+    if bounds_dirty {
+        let b = streamline_kernel::streamline::surface_mesh::bounds(
+            kernel
+                .meshes
+                .values()
+                .flat_map(|m| m.positions.iter().copied()),
+        );
+        kernel.bounds = (b[0].x <= b[1].x).then_some(b);
+    }
+}
+
+/// Widens the scene's box ("Frame all", the grid, the comb's scale) to
+/// take in the patches drawn from their stacks; written only when it grows.
+fn extend_bounds(kernel: Res<PatchMeshes>, mut b: ResMut<SceneBounds>) {
+    let Some([lo, hi]) = kernel.bounds else {
+        return;
+    };
+    let (min, max) = (b.min.min(lo), b.max.max(hi));
+    if min != b.min || max != b.max {
+        b.min = min;
+        b.max = max;
+    }
+}
+
+fn set_visible(v: &mut Visibility, on: bool) {
+    let want = if on {
+        Visibility::Inherited
+    } else {
+        Visibility::Hidden
+    };
+    if *v != want {
+        *v = want;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ecs::joined::PatchSlot;
+    use crate::ecs::{ModelConfig, SurfaceData};
+    use crate::scene::document_io::load;
+    use bevy_state::app::{AppExtStates, StatesPlugin};
+    use std::path::Path;
+
+    fn hood() -> crate::scene::Document {
+        load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron")).unwrap()
+    }
+
+    /// The model of hood-screen-wing with the patch mesh sync (no window,
+    /// no renderer).
+    fn app(mode: SurfaceMode) -> App {
+        let mut app = crate::ecs::headless_document_app(&hood(), None, ModelConfig::default());
+        app.add_plugins(StatesPlugin)
+            .init_state::<EditorMode>()
+            .init_resource::<Assets<Mesh>>()
+            .insert_resource(AnalysisSettings { mode, ..default() })
+            .insert_resource(ShadedMaterial(Handle::default()))
+            .init_resource::<PatchMeshes>()
+            .add_systems(
+                Update,
+                sync_patch_meshes.after(crate::ecs::ModelSet::Output),
+            );
+        app.world_mut()
+            .spawn((SurfaceEntity, Visibility::Inherited));
+        app.update();
+        app.update();
+        app
+    }
+
+    fn by_name(app: &mut App, name: &str) -> Entity {
+        let w = app.world_mut();
+        let mut q = w.query::<(Entity, &PatchSlot)>();
+        q.iter(w)
+            .find(|(_, s)| s.name == name)
+            .map(|(e, _)| e)
+            .unwrap_or_else(|| panic!("no patch {name}"))
+    }
+
+    /// The positions of patch `p`'s Bevy mesh, and its visibility.
+    fn drawn(app: &mut App, p: Entity) -> Option<(Vec<[f32; 3]>, Visibility)> {
+        let w = app.world_mut();
+        let mut q = w.query::<(&PatchSurfaceMesh, &Mesh3d, &Visibility)>();
+        let (h, v) = q
+            .iter(w)
+            .find(|(of, ..)| of.0 == p)
+            .map(|(_, m, v)| (m.0.clone(), *v))?;
+        let mesh = w.resource::<Assets<Mesh>>().get(&h)?;
+        match mesh.attribute(Mesh::ATTRIBUTE_POSITION) {
+            Some(bevy::mesh::VertexAttributeValues::Float32x3(p)) => Some((p.clone(), v)),
+            _ => None,
+        }
+    }
+
+    fn stack_points(app: &App, p: Entity) -> Vec<[f32; 3]> {
+        let s = app.world().get::<PatchSurface>(p).unwrap();
+        let s = s.stack().expect("built");
+        s.finest_points()
+            .data()
+            .iter()
+            .map(|p| p.as_vec3().to_array())
+            .collect()
+    }
+
+    /// Every joined patch is drawn, its mesh being its stack's finest
+    /// points (as `f32`), with a normal per point equal to the kernel's
+    /// mesh normals (computed independently of the sync here).
+    #[test]
+    fn every_patch_is_drawn_from_its_stack() {
+        let mut app = app(SurfaceMode::Shaded);
+        for name in ["screen", "wing"] {
+            let p = by_name(&mut app, name);
+            let (pos, vis) = drawn(&mut app, p).unwrap_or_else(|| panic!("{name} not drawn"));
+            assert_eq!(pos, stack_points(&app, p), "{name}");
+            assert_eq!(vis, Visibility::Inherited, "{name}");
+        }
+        // the hood heads a G2 run (the screen): shaded, it is drawn from its cut
+        let hood = by_name(&mut app, "hood");
+        let (pos, _) = drawn(&mut app, hood).expect("the G2 head is drawn from its stack");
+        assert_eq!(pos, stack_points(&app, hood));
+        let w = app.world_mut();
+        let v = *w
+            .query_filtered::<&Visibility, With<SurfaceEntity>>()
+            .single(w)
+            .unwrap();
+        assert_eq!(
+            v,
+            Visibility::Hidden,
+            "the incremental mesh gives way to the cut"
+        );
+        assert_eq!(app.world().resource::<PatchMeshes>().meshes.len(), 3);
+    }
+
+    /// Negative control of the G2 choice: in an analysis map the hood's
+    /// incremental mesh is shown again and its stack mesh goes away.
+    #[test]
+    fn an_analysis_map_shows_the_incremental_first_patch() {
+        let mut app = app(SurfaceMode::Zebra);
+        let hood = by_name(&mut app, "hood");
+        assert!(drawn(&mut app, hood).is_none());
+        let w = app.world_mut();
+        let v = *w
+            .query_filtered::<&Visibility, With<SurfaceEntity>>()
+            .single(w)
+            .unwrap();
+        assert_eq!(v, Visibility::Inherited);
+    }
+
+    /// Hiding a patch hides its mesh; a patch despawned takes its mesh.
+    #[test]
+    fn hidden_and_removed_patches_are_not_drawn() {
+        let mut app = app(SurfaceMode::Shaded);
+        let wing = by_name(&mut app, "wing");
+        app.world_mut().entity_mut(wing).insert(PatchHidden);
+        app.update();
+        assert_eq!(drawn(&mut app, wing).unwrap().1, Visibility::Hidden);
+        app.world_mut().entity_mut(wing).remove::<PatchHidden>();
+        app.update();
+        assert_eq!(drawn(&mut app, wing).unwrap().1, Visibility::Inherited);
+        app.world_mut().entity_mut(wing).despawn();
+        app.update();
+        app.update();
+        assert!(drawn(&mut app, wing).is_none());
+        assert!(
+            !app.world()
+                .resource::<PatchMeshes>()
+                .meshes
+                .contains_key(&wing)
+        );
+    }
+
+    /// Only a changed `PatchSurface` rewrites a mesh: an update with
+    /// nothing changed rebuilds none; a turned handle of the wing rebuilds
+    /// the wing's alone (nothing starts on it).
+    #[test]
+    fn only_a_changed_surface_is_rebuilt() {
+        let mut app = app(SurfaceMode::Shaded);
+        let rebuilt = |app: &App| app.world().resource::<PatchMeshes>().rebuilt;
+        let before = rebuilt(&app);
+        app.update();
+        app.update();
+        assert_eq!(rebuilt(&app), before, "nothing changed, nothing rebuilt");
+        let wing = by_name(&mut app, "wing");
+        let old = drawn(&mut app, wing).unwrap().0;
+        let w = app.world_mut();
+        let h = w
+            .query::<(&crate::ecs::patch::SurfaceHandle, &ChildOf, Entity)>()
+            .iter(w)
+            .find(|(s, c, _)| c.parent() == wing && s.row == 1 && s.col == 2)
+            .map(|(.., e)| e)
+            .unwrap();
+        let d = w.get::<crate::ecs::patch::Direction>(h).unwrap().0;
+        let turned = (d + DVec3::new(0.0, 0.0, 0.3)).normalize();
+        w.get_mut::<crate::ecs::patch::Direction>(h).unwrap().0 = turned;
+        app.update();
+        assert_eq!(rebuilt(&app), before + 1, "the wing alone");
+        let new = drawn(&mut app, wing).unwrap().0;
+        assert_ne!(new, old);
+        assert_eq!(new, stack_points(&app, wing));
+    }
+
+    /// What docs/editor.md says of the G2 head: its incremental surface and
+    /// its cut of the merged net agree away from the seam and differ near it
+    /// (the reason the cut is drawn). Prints the figures.
+    #[test]
+    fn the_g2_head_cut_differs_from_its_own_surface_near_the_seam() {
+        let mut app = app(SurfaceMode::Shaded);
+        let hood = by_name(&mut app, "hood");
+        let data = app.world().resource::<SurfaceData>();
+        let s = app.world().get::<PatchSurface>(hood).unwrap();
+        let cut = s.stack().unwrap().finest_points();
+        let own = &data.points;
+        assert_eq!((own.rows(), own.cols()), (cut.rows(), cut.cols()));
+        let cols = own.cols();
+        let mut by_col = vec![0.0f64; cols];
+        for r in 0..own.rows() {
+            for c in 0..cols {
+                let d = (own.get(r, c) - cut.get(r, c)).length();
+                by_col[c] = by_col[c].max(d);
+            }
+        }
+        let size = data
+            .bounds()
+            .map(|[lo, hi]| (hi - lo).length())
+            .unwrap_or(1.0);
+        println!(
+            "hood: largest distance, own surface to G2 cut, by column (scene size {size:.3}): {by_col:?}"
+        );
+        // measured: 0 on columns 0–34, up to 0.0108 near the seam (size 2.26)
+        assert!(
+            by_col[..cols / 2].iter().all(|&d| d == 0.0),
+            "the first half is the same surface"
+        );
+        let worst = by_col.iter().copied().fold(0.0, f64::max);
+        assert!(
+            worst > 1e-3 * size,
+            "near the seam they differ visibly: {by_col:?}"
+        );
+    }
+}
