@@ -492,7 +492,6 @@ fn a_turn_on_a_joined_patch_moves_only_what_changed() {
 /// handle turns the wing's tangent, leaves the hood's net as it was, moves
 /// the wing's row of handles in that frame, and is one undo step.
 #[test]
-#[ignore = "needs the edit stage of h/docedit (f567ad3: handle edits act on the active patch); passes merged with it"]
 fn a_drag_on_the_active_joined_patch_turns_its_tangent() {
     let doc = hood();
     let mut app = editor(&doc, 0);
