@@ -102,6 +102,9 @@ fn autosave_writer_child() {
     use streamline_studio::editor::document::files::EditorDirs;
     let dirs = EditorDirs { home: home.into() };
     let (a, b) = two_large_scenes();
+    // the autosave writes the whole design; one patch: the scene's version-2 bytes
+    use streamline_studio::scene::Document;
+    let (a, b) = (Document::from_scene(a), Document::from_scene(b));
     let origin = dirs.home.join("design.ron");
     for i in 0.. {
         write_recovery(&dirs, if i % 2 == 0 { &a } else { &b }, Some(&origin)).unwrap();

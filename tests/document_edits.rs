@@ -461,3 +461,25 @@ fn export_writes_every_patch() {
         assert!(text.lines().any(|l| l == format!("o {name}")), "{name}");
     }
 }
+
+/// A drag on a later patch is one undo step, and Esc (CancelGroup) puts
+/// the document back as it was, with no undo step left.
+#[test]
+fn a_drag_on_a_later_patch_is_one_step_and_cancels_whole() {
+    let mut app = app(&hood());
+    patch(&mut app, PatchEdit::SetPatch("wing".into())).unwrap();
+    let before = shown(&mut app);
+    for k in 1..=3 {
+        let msg = ecs::EditMessage {
+            edit: rotate(1, 1, 4.0 * k as f64),
+            group: Some(7),
+        };
+        app.world_mut().write_message(msg);
+        app.update();
+    }
+    assert_eq!(app.world().resource::<History>().undo_len(), 1);
+    assert!(!same(&shown(&mut app), &before));
+    ecs::apply(&mut app, Edit::CancelGroup(7)).unwrap();
+    assert!(same(&shown(&mut app), &before));
+    assert_eq!(app.world().resource::<History>().undo_len(), 0);
+}

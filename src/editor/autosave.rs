@@ -117,13 +117,25 @@ pub fn pending_recovery(dirs: &EditorDirs, scene: Option<&std::path::Path>) -> O
     })
 }
 
+/// The design, every patch: its first patch's scene and the later patches.
+#[derive(bevy::ecs::system::SystemParam)]
+struct DesignRead<'w, 's> {
+    patch: PatchRef<'w, 's>,
+    joined: JoinedRead<'w, 's>,
+}
+
+impl DesignRead<'_, '_> {
+    fn document(&self) -> Result<Document, String> {
+        self.patch.scene().map(|s| self.joined.document(s))
+    }
+}
+
 fn tick(
     meter: Res<crate::ecs::meter::CpuMeter>,
     dirs: Res<EditorDirs>,
     config: Res<AutosaveConfig>,
     model: Res<Model>,
-    patch: PatchRef,
-    joined: JoinedRead,
+    design: DesignRead,
     mut state: ResMut<AutosaveState>,
     mut ui: ResMut<FileUi>,
 ) {
@@ -140,8 +152,8 @@ fn tick(
     if state.dirty && state.last.elapsed() >= config.interval {
         state.last = Instant::now();
         state.dirty = false;
-        let written = (patch.scene())
-            .and_then(|s| write_recovery(&dirs, &joined.document(s), model.path.as_deref()));
+        let written =
+            (design.document()).and_then(|d| write_recovery(&dirs, &d, model.path.as_deref()));
         if let Err(e) = written {
             ui.errors.push(format!("autosave failed: {e}"));
         }
@@ -152,8 +164,7 @@ fn on_exit(
     mut exits: MessageReader<AppExit>,
     dirs: Res<EditorDirs>,
     model: Res<Model>,
-    patch: PatchRef,
-    joined: JoinedRead,
+    design: DesignRead,
     ui: Res<FileUi>,
 ) {
     if exits.read().count() == 0 {
@@ -161,8 +172,8 @@ fn on_exit(
     }
     if model.unsaved
         && !ui.discarded
-        && let Err(e) = (patch.scene())
-            .and_then(|s| write_recovery(&dirs, &joined.document(s), model.path.as_deref()))
+        && let Err(e) =
+            (design.document()).and_then(|d| write_recovery(&dirs, &d, model.path.as_deref()))
     {
         error!("autosave on quit failed: {e}");
     }

@@ -30,27 +30,32 @@ type JoinedRow = (
     Option<&'static PatchInitial>,
 );
 
+/// The first patch's document components, writable.
+type FirstRow = (
+    Entity,
+    Option<&'static mut PatchSlot>,
+    Has<PatchHidden>,
+    Has<PatchSurface>,
+);
+
+/// The first patch (not a joined one).
+type FirstOnly = (With<Patch>, Without<Joined>);
+
+/// A joined patch.
+type JoinedOnly = (With<Patch>, With<Joined>);
+
+/// A joined patch's net handle's values, writable.
+type JoinedNetMut = (&'static mut Direction, &'static mut ArcParam);
+
+/// A joined patch's net handle (never an initial-curve handle).
+type JoinedNet = (With<JoinedHandle>, Without<InitialHandle>);
+
 /// The document's patches beyond the first patch's scene, writable.
 #[derive(SystemParam)]
 pub(crate) struct JoinedParts<'w, 's> {
-    first: Query<
-        'w,
-        's,
-        (
-            Entity,
-            Option<&'static mut PatchSlot>,
-            Has<PatchHidden>,
-            Has<PatchSurface>,
-        ),
-        (With<Patch>, Without<Joined>),
-    >,
-    joined: Query<'w, 's, JoinedRow, (With<Patch>, With<Joined>)>,
-    handles: Query<
-        'w,
-        's,
-        (&'static mut Direction, &'static mut ArcParam),
-        (With<JoinedHandle>, Without<InitialHandle>),
-    >,
+    first: Query<'w, 's, FirstRow, FirstOnly>,
+    joined: Query<'w, 's, JoinedRow, JoinedOnly>,
+    handles: Query<'w, 's, JoinedNetMut, JoinedNet>,
     active: ResMut<'w, ActivePatch>,
     commands: Commands<'w, 's>,
 }
@@ -113,7 +118,8 @@ impl JoinedParts<'_, '_> {
                     edge,
                     continuity,
                 } => PatchStart::Edge {
-                    parent: ids[*parent],
+                    // an earlier patch (a state names no later one; never panics)
+                    parent: ids.get(*parent).copied().unwrap_or(first),
                     edge: *edge,
                     continuity: *continuity,
                 },
@@ -185,11 +191,10 @@ impl JoinedParts<'_, '_> {
         };
         let several = !target.joined.is_empty();
         match slot {
-            Some(mut slot) => {
-                if slot.name != target.first_name {
-                    slot.name.clone_from(&target.first_name);
-                }
+            Some(mut slot) if slot.name != target.first_name => {
+                slot.name.clone_from(&target.first_name);
             }
+            Some(_) => {}
             None if several || target.first_name != MAIN_PATCH => {
                 self.commands.entity(first).insert(PatchSlot {
                     name: target.first_name.clone(),
@@ -347,26 +352,22 @@ pub fn doc_state(world: &World) -> Result<DocState, String> {
 /// output stage, the editor's autosave).
 #[derive(SystemParam)]
 pub struct JoinedRead<'w, 's> {
-    first: Query<
-        'w,
-        's,
-        (Entity, Option<&'static PatchSlot>, Has<PatchHidden>),
-        (With<Patch>, Without<Joined>),
-    >,
-    joined: Query<
-        'w,
-        's,
-        (
-            Entity,
-            &'static PatchSlot,
-            &'static PatchStart,
-            &'static JoinedDesign,
-            Has<PatchHidden>,
-            Option<&'static PatchInitial>,
-        ),
-        (With<Patch>, With<Joined>),
-    >,
+    first: Query<'w, 's, FirstRead, FirstOnly>,
+    joined: Query<'w, 's, JoinedReadRow, JoinedOnly>,
 }
+
+/// The first patch's document components.
+type FirstRead = (Entity, Option<&'static PatchSlot>, Has<PatchHidden>);
+
+/// A joined patch's document components.
+type JoinedReadRow = (
+    Entity,
+    &'static PatchSlot,
+    &'static PatchStart,
+    &'static JoinedDesign,
+    Has<PatchHidden>,
+    Option<&'static PatchInitial>,
+);
 
 impl JoinedRead<'_, '_> {
     /// The document's state with `first` as its first patch's scene.

@@ -268,21 +268,19 @@ type PatchDataMut = (
 /// A net handle's values, writable.
 type NetValuesMut = (&'static mut Direction, &'static mut ArcParam);
 
+/// A net handle of the first patch (not an initial-curve one, not a joined patch's).
+type FirstNet = (
+    With<SurfaceHandle>,
+    Without<InitialHandle>,
+    Without<JoinedHandle>,
+);
+
 /// The patch and its handles, writable: what the edit stage reads a scene
 /// from and writes one back into.
 #[derive(SystemParam)]
 pub(crate) struct PatchParts<'w, 's> {
     patches: Query<'w, 's, PatchDataMut, (With<Patch>, Without<Joined>)>,
-    surface: Query<
-        'w,
-        's,
-        NetValuesMut,
-        (
-            With<SurfaceHandle>,
-            Without<InitialHandle>,
-            Without<JoinedHandle>,
-        ),
-    >,
+    surface: Query<'w, 's, NetValuesMut, FirstNet>,
     initial: Query<'w, 's, &'static mut Direction, (With<InitialHandle>, Without<SurfaceHandle>)>,
     details: Query<'w, 's, &'static mut DetailRotation, With<DetailHandle>>,
     commands: Commands<'w, 's>,

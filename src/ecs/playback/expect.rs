@@ -78,7 +78,7 @@ pub(super) fn check(
             by,
             tolerance,
         } => shifted(marks, points, mark, by, tolerance),
-        // checked against the patch entities (`playback/patches.rs`)
+        // checked against the patch entities (`playback/seam.rs`)
         Expect::ExpectSeam { .. } => Err("a seam is checked by the playback's patch steps".into()),
     }
 }
