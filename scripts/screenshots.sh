@@ -39,6 +39,14 @@ shot panel-lengths "$T/4-lengths.ron" --panel selection --select 4,2
 shot authoring-5-mirror "$T/5-mirror.ron" --panel structure --select 1,2
 shot authoring-6-curvature "$T/5-mirror.ron" --panel analysis --analysis gaussian
 shot authoring-7-save "$T/5-mirror.ron" --panel file
+# docs/patches.md: the several-patch walk-through's scenes
+cp scripts/patches-shots.ron "$T/patches.ron"
+cp scenes/hood-screen-wing.ron "$T/"
+"$BIN" play "$T/patches.ron" >/dev/null
+shot patches-walk-1-open scenes/hood-screen-wing.ron --panel patches
+shot patches-walk-3-turned "$T/3-turned.ron" --panel selection --select 2,3
+shot patches-walk-5-tail "$T/5-tail.ron" --panel patches
+shot patches-walk-6-seams "$T/5-tail.ron" --panel analysis
 # the dialog and the arrow's menu need a pointer (xdotool)
 xvfb-run -a -s "-screen 0 1280x800x24" bash tests/gui/authoring.sh "$BIN" docs/img/dialog-new-design.png "$T/d.json" dialog -
 cp "$T/2-insert.ron" "$T/menu.ron"
