@@ -189,21 +189,20 @@ impl PatchAction {
     }
 }
 
+/// What the section reads of each patch.
+type PatchItem = (
+    Entity,
+    &'static PatchSlot,
+    &'static PatchStart,
+    Has<PatchHidden>,
+    Option<&'static JoinedDesign>,
+    Option<&'static PatchKernel>,
+);
+
 /// What only the Patches section touches.
 #[derive(SystemParam)]
 pub struct PatchesSection<'w, 's> {
-    patches: Query<
-        'w,
-        's,
-        (
-            Entity,
-            &'static PatchSlot,
-            &'static PatchStart,
-            Has<PatchHidden>,
-            Option<&'static JoinedDesign>,
-            Option<&'static PatchKernel>,
-        ),
-    >,
+    patches: Query<'w, 's, PatchItem>,
     first: Query<'w, 's, (Entity, &'static PatchKernel), Without<Joined>>,
     pub active: ResMut<'w, ActivePatch>,
     pub form: ResMut<'w, PatchesForm>,

@@ -121,7 +121,11 @@ fn sync_patch_meshes(
     let _meter = meter.start();
     let streamline = *mode.get() == EditorMode::Streamline;
     let first = patches.iter().find(|r| !r.3).map(|r| r.0);
-    let g2_head = first.is_some_and(|f| heads_g2_run(f, patches.iter().map(|r| *r.2)));
+    // a G2 head whose run failed to build keeps its incremental surface
+    let g2_head = first.is_some_and(|f| {
+        heads_g2_run(f, patches.iter().map(|r| *r.2))
+            && patches.get(f).is_ok_and(|r| r.1.stack().is_some())
+    });
     let first_stack = first_from_stack(g2_head, analysis.mode);
     // the first patch's incremental mesh (mesh mode shows and hides it itself)
     if streamline {
@@ -408,9 +412,8 @@ mod tests {
         let cols = own.cols();
         let mut by_col = vec![0.0f64; cols];
         for r in 0..own.rows() {
-            for c in 0..cols {
-                let d = (own.get(r, c) - cut.get(r, c)).length();
-                by_col[c] = by_col[c].max(d);
+            for (c, worst) in by_col.iter_mut().enumerate() {
+                *worst = worst.max((own.get(r, c) - cut.get(r, c)).length());
             }
         }
         let size = data
