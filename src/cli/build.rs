@@ -301,7 +301,7 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         }
     }
     let w = app.world_mut();
-    let entities = ecs::patch::census::census(w);
+    let entities = ecs::joined::census::census(w);
     let scene = ecs::patch::try_scene(w).map_err(CliError::Usage)?;
     let (patches, seams) = patches_and_seams(w, scene.display_depth, &doc.patches[0].name)?;
     let mut per = Vec::new();

@@ -1,16 +1,31 @@
 //! The edit stage: the only system that changes the model. The frame's
-//! edits are applied one after another to the patch's scene, assembled from
-//! its entities ([`super::patch::scene_io`]); undo steps are recorded; then
-//! the scene is written back into the components, value by value, so that
-//! only what an edit really changed is marked changed. What to redo follows
-//! from those changes alone ([`super::patch::track`]).
+//! edits are applied one after another to the document's state, assembled
+//! from its entities (the first patch's scene by
+//! [`super::patch::scene_io`], the later patches by
+//! [`super::joined::world_io`]); undo steps record the whole document;
+//! then the state is written back into the components, value by value, so
+//! that only what an edit really changed is marked changed. What to redo
+//! follows from those changes alone ([`super::patch::track`],
+//! [`super::joined::build`]).
+//!
+//! Handle edits (`SetDirection`, `Rotate`, `SetLength`, `RotateMany`) act
+//! on the [`super::joined::ActivePatch`]: on a later patch they change its
+//! control net (its only handles: a joined patch has no details); the
+//! other edits of one surface act on the first patch only. Patch edits
+//! ([`crate::scene::patch_edit::PatchEdit`]) are applied by
+//! [`super::joined::patch_ops`]. With several patches, an edit of the first
+//! patch that would make a design the file checks refuse (details, fine
+//! tuning or a net a join cannot take) is refused, naming the patch.
 
 use super::components::{LevelData, SubdivisionLevel};
 use super::edit_error::EditError;
+use super::edit_state::DocState;
+use super::joined::patch_ops::{self, DocWork};
+use super::joined::world_io::JoinedParts;
 use super::messages::{Edit, EditMessage};
 use super::patch::scene_io::PatchParts;
 use super::resources::*;
-use crate::scene::{Scene, io};
+use crate::scene::{Scene, document_io};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use std::time::Instant;
@@ -28,18 +43,25 @@ pub(crate) struct EditCtx<'w, 's> {
     levels: Query<'w, 's, (&'static SubdivisionLevel, &'static LevelData)>,
 }
 
+/// The document's entities, writable: the first patch and the later ones.
+#[derive(SystemParam)]
+pub(crate) struct DocParts<'w, 's> {
+    first: PatchParts<'w, 's>,
+    joined: JoinedParts<'w, 's>,
+}
+
 pub(crate) fn apply_edits(
     meter: Res<super::meter::CpuMeter>,
     mut reader: MessageReader<EditMessage>,
     mut ctx: EditCtx,
-    mut parts: PatchParts,
+    mut parts: DocParts,
     mut log: ResMut<EditLog>,
     mut stats: ResMut<Stats>,
 ) {
     let _meter = meter.start();
     let t0 = Instant::now();
     let mut labels = Vec::new();
-    let mut work: Option<Scene> = None;
+    let mut work: Option<DocWork> = None;
     let mut changed = false;
     for msg in reader.read() {
         if labels.is_empty() {
@@ -50,10 +72,13 @@ pub(crate) fn apply_edits(
         if matches!(msg.edit, Edit::Save(_) | Edit::Export(_)) {
             continue; // the output stage, after the mesh is up to date
         }
-        let scene = match &mut work {
-            Some(s) => s,
-            None => match parts.assemble() {
-                Ok(s) => work.insert(s),
+        let work = match &mut work {
+            Some(w) => w,
+            None => match parts.first.assemble() {
+                Ok(s) => {
+                    let (state, active) = parts.joined.read(s);
+                    work.insert(DocWork { state, active })
+                }
                 Err(e) => {
                     log.entries.push(Err(EditError::Assemble(e)));
                     continue;
@@ -61,8 +86,8 @@ pub(crate) fn apply_edits(
             },
         };
         let undoable = msg.edit.is_undoable();
-        let snapshot = undoable.then(|| scene.clone());
-        match apply(&mut ctx, scene, &msg.edit) {
+        let snapshot = undoable.then(|| work.state.clone());
+        match apply_doc(&mut ctx, work, &msg.edit) {
             Ok(done) => {
                 changed = true;
                 if let Some(s) = snapshot {
@@ -76,8 +101,9 @@ pub(crate) fn apply_edits(
             Err(e) => log.entries.push(Err(e)),
         }
     }
-    if let (true, Some(scene)) = (changed, &work) {
-        parts.write(scene);
+    if let (true, Some(w)) = (changed, &work) {
+        parts.first.write(&w.state.first);
+        parts.joined.write(&w.state, w.active);
     }
     if !labels.is_empty() {
         stats.last = EditStats {
@@ -87,6 +113,163 @@ pub(crate) fn apply_edits(
         };
         stats.collecting = true;
     }
+}
+
+/// A handle edit: one that acts on the active patch.
+fn is_handle_edit(edit: &Edit) -> bool {
+    matches!(
+        edit,
+        Edit::SetDirection { .. }
+            | Edit::Rotate { .. }
+            | Edit::SetLength { .. }
+            | Edit::RotateMany { .. }
+    )
+}
+
+/// An edit of the whole document, whichever patch is active.
+fn is_document_edit(edit: &Edit) -> bool {
+    matches!(
+        edit,
+        Edit::SetDisplayDepth(_)
+            | Edit::SetEditDepth(_)
+            | Edit::Undo
+            | Edit::Redo
+            | Edit::CancelGroup(_)
+            | Edit::Load(_)
+            | Edit::Replace(_)
+            | Edit::Recover { .. }
+            | Edit::Save(_)
+            | Edit::Export(_)
+            | Edit::Patch(_)
+            | Edit::Author(crate::scene::edit::AuthorEdit::NewDesign { .. })
+    )
+}
+
+/// Applies one edit to the document (module documentation).
+fn apply_doc(ctx: &mut EditCtx, work: &mut DocWork, edit: &Edit) -> Result<String, EditError> {
+    match edit {
+        Edit::Patch(p) => return patch_ops::apply(work, p).map_err(EditError::Patch),
+        Edit::Undo | Edit::Redo => {
+            let undo = matches!(edit, Edit::Undo);
+            let cur = work.state.clone();
+            let target = ctx.history.step(undo, cur).ok_or(if undo {
+                EditError::NothingToUndo
+            } else {
+                EditError::NothingToRedo
+            })?;
+            set_state(work, target);
+            ctx.model.unsaved = true;
+            return Ok(if undo { "undone" } else { "redone" }.into());
+        }
+        Edit::CancelGroup(g) => {
+            let (target, was_unsaved) = ctx
+                .history
+                .cancel(*g)
+                .ok_or(EditError::NotLastDrag { group: *g })?;
+            set_state(work, target);
+            ctx.model.unsaved = was_unsaved;
+            return Ok("drag cancelled".into());
+        }
+        Edit::Load(path) => {
+            let loaded = document_io::load(path).map_err(EditError::Load)?;
+            replace(ctx, work, DocState::of_document(&loaded));
+            ctx.model.path = Some(path.clone());
+            return Ok(format!("loaded {}", path.display()));
+        }
+        Edit::Replace(new) => {
+            replace(ctx, work, DocState::of_scene((**new).clone()));
+            ctx.model.path = None;
+            return Ok(format!("opened {}", new.name));
+        }
+        Edit::Recover { document, origin } => {
+            replace(ctx, work, DocState::of_document(document));
+            ctx.model.path = origin.clone();
+            ctx.model.unsaved = true;
+            return Ok(format!("recovered {}", document.name));
+        }
+        Edit::Author(a @ crate::scene::edit::AuthorEdit::NewDesign { .. }) => {
+            let (msg, effect) = super::authoring::apply(&mut work.state.first, a)?;
+            if let super::authoring::Effect::NewScene(new) = effect {
+                replace(ctx, work, DocState::of_scene(*new));
+                ctx.model.path = None;
+                ctx.model.unsaved = true;
+            }
+            return Ok(msg);
+        }
+        _ => {}
+    }
+    if work.active > 0 && is_handle_edit(edit) {
+        return joined_edit(ctx, work, edit);
+    }
+    if work.active > 0 && !is_document_edit(edit) {
+        return Err(EditError::Patch(format!(
+            "`{}` acts on the first patch only; on `{}` use SetDirection, Rotate, SetLength or RotateMany, or SetPatch to the first patch before it",
+            edit.label(),
+            work.state.name(work.active)
+        )));
+    }
+    // an edit of the first patch; with several patches, checked as a file would be
+    let level0 = is_handle_edit(edit) && work.state.first.edit_depth == 0;
+    let before = (!work.state.joined.is_empty() && !level0).then(|| work.state.clone());
+    let done = apply(ctx, &mut work.state.first, edit)?;
+    work.state.sync_seams();
+    if let Some(b) = before
+        && let Err(m) = patch_ops::check(&work.state)
+    {
+        work.state = b;
+        return Err(EditError::Patch(format!("`{}` refused: {m}", edit.label())));
+    }
+    Ok(done)
+}
+
+/// Restores a recorded document; the active patch stays when it is still there.
+fn set_state(work: &mut DocWork, target: DocState) {
+    if work.active >= target.len() {
+        work.active = 0;
+    }
+    work.state = target;
+}
+
+/// A handle edit of the active later patch: its control net, through the
+/// same checks as the first patch's ([`apply`] on a scene of its design),
+/// refused at an edit depth above 0 (a joined patch has no details) and on
+/// a seam column shared with the patch it starts on
+/// ([`patch_ops::check_joined_cell`]).
+fn joined_edit(ctx: &mut EditCtx, work: &mut DocWork, edit: &Edit) -> Result<String, EditError> {
+    let i = work.active;
+    let name = work.state.name(i).to_string();
+    if work.state.first.edit_depth > 0 {
+        return Err(EditError::Patch(format!(
+            "`{name}` starts on another patch, and its handles are its control tangents (no details, docs/math.md §11): set the edit depth to 0 to edit it"
+        )));
+    }
+    let cells = match edit {
+        Edit::SetDirection { row, col, .. }
+        | Edit::Rotate { row, col, .. }
+        | Edit::SetLength { row, col, .. } => vec![(*row, *col)],
+        Edit::RotateMany { handles, .. } => handles.clone(),
+        _ => Vec::new(),
+    };
+    for &(r, c) in &cells {
+        patch_ops::check_joined_cell(&work.state, i, r, c).map_err(EditError::Patch)?;
+    }
+    let first = &work.state.first;
+    let mut scene = Scene {
+        name: name.clone(),
+        design: work.state.joined[i - 1].design.clone(),
+        initial: crate::scene::format_v3::placeholder_initial(),
+        details: Default::default(),
+        display_depth: first.display_depth,
+        edit_depth: 0,
+        view: first.view,
+        tuning: None,
+        interpolate_tangents: false,
+        mirror: false,
+    };
+    let done = apply(ctx, &mut scene, edit)?;
+    work.state.joined[i - 1].design = scene.design;
+    work.state.sync_seams();
+    Ok(format!("{done} on `{name}`"))
 }
 
 fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, EditError> {
@@ -148,18 +331,6 @@ fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, Ed
             scene.edit_depth = *n;
             Ok(format!("edit depth {n}"))
         }
-        Edit::Undo | Edit::Redo => {
-            let undo = matches!(edit, Edit::Undo);
-            let cur = scene.clone();
-            let target = ctx.history.step(undo, cur).ok_or(if undo {
-                EditError::NothingToUndo
-            } else {
-                EditError::NothingToRedo
-            })?;
-            *scene = target;
-            ctx.model.unsaved = true;
-            Ok(if undo { "undone" } else { "redone" }.into())
-        }
         Edit::SetTuning(t) => {
             scene.tuning = t.clone();
             Ok(if t.is_some() {
@@ -197,32 +368,6 @@ fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, Ed
                 },
             )
         }
-        Edit::CancelGroup(g) => {
-            let (target, was_unsaved) = ctx
-                .history
-                .cancel(*g)
-                .ok_or(EditError::NotLastDrag { group: *g })?;
-            *scene = target;
-            ctx.model.unsaved = was_unsaved;
-            Ok("drag cancelled".into())
-        }
-        Edit::Load(path) => {
-            let loaded = io::load(path).map_err(EditError::Load)?;
-            replace(ctx, scene, loaded);
-            ctx.model.path = Some(path.clone());
-            Ok(format!("loaded {}", path.display()))
-        }
-        Edit::Replace(new) => {
-            replace(ctx, scene, (**new).clone());
-            ctx.model.path = None;
-            Ok(format!("opened {}", new.name))
-        }
-        Edit::Recover { scene: new, origin } => {
-            replace(ctx, scene, (**new).clone());
-            ctx.model.path = origin.clone();
-            ctx.model.unsaved = true;
-            Ok(format!("recovered {}", new.name))
-        }
         Edit::Save(_) | Edit::Export(_) => Ok(String::new()),
         Edit::RotateMany {
             handles,
@@ -247,28 +392,16 @@ fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, Ed
                 radians.to_degrees()
             ))
         }
-        Edit::Author(a) => author(ctx, scene, a),
-        Edit::Patch(p) => Err(EditError::Patch(format!(
-            "`{}`: patch edits are run by the playback only in this build",
-            p.label()
-        ))),
+        Edit::Author(a) => Ok(super::authoring::apply(scene, a)?.0),
+        // the document's edits (apply_doc)
+        Edit::Undo
+        | Edit::Redo
+        | Edit::CancelGroup(_)
+        | Edit::Load(_)
+        | Edit::Replace(_)
+        | Edit::Recover { .. }
+        | Edit::Patch(_) => Ok(String::new()),
     }
-}
-
-/// An authoring edit ([`super::authoring`]): the scene changes there.
-fn author(
-    ctx: &mut EditCtx,
-    scene: &mut Scene,
-    a: &super::authoring::AuthorEdit,
-) -> Result<String, EditError> {
-    use super::authoring::Effect;
-    let (msg, effect) = super::authoring::apply(scene, a)?;
-    if let Effect::NewScene(new) = effect {
-        replace(ctx, scene, *new);
-        ctx.model.path = None;
-        ctx.model.unsaved = true;
-    }
-    Ok(msg)
 }
 
 /// `d` can be built to `depth`; mirrored, its doubled design too
@@ -434,11 +567,12 @@ fn set_length(scene: &mut Scene, row: usize, col: usize, k: f64) -> Result<Strin
     Ok(format!("length coefficient {k} at ({row}, {col})"))
 }
 
-/// A scene from elsewhere (a file, a new design, a recovery) replaces the
-/// current one, and the history starts afresh. Written back like any edit:
-/// what differs from the current scene is what is rebuilt.
-fn replace(ctx: &mut EditCtx, scene: &mut Scene, new: Scene) {
-    *scene = new;
+/// A document from elsewhere (a file, a new design, a recovery) replaces
+/// the current one, and the history starts afresh. Written back like any
+/// edit: what differs from the current document is what is rebuilt.
+fn replace(ctx: &mut EditCtx, work: &mut DocWork, new: DocState) {
+    work.state = new;
+    work.active = 0;
     ctx.model.unsaved = false;
     ctx.history.clear();
 }

@@ -16,6 +16,7 @@ mod blend;
 pub mod components;
 mod edit;
 mod edit_error;
+pub mod edit_state;
 pub mod exchange;
 mod integrate;
 pub mod joined;

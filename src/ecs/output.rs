@@ -1,11 +1,15 @@
-//! The output stage: saving and exporting, after the mesh is up to date.
+//! The output stage: saving and exporting the whole design (every patch:
+//! a design of several is exported as `build --export` writes it), after
+//! the mesh is up to date.
 
 use super::edit_error::EditError;
 use super::exchange::{ExportSettings, LastExport};
 use super::messages::{Edit, EditMessage};
 use super::resources::*;
+use crate::scene::SceneError;
+use crate::scene::document_export::{DocumentExportSettings, export_document};
+use crate::scene::document_io;
 use crate::scene::export::{ExportOptions, export_scene};
-use crate::scene::io;
 use bevy::prelude::*;
 
 #[allow(clippy::too_many_arguments)]
@@ -14,6 +18,7 @@ pub(crate) fn write_files(
     mut reader: MessageReader<EditMessage>,
     mut model: ResMut<Model>,
     patch: super::patch::PatchRef,
+    joined: super::joined::JoinedRead,
     surface: Res<SurfaceData>,
     mut log: ResMut<EditLog>,
     settings: Res<ExportSettings>,
@@ -36,7 +41,8 @@ pub(crate) fn write_files(
             },
         };
         match &msg.edit {
-            Edit::Save(path) => match io::save(scene, path) {
+            // the design: version 2 for one patch (the bytes io::save writes), 3 for several
+            Edit::Save(path) => match document_io::save(&joined.document(scene.clone()), path) {
                 Ok(()) => {
                     model.path = Some(path.clone());
                     model.unsaved = false;
@@ -44,6 +50,31 @@ pub(crate) fn write_files(
                 }
                 Err(e) => log.entries.push(Err(EditError::Save(e))),
             },
+            Edit::Export(path) if joined.several() => {
+                // every patch, as `build --export` writes them (docs/math.md §11)
+                let doc = joined.document(scene.clone());
+                let opts = DocumentExportSettings {
+                    depth: Some(scene.display_depth),
+                    fit: settings.fit,
+                    colors: None,
+                };
+                let done = (doc.build(scene.display_depth))
+                    .map_err(|e| SceneError::file(path, format!("{e}; nothing was written")))
+                    .and_then(|built| export_document(&doc, &built, path, &opts));
+                match done {
+                    Ok(out) => {
+                        log.entries.push(Ok(format!(
+                            "exported {} ({}, {} patches: {})",
+                            path.display(),
+                            out.format.name(),
+                            out.patches.len(),
+                            out.patches.join(", ")
+                        )));
+                        last.written = Some((path.clone(), out.format, None));
+                    }
+                    Err(e) => log.entries.push(Err(EditError::Export(e))),
+                }
+            }
             Edit::Export(path) => {
                 let mesh = surface.mesh();
                 // the colours of the map shown, if they are this mesh's

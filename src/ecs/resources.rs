@@ -1,6 +1,6 @@
 //! Resources: the scene being edited, history, the surface mesh, stats, the edit log.
 
-use crate::scene::Scene;
+use super::edit_state::DocState;
 use bevy::prelude::*;
 use std::collections::VecDeque;
 use std::path::PathBuf;
@@ -8,9 +8,10 @@ use streamline_kernel::levels::dirty_window::DirtyWindow;
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 use streamline_kernel::{DVec3, Grid};
 
-/// The document: the file the patch was loaded from or saved to, and
-/// whether it changed since. The design itself lives in the patch entity
-/// and its handles ([`super::patch`]); [`super::patch::scene`] assembles it.
+/// The document: the file it was loaded from or saved to, and whether it
+/// changed since. The design itself lives in the patch entities and their
+/// handles ([`super::patch`], [`super::joined`]); [`super::joined::document`]
+/// assembles it.
 #[derive(Resource, Debug, Default)]
 pub struct Model {
     /// The file it was loaded from or saved to.
@@ -32,11 +33,13 @@ impl Default for ModelConfig {
     }
 }
 
-/// Undo and redo stacks of whole scenes (a 9×6 scene is a few kB).
+/// Undo and redo stacks of whole documents ([`DocState`]: the first
+/// patch's scene, every later patch's name, start, design and hidden flag;
+/// a 9×6 scene is a few kB). A one-patch design's steps are its scenes.
 #[derive(Resource, Debug, Default)]
 pub struct History {
-    pub(crate) undo: VecDeque<Scene>,
-    pub(crate) redo: Vec<Scene>,
+    pub(crate) undo: VecDeque<DocState>,
+    pub(crate) redo: Vec<DocState>,
     pub(crate) last_group: Option<u64>,
     /// Whether the scene had unsaved changes before the open group began.
     pub(crate) group_was_unsaved: bool,
@@ -56,7 +59,7 @@ impl History {
     /// Records `before` as an undo step unless `group` continues the last one.
     pub(crate) fn record(
         &mut self,
-        before: &Scene,
+        before: &DocState,
         group: Option<u64>,
         limit: usize,
         was_unsaved: bool,
@@ -73,9 +76,9 @@ impl History {
         self.redo.clear();
     }
 
-    /// Undo (`undo`) or redo one step from `current`: returns the scene to
+    /// Undo (`undo`) or redo one step from `current`: returns the document to
     /// restore and moves `current` onto the other stack.
-    pub(crate) fn step(&mut self, undo: bool, current: Scene) -> Option<Scene> {
+    pub(crate) fn step(&mut self, undo: bool, current: DocState) -> Option<DocState> {
         let target = if undo {
             self.undo.pop_back()
         } else {
@@ -92,7 +95,7 @@ impl History {
 
     /// Cancels the open group `group`: returns the scene from before its first
     /// edit, and whether it had unsaved changes then, and drops that undo step.
-    pub(crate) fn cancel(&mut self, group: u64) -> Option<(Scene, bool)> {
+    pub(crate) fn cancel(&mut self, group: u64) -> Option<(DocState, bool)> {
         if self.last_group != Some(group) {
             return None;
         }

@@ -1,13 +1,16 @@
-//! Autosave and recovery: unsaved work is written to a recovery file every
-//! couple of minutes and on quit (atomically, verified, like any save); on
+//! Autosave and recovery: unsaved work (the whole design, every patch:
+//! version 2 for one patch, 3 for several) is written to a recovery file
+//! every couple of minutes and on quit (atomically, verified, like any save); on
 //! start the editor offers to recover it when it is newer than the scene's
 //! file. A save removes it; so does discarding changes on quit.
 
 use super::document::files::{Dialog, EditorDirs, FileUi};
 use super::screenshot::ScreenshotRequest;
 use crate::ecs::Model;
+use crate::ecs::joined::JoinedRead;
 use crate::ecs::patch::PatchRef;
-use crate::scene::{Scene, io};
+use crate::scene::document::Document;
+use crate::scene::{document_io, io};
 use bevy::prelude::*;
 use std::path::PathBuf;
 use std::time::{Duration, Instant, SystemTime};
@@ -61,14 +64,14 @@ impl Plugin for AutosavePlugin {
     }
 }
 
-/// Writes the recovery file of `scene` (and `origin`, the file it came from).
+/// Writes the recovery file of `doc` (and `origin`, the file it came from).
 pub fn write_recovery(
     dirs: &EditorDirs,
-    scene: &Scene,
+    doc: &Document,
     origin: Option<&std::path::Path>,
 ) -> Result<(), String> {
     std::fs::create_dir_all(&dirs.home).map_err(|e| format!("{}: {e}", dirs.home.display()))?;
-    io::save(scene, &dirs.recovery_file()).map_err(|e| e.to_string())?;
+    document_io::save(doc, &dirs.recovery_file()).map_err(|e| e.to_string())?;
     let meta = RecoveryMeta {
         origin: origin.map(|p| std::path::absolute(p).unwrap_or(p.to_path_buf())),
     };
@@ -120,6 +123,7 @@ fn tick(
     config: Res<AutosaveConfig>,
     model: Res<Model>,
     patch: PatchRef,
+    joined: JoinedRead,
     mut state: ResMut<AutosaveState>,
     mut ui: ResMut<FileUi>,
 ) {
@@ -136,8 +140,8 @@ fn tick(
     if state.dirty && state.last.elapsed() >= config.interval {
         state.last = Instant::now();
         state.dirty = false;
-        let written =
-            (patch.scene()).and_then(|s| write_recovery(&dirs, &s, model.path.as_deref()));
+        let written = (patch.scene())
+            .and_then(|s| write_recovery(&dirs, &joined.document(s), model.path.as_deref()));
         if let Err(e) = written {
             ui.errors.push(format!("autosave failed: {e}"));
         }
@@ -149,6 +153,7 @@ fn on_exit(
     dirs: Res<EditorDirs>,
     model: Res<Model>,
     patch: PatchRef,
+    joined: JoinedRead,
     ui: Res<FileUi>,
 ) {
     if exits.read().count() == 0 {
@@ -156,8 +161,8 @@ fn on_exit(
     }
     if model.unsaved
         && !ui.discarded
-        && let Err(e) =
-            (patch.scene()).and_then(|s| write_recovery(&dirs, &s, model.path.as_deref()))
+        && let Err(e) = (patch.scene())
+            .and_then(|s| write_recovery(&dirs, &joined.document(s), model.path.as_deref()))
     {
         error!("autosave on quit failed: {e}");
     }
@@ -182,7 +187,7 @@ mod tests {
         let mut scene = builtin::default_scene();
         scene.name = "edited car".into();
         let origin = d.home.join("car.ron");
-        write_recovery(&d, &scene, Some(&origin)).unwrap();
+        write_recovery(&d, &Document::from_scene(scene.clone()), Some(&origin)).unwrap();
         // the scene file does not exist: the autosave is newer
         match pending_recovery(&d, Some(&origin)) {
             Some(Dialog::Recover {
@@ -202,6 +207,30 @@ mod tests {
         assert!(pending_recovery(&d, None).is_some());
         remove_recovery(&d);
         assert!(pending_recovery(&d, None).is_none());
+        let _ = std::fs::remove_dir_all(&d.home);
+    }
+
+    /// A design of several patches is autosaved whole (version 3) and
+    /// recovered whole: the recovered document is the autosaved one.
+    #[test]
+    fn recovery_keeps_every_patch() {
+        let d = dirs("patches");
+        let hood =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron");
+        let doc = document_io::load(&hood).unwrap();
+        assert_eq!(doc.patches.len(), 3);
+        write_recovery(&d, &doc, Some(&hood)).unwrap();
+        let back = document_io::load(&d.recovery_file()).unwrap();
+        assert_eq!(back.to_file(), doc.to_file());
+        // one patch: the version-2 bytes a scene's save writes
+        let scene = builtin::default_scene();
+        write_recovery(&d, &Document::from_scene(scene.clone()), None).unwrap();
+        let other = d.home.join("scene.ron");
+        io::save(&scene, &other).unwrap();
+        assert_eq!(
+            std::fs::read(d.recovery_file()).unwrap(),
+            std::fs::read(&other).unwrap()
+        );
         let _ = std::fs::remove_dir_all(&d.home);
     }
 }

@@ -182,8 +182,8 @@ pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
         continuous: opts.screenshot.is_some(),
     })
     .add_plugins(EditorPlugin);
-    // `patch_entity` asks for patches without `Joined`: a query that finds
-    // nothing until that component is registered (no system has run yet)
+    // `patch_entity` queries `Without<Joined>`: no query of it is built
+    // before the first update, so register it, else it finds no patch
     app.world_mut()
         .register_component::<crate::ecs::patch::Joined>();
     if let Some(doc) = &opts.document

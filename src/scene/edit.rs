@@ -16,6 +16,7 @@
 //! ([`super::script::Step`]).
 
 use super::Scene;
+use super::document::Document;
 use super::format::{ConstraintSpec, Dir, Finite, OrderSpec, Point, SchemeSpec, TemplateSpec};
 use super::patch_edit::PatchEdit;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -87,22 +88,24 @@ pub enum Edit {
     Undo,
     /// Redo the last undone edit.
     Redo,
-    /// Open a scene file; on failure the current scene stays.
+    /// Open a scene file of any version (every patch of a version-3 file);
+    /// on failure the current design stays.
     #[serde(skip)]
     Load(PathBuf),
     /// Replace the scene (new, built-in, recovered).
     #[serde(skip)]
     Replace(Box<Scene>),
-    /// Reopen autosaved work: replace the scene, remember the file it belongs
-    /// to, and keep it marked unsaved.
+    /// Reopen autosaved work: replace the design (every patch), remember
+    /// the file it belongs to, and keep it marked unsaved.
     #[serde(skip)]
     Recover {
-        /// The autosaved scene.
-        scene: Box<Scene>,
+        /// The autosaved design.
+        document: Box<Document>,
         /// The file it was edited from.
         origin: Option<PathBuf>,
     },
-    /// Save to a file (atomic, verified).
+    /// Save the design to a file (atomic, verified): version 2 for one
+    /// patch, version 3 for several.
     #[serde(skip)]
     Save(PathBuf),
     /// Export the surface: the mesh (`.obj`, `.stl`, `.glb`) or its fitted
@@ -164,7 +167,7 @@ impl Edit {
             Edit::Redo => "redo".into(),
             Edit::Load(p) => format!("load {}", p.display()),
             Edit::Replace(s) => format!("open {}", s.name),
-            Edit::Recover { scene, .. } => format!("recover {}", scene.name),
+            Edit::Recover { document, .. } => format!("recover {}", document.name),
             Edit::Save(p) => format!("save {}", p.display()),
             Edit::Export(p) => format!("export {}", p.display()),
             Edit::RotateMany {

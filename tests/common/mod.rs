@@ -1,6 +1,7 @@
 //! Helpers shared by the ECS test files.
 #![allow(dead_code)]
 
+pub mod documents;
 pub mod headless_editor;
 
 use bevy::prelude::*;

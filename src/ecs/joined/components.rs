@@ -86,3 +86,8 @@ pub struct ActivePatch(pub Option<Entity>);
 /// drawn nor picked. Hiding is an undo step; it is not written to the file.
 #[derive(Component, Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct PatchHidden;
+
+/// The initial curve (its file form) of a later patch that starts on its
+/// own curve rather than on an edge, kept to be saved as it was read.
+#[derive(Component, Debug, Clone, PartialEq)]
+pub struct PatchInitial(pub crate::scene::format::InitialSpec);

@@ -6,11 +6,16 @@
 //! ([`build`]). The first patch keeps the incremental pipeline.
 
 pub mod build;
+pub mod census;
 pub mod components;
+pub mod patch_ops;
 pub mod spawn;
+pub mod world_io;
 
+pub use crate::ecs::edit_state::{DocState, JoinedState, StartState, same_design};
 pub use components::*;
-pub use spawn::{adopt_first, spawn_joined, spawn_joined_patch};
+pub use spawn::{adopt_first, spawn_joined, spawn_joined_patch, spawn_joined_with};
+pub use world_io::{JoinedRead, doc_state, document};
 
 use bevy::prelude::*;
 

@@ -31,13 +31,11 @@ pub fn spawn_joined(world: &mut World, doc: &Document, first: Entity) -> Vec<Ent
             },
             None => PatchStart::Curve,
         };
-        ids.push(spawn_joined_patch(
-            world,
-            &p.name,
-            i,
-            start,
-            p.design.clone(),
-        ));
+        let e = spawn_joined_patch(world, &p.name, i, start, p.design.clone());
+        if let crate::scene::document::Start::Curve(c) = &p.start {
+            world.entity_mut(e).insert(PatchInitial(c.clone()));
+        }
+        ids.push(e);
     }
     ids
 }
@@ -69,7 +67,21 @@ pub fn spawn_joined_patch(
     start: PatchStart,
     design: Design,
 ) -> Entity {
-    let e = world
+    let e = spawn_joined_with(&mut world.commands(), name, index, start, design);
+    world.flush();
+    e
+}
+
+/// [`spawn_joined_patch`] through `commands` (the edit stage's way: the
+/// entities exist once the commands are applied, before the build).
+pub fn spawn_joined_with(
+    commands: &mut Commands,
+    name: &str,
+    index: usize,
+    start: PatchStart,
+    design: Design,
+) -> Entity {
+    let e = commands
         .spawn((
             Patch,
             PatchName(name.to_string()),
@@ -87,7 +99,7 @@ pub fn spawn_joined_patch(
     let mut surface = Grid::filled(net.rows(), net.cols(), Entity::PLACEHOLDER);
     for row in 0..net.rows() {
         for col in 0..net.cols() {
-            let h = world
+            let h = commands
                 .spawn((
                     SurfaceHandle { row, col },
                     Direction(net.get(row, col)),
@@ -99,7 +111,7 @@ pub fn spawn_joined_patch(
             surface.set(row, col, h);
         }
     }
-    world.entity_mut(e).insert((
+    commands.entity(e).insert((
         JoinedDesign(design),
         PatchIndex {
             surface,

@@ -243,9 +243,14 @@ pub fn try_scene(world: &World) -> Result<Scene, String> {
 
 /// The world's first patch entity (the one the incremental pipeline
 /// builds; not a [`Joined`] one).
+///
+/// Works before any system has run: a query naming [`Joined`] would find
+/// nothing while that component is not registered (no system has asked for
+/// it yet), which is how the editor once opened a version-3 scene without
+/// its later patches (its Stats said `patches 1`).
 pub fn patch_entity(world: &World) -> Option<Entity> {
-    let mut q = world.try_query_filtered::<Entity, (With<Patch>, Without<Joined>)>()?;
-    q.iter(world).next()
+    let mut q = world.try_query_filtered::<Entity, With<Patch>>()?;
+    q.iter(world).find(|&e| world.get::<Joined>(e).is_none())
 }
 
 /// The patch's own components, writable.
@@ -267,8 +272,17 @@ type NetValuesMut = (&'static mut Direction, &'static mut ArcParam);
 /// from and writes one back into.
 #[derive(SystemParam)]
 pub(crate) struct PatchParts<'w, 's> {
-    patches: Query<'w, 's, PatchDataMut, With<Patch>>,
-    surface: Query<'w, 's, NetValuesMut, (With<SurfaceHandle>, Without<InitialHandle>)>,
+    patches: Query<'w, 's, PatchDataMut, (With<Patch>, Without<Joined>)>,
+    surface: Query<
+        'w,
+        's,
+        NetValuesMut,
+        (
+            With<SurfaceHandle>,
+            Without<InitialHandle>,
+            Without<JoinedHandle>,
+        ),
+    >,
     initial: Query<'w, 's, &'static mut Direction, (With<InitialHandle>, Without<SurfaceHandle>)>,
     details: Query<'w, 's, &'static mut DetailRotation, With<DetailHandle>>,
     commands: Commands<'w, 's>,

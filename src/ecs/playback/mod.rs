@@ -1,9 +1,10 @@
 //! Scripted playback: each step of a [`Script`] is an edit message sent to a
-//! headless app (one update per step) or an expectation checked against it
-//! (`playback/expect.rs`).
+//! headless app (one update per step; the patch steps too, applied by the
+//! edit stage as the editor's are) or an expectation checked against it
+//! (`playback/expect.rs`, `playback/seam.rs`).
 
 mod expect;
-mod patches;
+mod seam;
 
 use super::edit_error::EditError;
 use super::messages::Edit;
@@ -39,7 +40,6 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
     let mut marks = expect::Marks::new();
     let mut pending: Option<(usize, String)> = None;
     let mut warned = warn_new(&app, 0, &[], &mut report);
-    let mut acting: Option<Entity> = None;
     for (i, step) in script.steps.iter().enumerate() {
         let n = i + 1;
         if !matches!(step, Step::Expect(Expect::ExpectError(_)))
@@ -64,20 +64,13 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
             }
             continue;
         }
-        let outcome = match step {
-            Step::Edit(Edit::Patch(p)) => Some(patches::run(&mut app, p, &mut acting)),
-            Step::Expect(x) => Some(patches::expect_seam(&mut app, x)),
-            Step::Edit(e) => acting
-                .map(|patch| patches::edit_joined(&mut app, patch, e).map(patches::Outcome::Done)),
-            _ => None,
-        };
-        if let Some(res) = outcome {
+        if let Step::Expect(x) = step {
             let label = short(step);
-            match res {
-                Ok(patches::Outcome::Done(m)) => {
+            match seam::expect_seam(&mut app, x) {
+                Ok(seam::Outcome::Done(m)) => {
                     report.lines.push(format!("step {n:>3} {label}: ok ({m})"));
                 }
-                Ok(patches::Outcome::Failed(m)) => {
+                Ok(seam::Outcome::Failed(m)) => {
                     report.failures += 1;
                     report.lines.push(format!("step {n:>3} {label}: FAIL {m}"));
                 }

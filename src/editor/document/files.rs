@@ -562,17 +562,17 @@ fn dialogs(
     Ok(())
 }
 
-/// Opens the recovery file as the current (unsaved) scene.
+/// Opens the recovery file (every patch) as the current (unsaved) design.
 pub fn recover(
     dirs: &EditorDirs,
     origin: Option<PathBuf>,
     edits: &mut MessageWriter<EditMessage>,
     ui: &mut FileUi,
 ) {
-    match crate::scene::io::load(&dirs.recovery_file()) {
-        Ok(scene) => {
+    match crate::scene::document_io::load(&dirs.recovery_file()) {
+        Ok(document) => {
             edits.write(EditMessage::from(Edit::Recover {
-                scene: Box::new(scene),
+                document: Box::new(document),
                 origin,
             }));
         }

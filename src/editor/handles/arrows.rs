@@ -4,14 +4,18 @@
 //! streamline points, and the refined tangents of the edit depth as red arrows
 //! (optionally every other one), and the initial curve with its control
 //! tangents in cyan (a second kind of handle); with mirror symmetry on, the
-//! reflected copies on the other half dimmed (they cannot be picked). The head's shape tells the column index apart
+//! reflected copies on the other half dimmed (they cannot be picked). With
+//! several patches (docs/math.md §11) the active patch's handles are drawn
+//! so, every other patch's thin and faint in their kind's colour (never
+//! picked, never highlighted: the selection names the active patch's), and
+//! a hidden patch's not at all ([`PatchRole`]). The head's shape tells the column index apart
 //! (cone, ball, cross, ring, repeating, as the paper's prototype gives each
 //! index its own head), and a number label names it.
 
 use super::super::coords::to_view;
 use super::super::interaction::{
     Drag, EditorMode, EditorSet, Handle, HandleId, HandleLayout, HandleQuery, HandleSettings,
-    MainCamera, MirroredHandle, Placed, Selection,
+    MainCamera, MirroredHandle, PatchRole, Placed, Selection,
 };
 use crate::ecs::patch::InitialHandle;
 use bevy::gizmos::GizmoAsset;
@@ -75,14 +79,31 @@ pub struct ArrowOf(pub Entity);
 #[relationship_target(relationship = ArrowOf, linked_spawn)]
 pub struct ArrowDrawn(Vec<Entity>);
 
-/// How an arrow looks: its colour (the kind's, or the selection's), and
-/// whether it is shown.
+/// How an arrow looks: its colour (the kind's, or the selection's),
+/// whether it is shown, and whether it is drawn thin (another patch's).
 #[derive(Component, Debug, Clone, Copy, PartialEq, Default)]
 pub struct ArrowLook {
     /// Its colour.
     pub color: Color,
     /// Shown (a hidden arrow's gizmo is empty).
     pub shown: bool,
+    /// Thin: a handle of a patch that is not the active one.
+    pub thin: bool,
+}
+
+/// The alpha of another patch's arrows.
+const DIMMED_ALPHA: f32 = 0.3;
+/// The line width of another patch's arrows (px; the active's are 2 and 2.5).
+const DIMMED_WIDTH: f32 = 1.0;
+
+/// The line width of an arrow: the initial curve's a little wider, another
+/// patch's thin.
+fn width(initial: bool, thin: bool) -> f32 {
+    match (thin, initial) {
+        (true, _) => DIMMED_WIDTH,
+        (false, true) => 2.5,
+        (false, false) => 2.0,
+    }
 }
 
 /// Arrows redrawn by the last frame (a meter of the incremental drawing).
@@ -99,7 +120,7 @@ type Bare<'w, 's> =
 fn attach(mut commands: Commands, mut assets: ResMut<Assets<GizmoAsset>>, bare: Bare) {
     for (h, initial) in &bare {
         // the initial curve's arrows: over the surface, a little wider
-        let (width, depth_bias) = if initial { (2.5, -1.0) } else { (2.0, 0.0) };
+        let (width, depth_bias) = (width(initial, false), if initial { -1.0 } else { 0.0 });
         commands.spawn((
             ArrowOf(h),
             Gizmo {
@@ -142,13 +163,18 @@ impl LookInputs<'_> {
             .or(self.selection.primary())
     }
 
-    /// The look of handle `id` (`None`: a mirrored copy) placed as `a`.
-    fn look(&self, id: Option<HandleId>, a: &Handle) -> ArrowLook {
+    /// The look of handle `id` (`None`: a mirrored copy) placed as `a`, a
+    /// handle of a patch in `role`.
+    fn look(&self, id: Option<HandleId>, a: &Handle, role: PatchRole) -> ArrowLook {
         let s = &*self.settings;
         let edit = self.layout.edit_depth;
         let streamline = *self.mode.get() == EditorMode::Streamline;
+        let thin = role == PatchRole::Dimmed;
         let picked = |base: Color| {
-            if Some(a.id) == self.active() {
+            if thin {
+                // the selection and the hover name the active patch's handles
+                base.with_alpha(DIMMED_ALPHA)
+            } else if Some(a.id) == self.active() {
                 SELECTED
             } else if Some(a.id) == self.selection.hover {
                 HOVER
@@ -159,32 +185,54 @@ impl LookInputs<'_> {
             }
         };
         let (color, shown) = match id {
+            None if thin => (MIRRORED.with_alpha(DIMMED_ALPHA), s.controls || edit == 0),
             None => (MIRRORED, s.controls || edit == 0),
             Some(id) if !id.is_surface() => (picked(CYAN), s.initial),
             Some(id) if id.level() == 0 => (
-                if edit == 0 { picked(YELLOW) } else { YELLOW },
+                if edit == 0 || thin {
+                    picked(YELLOW)
+                } else {
+                    YELLOW
+                },
                 s.controls || edit == 0,
             ),
             Some(_) => (picked(RED), edit > 0 && s.refined && s.shows(a)),
         };
         ArrowLook {
             color,
-            shown: shown && streamline,
+            shown: shown && streamline && role != PatchRole::Hidden,
+            thin,
         }
     }
 }
 
+/// A placed handle entity as its arrow is drawn from it.
+type Drawn<'w, 's> = Query<
+    'w,
+    's,
+    (
+        Ref<'static, Placed>,
+        Option<&'static HandleId>,
+        Option<&'static MirroredHandle>,
+        Option<&'static PatchRole>,
+        Has<InitialHandle>,
+    ),
+>;
+
+/// The arrows of handle entities that moved or changed role.
+type Moved<'w, 's> = Query<'w, 's, &'static ArrowDrawn, Or<(Changed<Placed>, Changed<PatchRole>)>>;
+
 /// Redraws the arrows whose handle moved or whose look changed (a turn at
 /// edit depth 0 redraws its row's arrows; a selection, the two arrows whose
-/// colour changed), and only those.
+/// colour changed; a patch hidden or shown, its arrows), and only those.
 #[allow(clippy::too_many_arguments)]
 fn redraw(
     meter: Res<crate::ecs::meter::CpuMeter>,
     inputs: LookInputs,
-    handles: Query<(Ref<Placed>, Option<&HandleId>, Option<&MirroredHandle>)>,
-    moved: Query<&ArrowDrawn, Changed<Placed>>,
+    handles: Drawn,
+    moved: Moved,
     added: Query<(), Added<ArrowOf>>,
-    mut arrows: Query<(Entity, &ArrowOf, &mut ArrowLook, &Gizmo)>,
+    mut arrows: Query<(Entity, &ArrowOf, &mut ArrowLook, &mut Gizmo)>,
     mut assets: ResMut<Assets<GizmoAsset>>,
     mut redraws: ResMut<ArrowRedraws>,
     mut shown_active: Local<Option<HandleId>>,
@@ -199,22 +247,26 @@ fn redraw(
     };
     let mut n = 0;
     for v in candidates {
-        let Ok((_, of, mut look, gizmo)) = arrows.get_mut(v) else {
+        let Ok((_, of, mut look, mut gizmo)) = arrows.get_mut(v) else {
             continue;
         };
-        let Ok((placed, id, copy)) = handles.get(of.0) else {
+        let Ok((placed, id, copy, role, initial)) = handles.get(of.0) else {
             continue;
         };
         let Some(shown_id) = id.copied().or(copy.map(|m| m.of)) else {
             continue;
         };
         let a = placed.handle(shown_id);
-        let new = inputs.look(id.copied(), &a);
+        let new = inputs.look(id.copied(), &a, role.copied().unwrap_or_default());
         if *look == new && !placed.is_changed() {
             continue;
         }
         if *look != new {
             *look = new;
+        }
+        let w = width(initial, new.thin);
+        if gizmo.line_config.width != w {
+            gizmo.line_config.width = w;
         }
         let Some(mut asset) = assets.get_mut(&gizmo.handle) else {
             continue;
@@ -228,18 +280,27 @@ fn redraw(
     redraws.set_if_neq(ArrowRedraws(n));
 }
 
-/// The initial curve itself, over the surface.
+/// The initial curve itself (the first patch's), over the surface: faint
+/// while a joined patch is the active one, not drawn while the first patch
+/// is hidden.
 fn draw_curve(
     meter: Res<crate::ecs::meter::CpuMeter>,
     patch: crate::ecs::patch::PatchRef,
     settings: Res<HandleSettings>,
+    layout: Res<HandleLayout>,
+    hidden: Query<(), With<crate::ecs::joined::PatchHidden>>,
     mut initial: Gizmos<InitialGizmos>,
 ) {
     let _meter = meter.start();
-    if settings.initial {
+    if settings.initial && !hidden.contains(patch.entity()) {
         let curve = patch.design().initial();
         let line: Vec<Vec3> = curve.polyline(96).into_iter().map(to_view).collect();
-        initial.linestrip(line, CYAN.with_alpha(0.6));
+        let alpha = if layout.active_joined {
+            DIMMED_ALPHA * 0.6
+        } else {
+            0.6
+        };
+        initial.linestrip(line, CYAN.with_alpha(alpha));
     }
 }
 
@@ -288,6 +349,9 @@ fn labels(
     let Ok((camera, gt)) = camera.single() else {
         return Ok(());
     };
+    if arrows.active_hidden() {
+        return Ok(());
+    }
     let ctx = contexts.ctx_mut()?;
     let painter = ctx.layer_painter(egui::LayerId::new(
         egui::Order::Background,

@@ -2,12 +2,13 @@
 //! ([`super::sphere_view`]): each handle's point, with the great arcs to its
 //! next neighbours, is a retained gizmo of its own, redrawn only when the
 //! handle moved, a neighbour its arcs end at moved, or it turned to or from
-//! the eye.
+//! the eye. Only the active patch's handles have their points shown (the
+//! sphere view is the active patch's, [`PatchRole`]).
 
 use super::super::coords::to_view;
 use super::super::interaction::{
     EditorSet, Handle, HandleId, HandleKind, HandleQuery, HandleSettings, MainCamera, OrbitCamera,
-    Placed,
+    PatchRole, Placed,
 };
 use super::sphere_view::{BLUE, CYAN, LAYER, RED, YELLOW};
 use bevy::camera::visibility::RenderLayers;
@@ -80,14 +81,21 @@ fn attach(mut commands: Commands, mut assets: ResMut<Assets<GizmoAsset>>, bare: 
     }
 }
 
-/// The look of handle `id`'s point (`handles` to find its neighbours).
+/// The look of handle `id`'s point (`handles` to find its neighbours),
+/// a handle of a patch in `role`.
 fn dot_look(
     handles: &HandleQuery,
     settings: &HandleSettings,
-    id: HandleId,
+    (id, role): (HandleId, PatchRole),
     dir: DVec3,
     eye: DVec3,
 ) -> DotLook {
+    if role != PatchRole::Active {
+        return DotLook {
+            dir,
+            ..DotLook::default()
+        };
+    }
     let edit = handles.edit_depth();
     let neighbour = |id: HandleId| handles.entity(id).and_then(|e| handles.get(e));
     let (color, radius, shown, arcs) = match id.kind {
@@ -131,7 +139,9 @@ fn redraw(
     handles: HandleQuery,
     settings: Res<HandleSettings>,
     main: Query<Ref<OrbitCamera>, With<MainCamera>>,
-    moved: Query<&HandleId, Changed<Placed>>,
+    moved: Query<(&HandleId, Option<&PatchRole>), Changed<Placed>>,
+    roles: Query<&PatchRole>,
+    recast: Query<(), Changed<PatchRole>>,
     drawn: Query<&DotDrawn>,
     added: Query<(), Added<DotOf>>,
     mut dots: Query<(&DotOf, &mut DotLook, &Gizmo)>,
@@ -144,12 +154,16 @@ fn redraw(
     let everything = settings.is_changed()
         || handles.layout_changed()
         || cam.is_some_and(|o| o.is_changed())
+        || !recast.is_empty()
         || !added.is_empty();
     let candidates: Vec<Entity> = if everything {
         drawn.iter().flat_map(|d| d.0.iter().copied()).collect()
     } else {
         let mut ids: Vec<HandleId> = Vec::new();
-        for &id in &moved {
+        for (&id, _) in moved
+            .iter()
+            .filter(|(_, r)| r.is_none_or(|r| *r == PatchRole::Active))
+        {
             ids.push(id);
             match id.kind {
                 HandleKind::SurfaceTangent { level: 0 } => {
@@ -180,7 +194,8 @@ fn redraw(
         let Some(a) = handles.get(of.0) else {
             continue;
         };
-        let new = dot_look(&handles, &settings, a.id, a.dir, eye);
+        let role = roles.get(of.0).copied().unwrap_or_default();
+        let new = dot_look(&handles, &settings, (a.id, role), a.dir, eye);
         if *look == new {
             continue;
         }

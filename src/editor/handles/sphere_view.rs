@@ -3,16 +3,18 @@
 //! shows the unit sphere, the control tangents as points (the selected one
 //! highlighted), great arcs between neighbours in blue, the handles of the edit
 //! depth in red, and the subdivided tangents of the display depth as small
-//! points (at most a level-4 density: [`CLOUD_LEVEL`]). Each handle entity's point (with its arcs) is a retained gizmo of
+//! points (at most a level-4 density: [`CLOUD_LEVEL`]), all of the active
+//! patch (docs/math.md §11: a joined patch's from its built stack). Each handle entity's point (with its arcs) is a retained gizmo of
 //! its own, redrawn only when the handle moved, a neighbour its arcs end at
 //! moved, or it turned to or from the eye. Dragging a point moves that tangent to the point under the pointer.
 
 use super::super::coords::{from_view, to_view};
 use super::super::interaction::{
-    Drag, DragKind, DragTo, EditorMode, EditorSet, HandlePressed, HandleQuery, HandleSettings,
-    MainCamera, OrbitCamera, Selection, SphereArea, ViewArea,
+    Drag, DragKind, DragTo, EditorMode, EditorSet, HandleLayout, HandlePressed, HandleQuery,
+    HandleSettings, MainCamera, OrbitCamera, Selection, SphereArea, ViewArea,
 };
 use crate::ecs::components::{LevelData, SubdivisionLevel};
+use crate::ecs::joined::PatchSurface;
 use crate::ecs::patch::PatchRef;
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::Viewport;
@@ -243,15 +245,19 @@ pub fn cloud_count(rows: usize, cols: usize, depth: u32) -> usize {
 }
 
 /// The display depth's tangents as a point cloud ([`cloud_points`]: at most
-/// a level-4 density), rewritten when that level changes.
+/// a level-4 density), of the active patch (a joined one's from its built
+/// stack, docs/math.md §11), rewritten when that level changes.
+#[allow(clippy::too_many_arguments)]
 fn update_points(
     meter: Res<crate::ecs::meter::CpuMeter>,
     patch: PatchRef,
     settings: Res<SphereSettings>,
+    layout: Res<HandleLayout>,
     levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
+    joined: Query<Ref<PatchSurface>>,
     points: Single<(&Mesh3d, &mut Visibility), With<SubdividedPoints>>,
     mut meshes: ResMut<Assets<Mesh>>,
-    mut shown: Local<Option<u32>>,
+    mut shown: Local<Option<(u32, Option<Entity>)>>,
 ) {
     let _meter = meter.start();
     let (mesh, mut vis) = points.into_inner();
@@ -264,18 +270,39 @@ fn update_points(
         *vis = want;
     }
     let depth = patch.structure().display_depth;
-    let Some((_, data)) = levels.iter().find(|(l, _)| l.0 == depth) else {
-        return;
+    let of = layout.active.filter(|_| layout.active_joined);
+    let (tangents, changed) = match of {
+        Some(e) => {
+            let Ok(surface) = joined.get(e) else {
+                return;
+            };
+            let changed = surface.is_changed();
+            let Some(level) = surface
+                .into_inner()
+                .stack()
+                .and_then(|s| s.levels.get(depth as usize))
+            else {
+                return;
+            };
+            (&level.tangents, changed)
+        }
+        None => {
+            let Some((_, data)) = levels.iter().find(|(l, _)| l.0 == depth) else {
+                return;
+            };
+            let changed = data.is_changed();
+            (&data.into_inner().0.tangents, changed)
+        }
     };
-    if !data.is_changed() && *shown == Some(depth) {
+    if !changed && *shown == Some((depth, of)) {
         return;
     }
-    *shown = Some(depth);
+    *shown = Some((depth, of));
     let Some(mut m) = meshes.get_mut(&mesh.0) else {
         return;
     };
-    let (rows, cols) = data.0.shape();
-    let cloud = cloud_points(data.0.tangents.data(), rows, cols, depth);
+    let (rows, cols) = (tangents.rows(), tangents.cols());
+    let cloud = cloud_points(tangents.data(), rows, cols, depth);
     // same count (a drag): rewrite the points in place, no new buffer
     let n = cloud_count(rows, cols, depth);
     if let Some(VertexAttributeValues::Float32x3(p)) = m.attribute_mut(Mesh::ATTRIBUTE_POSITION)

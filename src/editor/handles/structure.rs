@@ -4,7 +4,9 @@
 //! the panel, a right-click menu on an arrow (a right press and release
 //! without moving; a right drag still orbits) and keys on the selected
 //! control arrow ([`KEYS`]). Each sends one `Insert`/`Delete` edit: one undo
-//! step, and the new row or column is selected.
+//! step, and the new row or column is selected. They act on the first
+//! patch: while a joined patch is the active one (docs/math.md §11) the
+//! menu and the keys are off.
 
 use super::super::interaction::{
     EditorMode, EditorSet, HandleId, HandleKind, HandleLayout, Selection,
@@ -187,12 +189,18 @@ const CLICK_SLOP: f32 = 4.0;
 fn right_click(
     buttons: Res<ButtonInput<MouseButton>>,
     window: Single<&Window, With<PrimaryWindow>>,
+    layout: Res<HandleLayout>,
     mut selection: ResMut<Selection>,
     mut menu: ResMut<ArrowMenu>,
 ) {
     let Some(cursor) = window.cursor_position() else {
         return;
     };
+    if layout.active_joined {
+        // a joined patch's net is reshaped in its Patches section, not here
+        menu.press = None;
+        return;
+    }
     if buttons.just_pressed(MouseButton::Right) {
         menu.press = Some((cursor, selection.hover));
     }
@@ -211,9 +219,13 @@ fn right_click(
 fn keys(
     keys: Res<ButtonInput<KeyCode>>,
     patch: PatchRef,
+    layout: Res<HandleLayout>,
     mut selection: ResMut<Selection>,
     mut edits: MessageWriter<EditMessage>,
 ) {
+    if layout.active_joined {
+        return;
+    }
     let held = |k: [KeyCode; 2]| keys.any_pressed(k);
     if held([KeyCode::ControlLeft, KeyCode::ControlRight])
         || held([KeyCode::AltLeft, KeyCode::AltRight])
@@ -264,7 +276,7 @@ fn menu(
     };
     // the net changed shape under it (an undo, a load): close
     let shape = (patch.structure().rows, patch.structure().cols);
-    if cell.0 >= shape.0 || cell.1 >= shape.1 || handles.edit_depth != 0 {
+    if cell.0 >= shape.0 || cell.1 >= shape.1 || handles.edit_depth != 0 || handles.active_joined {
         menu.open = None;
         return Ok(());
     }

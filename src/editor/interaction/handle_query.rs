@@ -1,11 +1,15 @@
 //! [`HandleQuery`]: the handle entities, read: which handle an id names,
 //! the ones the pointer may pick, and which lies under the pointer on the
 //! screen or on the sphere view, for every kind, so that the views never
-//! need to know how many kinds there are.
+//! need to know how many kinds there are. Ids name the handles of the
+//! active patch ([`HandleLayout::active`], the first patch until a
+//! placement ran); the other patches' handles are drawn dimmed and never
+//! found nor picked here, and a hidden active patch has none to pick.
 
 use super::handles::{Handle, HandleId, HandleKind, HandleSettings, segment_distance};
 use super::placed::{HandleLayout, MirroredHandle, Placed};
-use crate::ecs::patch::{Patch, PatchIndex};
+use crate::ecs::joined::PatchHidden;
+use crate::ecs::patch::{Joined, Patch, PatchIndex};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
@@ -14,7 +18,8 @@ use streamline_kernel::DVec3;
 #[derive(SystemParam)]
 pub struct HandleQuery<'w, 's> {
     layout: Res<'w, HandleLayout>,
-    index: Query<'w, 's, &'static PatchIndex, (With<Patch>, Without<crate::ecs::patch::Joined>)>,
+    index: Query<'w, 's, (&'static PatchIndex, Has<PatchHidden>), With<Patch>>,
+    first: Query<'w, 's, Entity, (With<Patch>, Without<Joined>)>,
     placed: Query<'w, 's, (&'static HandleId, &'static Placed)>,
     copies: Query<'w, 's, (&'static MirroredHandle, &'static Placed)>,
 }
@@ -36,10 +41,33 @@ impl HandleQuery<'_, '_> {
         self.layout.is_changed()
     }
 
+    /// The patch whose handles these are (the placed active patch, else
+    /// the first).
+    pub fn active_patch(&self) -> Option<Entity> {
+        self.layout.active.or_else(|| self.first.single().ok())
+    }
+
+    /// Whether the active patch is a joined one (docs/math.md §11).
+    pub fn active_joined(&self) -> bool {
+        self.layout.active_joined
+    }
+
+    /// Whether the active patch is hidden: then none of its handles is picked.
+    pub fn active_hidden(&self) -> bool {
+        self.active_patch()
+            .and_then(|e| self.index.get(e).ok())
+            .is_some_and(|(_, h)| h)
+    }
+
+    /// The active patch's index of handle entities.
+    fn index(&self) -> Option<&PatchIndex> {
+        self.index.get(self.active_patch()?).ok().map(|(i, _)| i)
+    }
+
     /// The entity of handle `id` (of the net, the initial curve, or a
     /// refined cell of the edit depth), if it has one.
     pub fn entity(&self, id: HandleId) -> Option<Entity> {
-        let index = self.index.single().ok()?;
+        let index = self.index()?;
         match id.kind {
             HandleKind::SurfaceTangent { level: 0 } => (id.row < index.surface.rows()
                 && id.col < index.surface.cols())
@@ -80,15 +108,14 @@ impl HandleQuery<'_, '_> {
         match (&self.layout.refined, self.layout.edit_depth) {
             (Some((shape, _)), d) if d > 0 => *shape,
             _ => self
-                .index
-                .single()
+                .index()
                 .map_or((0, 0), |i| (i.surface.rows(), i.surface.cols())),
         }
     }
 
     /// The level-0 control tangents, row-major (shown; picked only at edit depth 0).
     pub fn controls(&self) -> impl Iterator<Item = Handle> + '_ {
-        let cells = self.index.single().map_or(&[][..], |i| i.surface.data());
+        let cells = self.index().map_or(&[][..], |i| i.surface.data());
         cells.iter().filter_map(|&e| self.get(e))
     }
 
@@ -105,7 +132,7 @@ impl HandleQuery<'_, '_> {
 
     /// The initial curve's control tangents, in order.
     pub fn initial(&self) -> impl Iterator<Item = Handle> + '_ {
-        let v = self.index.single().map_or(&[][..], |i| &i.initial[..]);
+        let v = self.index().map_or(&[][..], |i| &i.initial[..]);
         v.iter().filter_map(|&e| self.get(e))
     }
 
@@ -119,19 +146,21 @@ impl HandleQuery<'_, '_> {
             .map(|(m, p)| p.handle(m.of))
     }
 
-    /// The handles the pointer may pick (shown ones of the edit depth).
+    /// The handles the pointer may pick (shown ones of the edit depth, of
+    /// the active patch unless it is hidden).
     pub fn pickable<'a>(
         &'a self,
         settings: &'a HandleSettings,
     ) -> impl Iterator<Item = Handle> + 'a {
-        let refined_hidden = self.layout.edit_depth > 0 && !settings.refined;
-        let initial = settings
-            .initial
+        let hidden = self.active_hidden();
+        // a hidden patch's, or refined cells not shown: none of the edit depth's
+        let none = hidden || (self.layout.edit_depth > 0 && !settings.refined);
+        let initial = (settings.initial && !hidden)
             .then(|| self.initial())
             .into_iter()
             .flatten();
         self.editable()
-            .filter(move |a| !refined_hidden && settings.shows(a))
+            .filter(move |a| !none && settings.shows(a))
             .chain(initial)
     }
 

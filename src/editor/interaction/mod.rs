@@ -1,19 +1,24 @@
 //! The interaction core: what the user points at and turns, owned in one
 //! place. It places the handle entities (their kinds, their places on the
 //! screen and on the Gaussian sphere: [`Placed`], written by one system),
-//! reads them for the views ([`HandleQuery`]), and holds the selection, the one drag state machine, the
+//! reads them for the views ([`HandleQuery`]: the active patch's, see
+//! [`crate::ecs::joined::ActivePatch`]; every other patch's are dimmed,
+//! [`PatchRole`]), and holds the selection, the one drag state machine, the
 //! editor's mode (a Bevy `States`), the state the views share about the main
 //! view, and the public [`EditorSet`]s that order the editor. The camera,
 //! the arrows, picking, the sphere view, mesh mode and the panels depend on
 //! this module and not on each other; a new kind of handle is a new
 //! [`HandleKind`] here.
 
+mod active_switch;
 mod drag;
 mod handle_query;
 mod handles;
 mod mode;
 mod placed;
 mod placement;
+mod placement_joined;
+mod roles;
 mod selection;
 mod view;
 
@@ -24,7 +29,9 @@ pub use drag::{ActiveDrag, Drag, DragGroups, DragKind, DragTo, HandlePressed};
 pub use handle_query::HandleQuery;
 pub use handles::{Handle, HandleId, HandleKind, HandleSettings, segment_distance};
 pub use mode::EditorMode;
-pub use placed::{HandleLayout, MirroredHandle, Placed, RefinedHandle};
+pub use placed::{HandleLayout, MirroredHandle, PatchRole, Placed, RefinedHandle};
+pub use placement_joined::{joined_places, shares_first_column};
+pub use roles::role_of;
 pub use selection::{Selected, Selection};
 pub use view::{FrameRequest, MainCamera, OrbitCamera, SceneBounds, SphereArea, ViewArea};
 
@@ -81,6 +88,9 @@ impl Plugin for InteractionPlugin {
                 Update,
                 (
                     placement::place,
+                    placement_joined::place_joined,
+                    roles::mark_roles,
+                    active_switch::follow_active,
                     selection::keep_valid,
                     selection::mark_selected,
                 )

@@ -87,6 +87,22 @@ pub struct MirroredHandle {
     pub of: HandleId,
 }
 
+/// How a placed handle entity is drawn, by its patch (docs/editor.md,
+/// "Several patches"): the active patch's as today, every other patch's
+/// dimmed (thin, faint, never picked), a hidden patch's
+/// ([`crate::ecs::joined::PatchHidden`]) not at all. Written by one
+/// system, with `set_if_neq`, so `Changed<PatchRole>` means it changed.
+#[derive(Component, Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub enum PatchRole {
+    /// A handle of the active patch: drawn and picked.
+    #[default]
+    Active,
+    /// A handle of another patch: drawn dimmed, never picked.
+    Dimmed,
+    /// A handle of a hidden patch: not drawn, never picked.
+    Hidden,
+}
+
 /// What the placement knows that is not one handle's: the edit depth the
 /// handles were placed for, the cap on the arrows' length, and the entities
 /// of the refined cells and the mirrored copies by position (the net's and
@@ -107,6 +123,14 @@ pub struct HandleLayout {
     /// Handles placed again by the last placement (all of them, or the rows
     /// of the control tangents whose handle entities changed).
     pub moved: usize,
+    /// The patch whose handles were placed as the active ones (shown and
+    /// picked, [`crate::ecs::joined::ActivePatch`] resolved: the first
+    /// patch when it names none or no patch); `None` before a placement.
+    pub active: Option<Entity>,
+    /// Whether that patch is a joined one (docs/math.md §11): then the edit
+    /// depth is 0 (a joined patch has no details) and the first patch's
+    /// handles are dimmed.
+    pub active_joined: bool,
 }
 
 impl HandleLayout {

@@ -1,17 +1,23 @@
-//! Placing the handles: the one system that writes [`Placed`] on the handle
-//! entities (with `set_if_neq`, so that only the handles that moved are
-//! marked changed), spawns the edit depth's [`RefinedHandle`] entities and
+//! Placing the first patch's handles: the one system that writes [`Placed`]
+//! on its handle entities (with `set_if_neq`, so that only the handles that
+//! moved are marked changed; a joined patch's are placed by
+//! [`super::placement_joined`]), spawns the edit depth's [`RefinedHandle`] entities and
 //! the mirrored copies, and despawns them when they are no longer shown.
 //! A turn of control tangents at edit depth 0 re-places only their rows (a
 //! streamline is a running sum along its row, Eq. 65 of `docs/math.md`); a
-//! new shape, `s`, initial curve, tuning, mirror or edit depth re-places
-//! every handle.
+//! new shape, `s`, initial curve, tuning, mirror, edit depth or active patch
+//! re-places every handle. While a joined patch is the active one
+//! ([`HandleLayout::active`]), the first patch's handles are placed as at
+//! edit depth 0 (they are drawn dimmed, and refined cells are not shown).
 
 use super::handles::{Handle, HandleId};
 use super::placed::{HandleLayout, MirroredHandle, Placed, RefinedHandle};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
+use crate::ecs::joined::ActivePatch;
 use crate::ecs::patch::PatchRef;
-use crate::ecs::patch::{ArcParam, Direction, InitialHandle, SurfaceHandle};
+use crate::ecs::patch::{
+    ArcParam, Direction, InitialHandle, Joined, JoinedHandle, Patch, SurfaceHandle,
+};
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
 use streamline_kernel::finetune::streamline::point_by_fraction;
@@ -109,8 +115,10 @@ fn length_cap(level: &LevelState, initial: &InitialCurve) -> f64 {
     (longest.hypot(initial.length()) * 0.1).max(1e-6)
 }
 
-/// Control tangents whose handle entity's direction changed.
-type TurnedNet<'w, 's> = Query<'w, 's, &'static SurfaceHandle, Changed<Direction>>;
+/// Control tangents of the first patch whose handle entity's direction
+/// changed (a joined patch's are placed by [`super::placement_joined`]).
+type TurnedNet<'w, 's> =
+    Query<'w, 's, &'static SurfaceHandle, (Changed<Direction>, Without<JoinedHandle>)>;
 
 /// Handle entities of the net or the initial curve not placed yet.
 type Unplaced<'w, 's> = Query<
@@ -120,16 +128,31 @@ type Unplaced<'w, 's> = Query<
     (
         Or<(With<SurfaceHandle>, With<InitialHandle>)>,
         Without<Placed>,
+        Without<JoinedHandle>,
+    ),
+>;
+
+/// Control tangents of the first patch whose `s` changed.
+type TurnedS<'w, 's> = Query<
+    'w,
+    's,
+    (),
+    (
+        With<SurfaceHandle>,
+        Changed<ArcParam>,
+        Without<JoinedHandle>,
     ),
 >;
 
 /// What else moves every handle: a new `s`, a new initial curve, a handle
-/// entity not placed yet.
+/// entity not placed yet, another active patch.
 #[derive(bevy::ecs::system::SystemParam)]
 pub(super) struct MovesAll<'w, 's> {
-    s: Query<'w, 's, (), (With<SurfaceHandle>, Changed<ArcParam>)>,
+    s: TurnedS<'w, 's>,
     curve: Query<'w, 's, (), (With<InitialHandle>, Changed<Direction>)>,
     unplaced: Unplaced<'w, 's>,
+    active: Res<'w, ActivePatch>,
+    joined: Query<'w, 's, (), (With<Patch>, With<Joined>)>,
 }
 
 /// The entities the placement writes: every [`Placed`], the copies' and the
@@ -180,8 +203,12 @@ pub(super) fn place(
 ) {
     let _meter = meter.start();
     let st = patch.structure();
-    let edit = st.edit_depth;
-    let whole = patch.structure_changed()
+    // a joined patch active: the first patch's handles are placed at depth
+    // 0, dimmed (its refined cells are not shown)
+    let (active, active_joined) = resolve_active(all.active.0, patch.entity(), &all.joined);
+    let edit = if active_joined { 0 } else { st.edit_depth };
+    let whole = layout.active != Some(active)
+        || patch.structure_changed()
         || patch.placement_changed()
         || patch.tuning_changed()
         || !all.s.is_empty()
@@ -274,7 +301,23 @@ pub(super) fn place(
     layout.edit_depth = edit;
     layout.cap = cap;
     layout.placed = true;
+    layout.active = Some(active);
+    layout.active_joined = active_joined;
     layout.moved = controls.len() + mirrored.len() + initial.len() + refined_count;
+}
+
+/// The patch whose handles are shown and picked, and whether it is a
+/// joined one: `active` when it names a joined patch, else the first patch
+/// `first` (`None`, the first patch's own entity, or a patch no longer there).
+pub(super) fn resolve_active(
+    active: Option<Entity>,
+    first: Entity,
+    joined: &Query<(), (With<Patch>, With<Joined>)>,
+) -> (Entity, bool) {
+    match active {
+        Some(e) if e != first && joined.contains(e) => (e, true),
+        _ => (first, false),
+    }
 }
 
 /// The mirrored copies on their entities: the same entities when their

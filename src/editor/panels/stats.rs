@@ -13,7 +13,7 @@ use bevy_egui::egui;
 pub struct StatsSection<'w, 's> {
     pub stats: Res<'w, Stats>,
     /// The world's entities, counted by queries (the census of `build --json`).
-    pub census: crate::ecs::patch::census::CensusQuery<'w, 's>,
+    pub census: crate::ecs::joined::census::CensusQuery<'w, 's>,
     pub timing: Res<'w, FrameTiming>,
     pub warnings: Res<'w, BuildWarnings>,
 }
@@ -51,10 +51,14 @@ pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, 
             c.streamlines.to_string(),
             "Streamline entities: one per streamline at the display depth",
         );
+        let joined = c.per_patch.iter().filter(|p| p.joined).count();
         row(
             "patches",
-            c.patches.to_string(),
-            "Patch entities: each owns its handles, levels and streamlines",
+            match joined {
+                0 => c.patches.to_string(),
+                j => format!("{} ({j} joined)", c.patches),
+            },
+            "Patch entities: the first owns its handles, levels and streamlines; a joined patch owns its net handles, and its levels and points are values the joins build",
         );
         row(
             "handles",

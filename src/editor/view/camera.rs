@@ -7,6 +7,7 @@
 use super::super::interaction::{
     EditorSet, FrameRequest, HandleQuery, MainCamera, OrbitCamera, SceneBounds, Selection, ViewArea,
 };
+use crate::ecs::joined::{PatchHidden, PatchSurface};
 use crate::ecs::patch::PatchRef;
 use crate::ecs::{SurfaceChanges, SurfaceData};
 use crate::scene::format::ViewSpec;
@@ -15,6 +16,7 @@ use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use bevy_egui::input::{egui_wants_any_keyboard_input, egui_wants_any_pointer_input};
+use std::collections::HashMap;
 use streamline_kernel::DVec3;
 
 pub struct OrbitCameraPlugin;
@@ -55,20 +57,58 @@ fn spawn(mut commands: Commands, patch: PatchRef) {
     ));
 }
 
+/// The joined patches' surfaces, with whether they are hidden.
+type JoinedSurfaces<'w, 's> = Query<
+    'w,
+    's,
+    (Entity, Ref<'static, PatchSurface>, Has<PatchHidden>),
+    With<crate::ecs::patch::Joined>,
+>;
+
+/// The box of every shown patch: the first patch's rows' boxes (kept by the
+/// mesh stage as it writes each row) and each joined patch's, made again
+/// only when that patch was rebuilt, hidden or shown (so "frame all" frames
+/// every patch of a document).
 fn bounds(
     meter: Res<crate::ecs::meter::CpuMeter>,
     data: Res<SurfaceData>,
     mut changes: SurfaceChanges,
+    joined: JoinedSurfaces,
+    mut removed: RemovedComponents<PatchSurface>,
+    mut boxes: Local<HashMap<Entity, Option<[DVec3; 2]>>>,
     mut b: ResMut<SceneBounds>,
 ) {
     let _meter = meter.start();
-    if !changes.take().any() {
+    let mut any = changes.take().any();
+    for e in removed.read() {
+        any |= boxes.remove(&e).is_some();
+    }
+    for (e, surface, hidden) in &joined {
+        let known = boxes.get(&e);
+        let shown = known.is_some_and(|b| b.is_some());
+        if known.is_some() && !surface.is_changed() && shown != hidden {
+            continue;
+        }
+        let points = surface.stack().map(|s| s.finest_points().data());
+        let bx = match (hidden, points) {
+            (false, Some(p)) if !p.is_empty() => Some(
+                streamline_kernel::streamline::surface_mesh::bounds(p.iter().copied()),
+            ),
+            _ => None,
+        };
+        boxes.insert(e, bx);
+        any = true;
+    }
+    if !any {
         return;
     }
-    // the rows' boxes, kept by the mesh stage as it writes each row
-    let Some([lo, hi]) = data.bounds() else {
+    let Some([mut lo, mut hi]) = data.bounds() else {
         return;
     };
+    for [l, h] in boxes.values().flatten() {
+        lo = lo.min(*l);
+        hi = hi.max(*h);
+    }
     b.min = lo;
     b.max = hi;
 }
