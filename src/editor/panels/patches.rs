@@ -204,6 +204,8 @@ pub struct PatchesSection<'w, 's> {
     first: Query<'w, 's, (Entity, &'static PatchKernel), Without<Joined>>,
     pub active: Res<'w, ActivePatch>,
     pub form: ResMut<'w, PatchesForm>,
+    /// A right click on a patch's boundary (`seams::boundary`).
+    pub request: ResMut<'w, crate::editor::seams::boundary::NewPatchRequest>,
 }
 
 impl PatchesSection<'_, '_> {
@@ -264,8 +266,22 @@ pub fn show(ui: &mut egui::Ui, ctx: &mut super::PanelCtx, p: &mut PatchesSection
              scenes/hood-screen-wing.ron) or start a new patch on an edge below",
             );
     }
-    let active = p.active_entity();
+    let mut active = p.active_entity();
     let mut actions = Vec::new();
+    // a right click on a boundary: that patch, its form open on that edge
+    if let Some((name, edge)) = p.request.0.take()
+        && let Some(r) = rows.iter().find(|r| r.name == name)
+    {
+        if Some(r.entity) != active {
+            actions.push(PatchAction::Select(name));
+            active = Some(r.entity);
+        }
+        p.form.open = true;
+        p.form.new.edge = edge;
+        if edge != Edge::End && p.form.new.continuity == Continuity::G2 {
+            p.form.new.continuity = Continuity::G1;
+        }
+    }
     egui::Grid::new("patch_list")
         .striped(true)
         .spacing([8.0, 2.0])

@@ -31,6 +31,7 @@ use bevy_state::prelude::State;
 use std::collections::HashMap;
 use streamline_kernel::joins::{Continuity, Edge};
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
+use streamline_kernel::{DVec3, Grid};
 
 use super::super::coords::kernel_to_view;
 
@@ -44,6 +45,8 @@ pub struct PatchSurfaceMesh(pub Entity);
 pub struct PatchMeshes {
     /// Patch entity → its mesh (kernel coordinates).
     pub meshes: HashMap<Entity, SurfaceMesh>,
+    /// Patch entity → its points (the mesh's vertices as a grid: its edges).
+    pub grids: HashMap<Entity, Grid<DVec3>>,
     /// How many meshes were rebuilt since the start (a meter for the tests:
     /// only a changed surface rebuilds its mesh).
     pub rebuilt: u64,
@@ -142,6 +145,7 @@ fn sync_patch_meshes(
         }
     }
     kernel.meshes.retain(|p, _| patches.get(*p).is_ok());
+    kernel.grids.retain(|p, _| patches.get(*p).is_ok());
     for r in patches.iter().filter(|r| drawn(r)) {
         let (patch, surface, hidden) = (r.0, &r.1, r.4);
         let visible = streamline && !hidden && surface.stack().is_some();
@@ -176,6 +180,11 @@ fn sync_patch_meshes(
                 }
             }
             kernel.meshes.insert(patch, m);
+            if let Some(s) = surface.stack() {
+                kernel.grids.insert(patch, s.finest_points().clone());
+            } else {
+                kernel.grids.remove(&patch);
+            }
             kernel.rebuilt += 1;
         }
         if let Ok((_, _, _, mut v)) = shown.get_mut(have[&patch].0) {
@@ -186,6 +195,7 @@ fn sync_patch_meshes(
     let keep: Vec<Entity> = patches.iter().filter(|r| drawn(r)).map(|r| r.0).collect();
     if kernel.meshes.keys().any(|p| !keep.contains(p)) {
         kernel.meshes.retain(|p, _| keep.contains(p));
+        kernel.grids.retain(|p, _| keep.contains(p));
     }
 }
 
@@ -208,7 +218,6 @@ mod tests {
     use crate::scene::document_io::load;
     use bevy_state::app::{AppExtStates, StatesPlugin};
     use std::path::Path;
-    use streamline_kernel::DVec3;
 
     fn hood() -> crate::scene::Document {
         load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron")).unwrap()
