@@ -232,8 +232,12 @@ struct Report {
     active_patch: Option<String>,
     /// The seams as drawn: A, B, edge, continuity, verdict, gap, angle (°),
     /// curvature deviation (`NaN` when not measured).
-    seams: Vec<(String, String, String, String, String, f64, f64, f64)>,
+    seams: Vec<SeamShown>,
 }
+
+/// A seam in the report: A, B, edge, continuity, verdict, gap, angle (°),
+/// curvature deviation.
+type SeamShown = (String, String, String, String, String, f64, f64, f64);
 
 /// The patches and seams a GUI test reads back.
 type PatchReport<'w, 's> = (

@@ -439,6 +439,10 @@ fn panel(
                     if p.ui_state.force {
                         header = header.open(Some(open));
                     }
+                    // a right click on a patch's boundary opens the Patches section
+                    if name == PanelName::Patches && sections.patches.request.0.is_some() {
+                        header = header.open(Some(true));
+                    }
                     let shown = header.show(ui, |ui| match name {
                         PanelName::File => {
                             file::show(ui, &mut p, &mut sections.file);

@@ -3,12 +3,11 @@
 //! with what continuity, hidden or not); choosing one makes it the patch
 //! that handle edits act on ([`ActivePatch`]); the chosen patch can be
 //! renamed, hidden or deleted, and a new patch started on one of its edges
-//! ("New patch on edge…": edge, continuity, net size, length). Every change
-//! of the design is sent as an [`Edit::Patch`] ([`PatchAction::edit`]: one
-//! undo step each, applied by the edit stage); choosing a patch is not a
-//! change of the design (not an undo step, as `PatchEdit::SetPatch` is not):
-//! it sets [`ActivePatch`] directly, the value `SetPatch` sets, so the choice
-//! shows in the frame of the click. The section computes nothing.
+//! ("New patch on edge…": edge, continuity, net size, length). Everything
+//! is sent as an [`Edit::Patch`] ([`PatchAction::edit`]), applied by the
+//! edit stage: rename, hide, delete and add are one undo step each;
+//! choosing (`SetPatch`) sets [`ActivePatch`] and is not an undo step. The
+//! section computes nothing.
 
 use crate::ecs::Edit;
 use crate::ecs::joined::{ActivePatch, Joined, JoinedDesign, PatchHidden, PatchSlot, PatchStart};
@@ -169,11 +168,10 @@ pub enum PatchAction {
 }
 
 impl PatchAction {
-    /// The edit that carries it out (`None` for a choice of patch, which is
-    /// not an edit of the design).
-    pub fn edit(&self) -> Option<Edit> {
-        Some(Edit::Patch(match self.clone() {
-            PatchAction::Select(_) => return None,
+    /// The edit that carries it out.
+    pub fn edit(&self) -> Edit {
+        Edit::Patch(match self.clone() {
+            PatchAction::Select(n) => PatchEdit::SetPatch(n),
             PatchAction::Rename(a, b) => PatchEdit::RenamePatch(a, b),
             PatchAction::Hide(n, h) => PatchEdit::HidePatch(n, h),
             PatchAction::Remove(n) => PatchEdit::RemovePatch(n),
@@ -185,28 +183,29 @@ impl PatchAction {
                 cols: form.cols,
                 length: Finite(form.length),
             },
-        }))
+        })
     }
 }
+
+/// What the section reads of each patch.
+type PatchItem = (
+    Entity,
+    &'static PatchSlot,
+    &'static PatchStart,
+    Has<PatchHidden>,
+    Option<&'static JoinedDesign>,
+    Option<&'static PatchKernel>,
+);
 
 /// What only the Patches section touches.
 #[derive(SystemParam)]
 pub struct PatchesSection<'w, 's> {
-    patches: Query<
-        'w,
-        's,
-        (
-            Entity,
-            &'static PatchSlot,
-            &'static PatchStart,
-            Has<PatchHidden>,
-            Option<&'static JoinedDesign>,
-            Option<&'static PatchKernel>,
-        ),
-    >,
+    patches: Query<'w, 's, PatchItem>,
     first: Query<'w, 's, (Entity, &'static PatchKernel), Without<Joined>>,
-    pub active: ResMut<'w, ActivePatch>,
+    pub active: Res<'w, ActivePatch>,
     pub form: ResMut<'w, PatchesForm>,
+    /// A right click on a patch's boundary (`seams::boundary`).
+    pub request: ResMut<'w, crate::editor::seams::boundary::NewPatchRequest>,
 }
 
 impl PatchesSection<'_, '_> {
@@ -267,8 +266,22 @@ pub fn show(ui: &mut egui::Ui, ctx: &mut super::PanelCtx, p: &mut PatchesSection
              scenes/hood-screen-wing.ron) or start a new patch on an edge below",
             );
     }
-    let active = p.active_entity();
+    let mut active = p.active_entity();
     let mut actions = Vec::new();
+    // a right click on a boundary: that patch, its form open on that edge
+    if let Some((name, edge)) = p.request.0.take()
+        && let Some(r) = rows.iter().find(|r| r.name == name)
+    {
+        if Some(r.entity) != active {
+            actions.push(PatchAction::Select(name));
+            active = Some(r.entity);
+        }
+        p.form.open = true;
+        p.form.new.edge = edge;
+        if edge != Edge::End && p.form.new.continuity == Continuity::G2 {
+            p.form.new.continuity = Continuity::G1;
+        }
+    }
     egui::Grid::new("patch_list")
         .striped(true)
         .spacing([8.0, 2.0])
@@ -299,7 +312,7 @@ pub fn show(ui: &mut egui::Ui, ctx: &mut super::PanelCtx, p: &mut PatchesSection
         chosen_patch(ui, p, &rows, a, &mut actions);
     }
     for a in actions {
-        apply(ctx, p, &rows, a);
+        apply(ctx, a);
     }
 }
 
@@ -452,19 +465,9 @@ fn new_patch_form(
     }
 }
 
-/// Carries out what the designer asked for: a choice directly, the rest
-/// as edits (module documentation).
-fn apply(ctx: &mut super::PanelCtx, p: &mut PatchesSection, rows: &[PatchRow], a: PatchAction) {
-    if let PatchAction::Select(name) = &a {
-        if let Some(r) = rows.iter().find(|r| r.name == *name) {
-            let want = ActivePatch((r.index > 0).then_some(r.entity));
-            p.active.set_if_neq(want);
-        }
-        return;
-    }
-    if let Some(edit) = a.edit() {
-        ctx.send(edit);
-    }
+/// Sends what the designer asked for (module documentation).
+fn apply(ctx: &mut super::PanelCtx, a: PatchAction) {
+    ctx.send(a.edit());
 }
 
 #[cfg(test)]
@@ -503,9 +506,9 @@ mod tests {
 
     /// The form refuses what §11 refuses, naming the fix, and lets a good
     /// patch through.
-    /// The `PatchEdit` an action sends (a choice sends none).
+    /// The `PatchEdit` an action sends.
     fn patch_edit(a: PatchAction) -> Option<PatchEdit> {
-        match a.edit()? {
+        match a.edit() {
             Edit::Patch(p) => Some(p),
             other => panic!("not a patch edit: {other:?}"),
         }
@@ -514,7 +517,10 @@ mod tests {
     /// Each action is the `PatchEdit` the edit stage applies; a choice is none.
     #[test]
     fn actions_are_patch_edits() {
-        assert_eq!(patch_edit(PatchAction::Select("wing".into())), None);
+        assert_eq!(
+            patch_edit(PatchAction::Select("wing".into())),
+            Some(PatchEdit::SetPatch("wing".into()))
+        );
         assert_eq!(
             patch_edit(PatchAction::Hide("wing".into(), true)),
             Some(PatchEdit::HidePatch("wing".into(), true))

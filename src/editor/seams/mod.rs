@@ -4,10 +4,12 @@
 //! says whether the seam's measured figures meet it ([`verdict`]); the
 //! other patches' streamlines, as the overlay draws the first patch's
 //! ([`streamlines`]); and choosing a patch by clicking its surface
-//! ([`pick`]). What the seams are is collected once a frame into [`Seams`],
+//! ([`pick`]), or starting a new patch by right-clicking its boundary
+//! ([`boundary`]). What the seams are is collected once a frame into [`Seams`],
 //! which the Analysis section's seam table and the screenshot report read.
 //! The shaded surfaces themselves are in `surface::patches`.
 
+pub mod boundary;
 pub mod draw;
 pub mod pick;
 pub mod streamlines;
@@ -71,6 +73,7 @@ impl Plugin for SeamsPlugin {
             .add_systems(Update, collect.in_set(EditorSet::Sync))
             .add_plugins((
                 draw::SeamDrawPlugin,
+                boundary::BoundaryPlugin,
                 streamlines::PatchStreamlinesPlugin,
                 pick::PatchPickPlugin,
             ));

@@ -1,5 +1,7 @@
-//! Clicking a surface selects its patch (sets [`ActivePatch`]): a ray from
-//! the pointer against each shown patch's triangles, the nearest hit wins.
+//! Clicking a surface selects its patch: a ray from the pointer against
+//! each shown patch's triangles, the nearest hit wins, and its name is sent
+//! as `Edit::Patch(PatchEdit::SetPatch)`, which sets [`ActivePatch`] (not an
+//! undo step).
 //!
 //! The hook with handle picking (`handles/picking.rs`) is its
 //! [`HandlePressed`] message: a left press in the 3D view on no handle is
@@ -14,6 +16,8 @@ use super::super::interaction::{EditorMode, EditorSet, HandlePressed, MainCamera
 use super::super::surface::patches::PatchMeshes;
 use crate::ecs::SurfaceData;
 use crate::ecs::joined::{ActivePatch, Joined, PatchHidden, PatchSlot};
+use crate::ecs::{Edit, EditMessage};
+use crate::scene::patch_edit::PatchEdit;
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use bevy_state::prelude::in_state;
@@ -76,8 +80,9 @@ fn pick(
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
     sphere: Res<SphereArea>,
     (kernel, data): (Res<PatchMeshes>, Res<SurfaceData>),
-    patches: Query<(Entity, Has<Joined>, Has<PatchHidden>), With<PatchSlot>>,
-    mut active: ResMut<ActivePatch>,
+    patches: Query<(Entity, &PatchSlot, Has<Joined>, Has<PatchHidden>)>,
+    active: Res<ActivePatch>,
+    mut edits: MessageWriter<EditMessage>,
 ) {
     let _meter = meter.start();
     let empty = presses.read().any(|p| p.handle.is_none());
@@ -85,7 +90,7 @@ fn pick(
         return;
     }
     // a document of one patch has no patch to choose
-    if !patches.iter().any(|(_, joined, _)| joined) {
+    if !patches.iter().any(|(_, _, joined, _)| joined) {
         return;
     }
     let Some(cursor) = window.cursor_position().filter(|p| !sphere.contains(*p)) else {
@@ -99,7 +104,7 @@ fn pick(
     };
     let (origin, dir) = (from_view(ray.origin), from_view(*ray.direction));
     let mut best: Option<(f64, Entity)> = None;
-    for (e, joined, hidden) in &patches {
+    for (e, _, joined, hidden) in &patches {
         if hidden {
             continue;
         }
@@ -118,9 +123,18 @@ fn pick(
     let Some((_, e)) = best else {
         return;
     };
-    let first = patches.iter().find(|(_, joined, _)| !joined).map(|r| r.0);
-    let want = ActivePatch(if Some(e) == first { None } else { Some(e) });
-    active.set_if_neq(want);
+    let Ok((_, slot, ..)) = patches.get(e) else {
+        return;
+    };
+    // `ActivePatch(None)` is the first patch
+    let current = active.0.unwrap_or_else(|| {
+        (patches.iter().find(|r| r.1.index == 0)).map_or(Entity::PLACEHOLDER, |r| r.0)
+    });
+    if current != e {
+        edits.write(EditMessage::from(Edit::Patch(PatchEdit::SetPatch(
+            slot.name.clone(),
+        ))));
+    }
 }
 
 #[cfg(test)]

@@ -22,16 +22,16 @@
 //! hidden; the analysis maps (which read the incremental surface) show that
 //! one instead, and the joined patches stay shaded under them.
 
-use super::super::interaction::{EditorMode, EditorSet, SceneBounds};
+use super::super::interaction::{EditorMode, EditorSet};
 use super::analysis::{AnalysisSettings, SurfaceMode};
 use super::shaded::{ShadedMaterial, SurfaceEntity, to_bevy_mesh};
 use crate::ecs::joined::{Joined, PatchHidden, PatchStart, PatchSurface};
 use bevy::prelude::*;
 use bevy_state::prelude::State;
 use std::collections::HashMap;
-use streamline_kernel::DVec3;
 use streamline_kernel::joins::{Continuity, Edge};
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
+use streamline_kernel::{DVec3, Grid};
 
 use super::super::coords::kernel_to_view;
 
@@ -40,13 +40,13 @@ use super::super::coords::kernel_to_view;
 pub struct PatchSurfaceMesh(pub Entity);
 
 /// The kernel mesh of every patch drawn from its stack (display depth), for
-/// picking and the scene's bounds: written when a patch's surface is.
+/// picking: written when a patch's surface is.
 #[derive(Resource, Debug, Default)]
 pub struct PatchMeshes {
     /// Patch entity → its mesh (kernel coordinates).
     pub meshes: HashMap<Entity, SurfaceMesh>,
-    /// The box `[min, max]` around them all (`None` with none).
-    pub bounds: Option<[DVec3; 2]>,
+    /// Patch entity → its points (the mesh's vertices as a grid: its edges).
+    pub grids: HashMap<Entity, Grid<DVec3>>,
     /// How many meshes were rebuilt since the start (a meter for the tests:
     /// only a changed surface rebuilds its mesh).
     pub rebuilt: u64,
@@ -56,12 +56,8 @@ pub struct PatchSurfacesPlugin;
 
 impl Plugin for PatchSurfacesPlugin {
     fn build(&self, app: &mut App) {
-        app.init_resource::<PatchMeshes>().add_systems(
-            Update,
-            (sync_patch_meshes, extend_bounds)
-                .chain()
-                .in_set(EditorSet::Sync),
-        );
+        app.init_resource::<PatchMeshes>()
+            .add_systems(Update, sync_patch_meshes.in_set(EditorSet::Sync));
     }
 }
 
@@ -121,7 +117,11 @@ fn sync_patch_meshes(
     let _meter = meter.start();
     let streamline = *mode.get() == EditorMode::Streamline;
     let first = patches.iter().find(|r| !r.3).map(|r| r.0);
-    let g2_head = first.is_some_and(|f| heads_g2_run(f, patches.iter().map(|r| *r.2)));
+    // a G2 head whose run failed to build keeps its incremental surface
+    let g2_head = first.is_some_and(|f| {
+        heads_g2_run(f, patches.iter().map(|r| *r.2))
+            && patches.get(f).is_ok_and(|r| r.1.stack().is_some())
+    });
     let first_stack = first_from_stack(g2_head, analysis.mode);
     // the first patch's incremental mesh (mesh mode shows and hides it itself)
     if streamline {
@@ -144,8 +144,8 @@ fn sync_patch_meshes(
             }
         }
     }
-    let mut bounds_dirty = kernel.meshes.keys().any(|p| patches.get(*p).is_err());
     kernel.meshes.retain(|p, _| patches.get(*p).is_ok());
+    kernel.grids.retain(|p, _| patches.get(*p).is_ok());
     for r in patches.iter().filter(|r| drawn(r)) {
         let (patch, surface, hidden) = (r.0, &r.1, r.4);
         let visible = streamline && !hidden && surface.stack().is_some();
@@ -180,40 +180,22 @@ fn sync_patch_meshes(
                 }
             }
             kernel.meshes.insert(patch, m);
+            if let Some(s) = surface.stack() {
+                kernel.grids.insert(patch, s.finest_points().clone());
+            } else {
+                kernel.grids.remove(&patch);
+            }
             kernel.rebuilt += 1;
-            bounds_dirty = true;
         }
         if let Ok((_, _, _, mut v)) = shown.get_mut(have[&patch].0) {
             set_visible(&mut v, visible);
         }
     }
-    // a patch no longer drawn from its stack leaves the picking and bounds
+    // a patch no longer drawn from its stack leaves the picking
     let keep: Vec<Entity> = patches.iter().filter(|r| drawn(r)).map(|r| r.0).collect();
     if kernel.meshes.keys().any(|p| !keep.contains(p)) {
         kernel.meshes.retain(|p, _| keep.contains(p));
-        bounds_dirty = true;
-    }
-    if bounds_dirty {
-        let b = streamline_kernel::streamline::surface_mesh::bounds(
-            kernel
-                .meshes
-                .values()
-                .flat_map(|m| m.positions.iter().copied()),
-        );
-        kernel.bounds = (b[0].x <= b[1].x).then_some(b);
-    }
-}
-
-/// Widens the scene's box ("Frame all", the grid, the comb's scale) to
-/// take in the patches drawn from their stacks; written only when it grows.
-fn extend_bounds(kernel: Res<PatchMeshes>, mut b: ResMut<SceneBounds>) {
-    let Some([lo, hi]) = kernel.bounds else {
-        return;
-    };
-    let (min, max) = (b.min.min(lo), b.max.max(hi));
-    if min != b.min || max != b.max {
-        b.min = min;
-        b.max = max;
+        kernel.grids.retain(|p, _| keep.contains(p));
     }
 }
 
@@ -408,9 +390,8 @@ mod tests {
         let cols = own.cols();
         let mut by_col = vec![0.0f64; cols];
         for r in 0..own.rows() {
-            for c in 0..cols {
-                let d = (own.get(r, c) - cut.get(r, c)).length();
-                by_col[c] = by_col[c].max(d);
+            for (c, worst) in by_col.iter_mut().enumerate() {
+                *worst = worst.max((own.get(r, c) - cut.get(r, c)).length());
             }
         }
         let size = data
