@@ -45,8 +45,12 @@ cp scenes/hood-screen-wing.ron "$T/"
 "$BIN" play "$T/patches.ron" >/dev/null
 shot patches-walk-1-open scenes/hood-screen-wing.ron --panel patches
 shot patches-walk-3-turned "$T/3-turned.ron" --panel selection --select 2,3
+# the wing chosen and turned in the running editor (a script's SetPatch)
+echo '(steps: [SetPatch("wing"), Rotate(row: 1, col: 2, axis: (1.0, 0.0, 0.0), degrees: -15.0)])' > "$T/wing.ron"
+shot patches-walk-4-wing "$T/3-turned.ron" --script "$T/wing.ron" --panel patches
 shot patches-walk-5-tail "$T/5-tail.ron" --panel patches
 shot patches-walk-6-seams "$T/5-tail.ron" --panel analysis
+shot patches-walk-7-save "$T/5-tail.ron" --panel file
 # the dialog and the arrow's menu need a pointer (xdotool)
 xvfb-run -a -s "-screen 0 1280x800x24" bash tests/gui/authoring.sh "$BIN" docs/img/dialog-new-design.png "$T/d.json" dialog -
 cp "$T/2-insert.ron" "$T/menu.ron"
