@@ -97,6 +97,31 @@ type Shown<'w, 's> = Query<
     Without<SurfaceEntity>,
 >;
 
+/// A patch's mesh from its points and the normals its build kept
+/// ([`PatchSurface::normals`], the whole mesh's, docs/math.md §4), reusing
+/// the old mesh's triangles when the grid kept its shape; made whole
+/// ([`SurfaceMesh::from_points`]) when the normals are missing.
+fn mesh_of(
+    points: &streamline_kernel::Grid<streamline_kernel::DVec3>,
+    normals: &[streamline_kernel::DVec3],
+    old: Option<SurfaceMesh>,
+    old_shape: Option<(usize, usize)>,
+) -> SurfaceMesh {
+    match old {
+        Some(mut m)
+            if normals.len() == points.data().len()
+                && old_shape == Some((points.rows(), points.cols())) =>
+        {
+            m.positions.clear();
+            m.positions.extend_from_slice(points.data());
+            m.normals.clear();
+            m.normals.extend_from_slice(normals);
+            m
+        }
+        _ => SurfaceMesh::from_points(points),
+    }
+}
+
 /// Spawns, rebuilds, shows, hides and despawns the patch meshes (module
 /// documentation), and shows or hides the first patch's incremental mesh.
 #[allow(clippy::too_many_arguments)]
@@ -151,10 +176,15 @@ fn sync_patch_meshes(
         let visible = streamline && !hidden && surface.stack().is_some();
         let fresh = !have.contains_key(&patch);
         if fresh || surface.is_changed() || !kernel.meshes.contains_key(&patch) {
-            let m = surface
-                .stack()
-                .map(|s| SurfaceMesh::from_points(s.finest_points()))
-                .unwrap_or_default();
+            let m = match surface.stack() {
+                Some(s) => mesh_of(
+                    s.finest_points(),
+                    &surface.normals,
+                    kernel.meshes.remove(&patch),
+                    kernel.grids.get(&patch).map(|g| (g.rows(), g.cols())),
+                ),
+                None => SurfaceMesh::default(),
+            };
             let bevy_mesh = to_bevy_mesh(&m.positions, &m.normals, &m.indices);
             match have.get(&patch) {
                 Some((_, h)) => {
@@ -218,6 +248,48 @@ mod tests {
     use crate::scene::document_io::load;
     use bevy_state::app::{AppExtStates, StatesPlugin};
     use std::path::Path;
+
+    /// A mesh remade from the kept normals equals the whole mesh of the
+    /// points, bit for bit; a mesh of another shape, or without normals, is
+    /// made whole (control: stale normals would show).
+    #[test]
+    fn a_mesh_from_kept_normals_is_the_whole_mesh() {
+        use streamline_kernel::{DVec3, Grid};
+        let grid = |k: f64, rows: usize, cols: usize| {
+            let data = (0..rows * cols)
+                .map(|i| {
+                    let (r, c) = ((i / cols) as f64, (i % cols) as f64);
+                    DVec3::new(c, r, (k * c).sin() * (0.3 * r).cos())
+                })
+                .collect();
+            Grid::new(rows, cols, data).unwrap()
+        };
+        let bits = |m: &SurfaceMesh| {
+            (m.positions.iter().chain(&m.normals))
+                .flat_map(|v| v.to_array().map(f64::to_bits))
+                .collect::<Vec<_>>()
+        };
+        let (a, b) = (grid(0.4, 5, 7), grid(0.9, 5, 7));
+        let whole = SurfaceMesh::from_points(&b);
+        let old = SurfaceMesh::from_points(&a);
+        let m = mesh_of(&b, &whole.normals, Some(old.clone()), Some((5, 7)));
+        assert_eq!(bits(&m), bits(&whole));
+        assert_eq!(m.indices, whole.indices);
+        // stale normals are what the mesh shows (so they must be the build's)
+        let stale = mesh_of(&b, &old.normals, Some(old.clone()), Some((5, 7)));
+        assert_ne!(bits(&stale), bits(&whole));
+        // another shape, or no normals: made whole
+        let c = grid(0.9, 4, 7);
+        let m = mesh_of(&c, &[], Some(old.clone()), Some((5, 7)));
+        assert_eq!(bits(&m), bits(&SurfaceMesh::from_points(&c)));
+        let m = mesh_of(
+            &c,
+            &SurfaceMesh::from_points(&c).normals,
+            Some(old),
+            Some((5, 7)),
+        );
+        assert_eq!(m.indices, SurfaceMesh::from_points(&c).indices);
+    }
 
     fn hood() -> crate::scene::Document {
         load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron")).unwrap()
