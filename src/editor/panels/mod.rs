@@ -17,6 +17,7 @@ mod initial;
 mod lengths;
 mod menu_bar;
 mod mesh;
+mod patch_actions;
 mod patches;
 mod seam_table;
 mod selection;
