@@ -247,11 +247,38 @@ fn check_row_spans(
                 }
                 if d + 1 == rows.len() {
                     finest = Some((span.hi - span.lo + 1, new.rows()));
+                    check_normals_window(old, new, span.lo, span.hi);
                 }
             }
         }
     }
     finest
+}
+
+/// What `build_joined` does with a rejoin's span (docs/math.md §4): the
+/// old mesh normals with the moved rows ± 1 recomputed by `normals_window`
+/// are the new points' whole mesh normals bit for bit; recomputing the
+/// moved rows alone is not (negative control, when a row borders them).
+fn check_normals_window(
+    old: &streamline_kernel::Grid<DVec3>,
+    new: &streamline_kernel::Grid<DVec3>,
+    lo: usize,
+    hi: usize,
+) {
+    use streamline_kernel::streamline::surface_mesh::{SurfaceMesh, normals_window};
+    let whole = SurfaceMesh::from_points(new).normals;
+    let window = |lo: usize, hi: usize| {
+        let mut out = SurfaceMesh::from_points(old).normals;
+        normals_window(new.data(), new.cols(), lo, hi, 0, &mut out);
+        out
+    };
+    let last = new.rows() - 1;
+    let local = window(lo.saturating_sub(1), (hi + 1).min(last));
+    assert!(local.iter().zip(&whole).all(|(x, y)| bits(*x) == bits(*y)));
+    if lo > 0 || hi < last {
+        let short = window(lo, hi);
+        assert!(short.iter().zip(&whole).any(|(x, y)| bits(*x) != bits(*y)));
+    }
 }
 
 proptest! {

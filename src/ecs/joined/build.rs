@@ -33,7 +33,7 @@ use bevy::prelude::*;
 use std::collections::HashMap;
 use streamline_kernel::joins::chain::chain;
 use streamline_kernel::joins::merged::g2_run;
-use streamline_kernel::joins::rejoin::{Rejoin, StackRef, point_refs, rejoin};
+use streamline_kernel::joins::rejoin::{Rejoin, RowSpan, StackRef, point_refs, rejoin};
 use streamline_kernel::joins::seam::{PatchMesh, chain_seam, side_seam};
 use streamline_kernel::joins::side::side;
 use streamline_kernel::joins::{Continuity, Edge, JoinError, Stack};
@@ -199,6 +199,8 @@ pub(crate) fn build_joined(
     let mut normals: Vec<Option<Vec<DVec3>>> = vec![None; n];
     // what a rejoin replaced of a patch's points (its children compare them)
     let mut replaced: Vec<Option<Vec<Option<Grid<DVec3>>>>> = vec![None; n];
+    // the display depth's rows a rejoin placed again (`None`: all)
+    let mut moved: Vec<Option<RowSpan>> = vec![None; n];
     for i in 0..n {
         // a patch is rebuilt when its G2 run changed, or (below) when its
         // parent was rebuilt and moved what it reads
@@ -306,7 +308,12 @@ pub(crate) fn build_joined(
                             kept_hi[0] = Some(s);
                             continue;
                         }
-                        Rejoin::Moved { stack, replaced: r } => {
+                        Rejoin::Moved {
+                            stack,
+                            replaced: r,
+                            rows: spans,
+                        } => {
+                            moved[i] = spans.last().copied().flatten();
                             new[i] = Some(Ok(stack));
                             replaced[i] = Some(r);
                             continue;
@@ -327,21 +334,26 @@ pub(crate) fn build_joined(
         };
         new[i] = Some(built);
     }
-    // every rebuilt patch's normals (the seams and the drawing read them)
+    // every rebuilt patch's normals (the seams and the drawing read them):
+    // a rejoin's in its moved rows ± 1 only, from the old ones (a normal
+    // reads its row's neighbours, docs/math.md §4), bit for bit the whole
+    let mut written: Vec<Option<RowSpan>> = vec![None; n];
     for i in 0..n {
         if normals[i].is_none()
             && let Some(Ok(s)) = &new[i]
         {
             let p = s.finest_points();
-            let mut out = vec![DVec3::Z; p.data().len()];
-            normals_window(
-                p.data(),
-                p.cols(),
-                0,
-                p.rows().saturating_sub(1),
-                0,
-                &mut out,
-            );
+            let last = p.rows().saturating_sub(1);
+            let old = &mut rows[i].5.bypass_change_detection().normals;
+            let (mut out, lo, hi) = match moved[i] {
+                Some(span) if old.len() == p.data().len() && span.hi <= last => {
+                    let (lo, hi) = (span.lo.saturating_sub(1), (span.hi + 1).min(last));
+                    written[i] = Some(RowSpan { lo, hi });
+                    (std::mem::take(old), lo, hi)
+                }
+                _ => (vec![DVec3::Z; p.data().len()], 0, last),
+            };
+            normals_window(p.data(), p.cols(), lo, hi, 0, &mut out);
             normals[i] = Some(out);
         }
     }
@@ -378,6 +390,7 @@ pub(crate) fn build_joined(
         if let Some(b) = new[i].take() {
             r.5.built = Some(b);
             r.5.normals = normals[i].take().unwrap_or_default();
+            r.5.rows = written[i];
         } else if let Some(s) = kept[i].take() {
             // not rebuilt: put back, not marked changed
             r.5.bypass_change_detection().built = Some(Ok(s));
