@@ -392,7 +392,7 @@ pub(crate) fn build_joined(
     }
     for (i, r) in rows.iter_mut().enumerate() {
         if let Some(b) = new[i].take() {
-            let was = std::mem::replace(&mut r.5.built, Some(b));
+            let was = r.5.built.replace(b);
             let was_normals =
                 std::mem::replace(&mut r.5.normals, normals[i].take().unwrap_or_default());
             // the first patch's old stack lends its buffers to its next one
