@@ -251,3 +251,66 @@ fn the_bench_s_three_chained_cars_build_as_the_library_builds_them_and_follow_an
     doc.patches[1].design.set_tangent(2, 0, v).unwrap();
     assert_as_built(&mut app, &doc);
 }
+
+/// The G2 run (hood and screen) is kept between edits
+/// (`ecs::joined::g2::G2RunState` on the hood, `joins::g2_state`): an edit
+/// of the screen's far column re-blends the merged net there only, so the
+/// hood's stack keeps its bits and is not marked changed (nor is the wing on
+/// it), and after each edit every patch equals the whole build.
+#[test]
+fn a_g2_run_is_updated_in_place_and_an_edit_of_its_far_end_leaves_its_head() {
+    use streamline_studio::ecs::joined::g2::G2RunState;
+    let mut doc = hood();
+    let mut app = app(&doc);
+    let ids = patches(&mut app);
+    let has_state = |app: &App| {
+        app.world()
+            .get::<G2RunState>(ids[0])
+            .is_some_and(|s| s.0.is_some())
+    };
+    assert!(has_state(&app), "the hood keeps the run's merged levels");
+    assert!(app.world().get::<G2RunState>(ids[1]).is_none());
+    let screen = ids[1];
+    let index = app
+        .world()
+        .get::<PatchIndex>(screen)
+        .unwrap()
+        .surface
+        .clone();
+    let far = index.cols() - 1;
+    for (k, row) in [1usize, 3, 2].into_iter().enumerate() {
+        let before = changed_ticks(&mut app);
+        let h = index.get(row, far);
+        let old = app.world().get::<Direction>(h).unwrap().0;
+        let dir = (old + DVec3::new(0.0, 0.05 * (k as f64 + 1.0), -0.03)).normalize();
+        app.world_mut()
+            .get_mut::<Direction>(h)
+            .unwrap()
+            .set_if_neq(Direction(dir));
+        app.update();
+        let after = changed_ticks(&mut app);
+        assert_eq!(after[0], before[0], "the hood kept (edit {k})");
+        assert_ne!(after[1], before[1], "the screen rebuilt (edit {k})");
+        assert_eq!(after[2], before[2], "the wing kept (edit {k})");
+        assert!(has_state(&app));
+        doc.patches[1].design.set_tangent(row, far, dir).unwrap();
+        assert_as_built(&mut app, &doc);
+    }
+    // an edit of the hood moves both, still as the whole build
+    let dir = DVec3::new(0.9, 0.2, 0.3).normalize();
+    ecs::apply(
+        &mut app,
+        Edit::SetDirection {
+            row: 1,
+            col: 2,
+            dir,
+        },
+    )
+    .unwrap();
+    doc.patches[0].design.set_tangent(1, 2, dir).unwrap();
+    assert_as_built(&mut app, &doc);
+    // a new depth builds the run whole, as the whole build
+    ecs::apply(&mut app, Edit::SetDisplayDepth(doc.display_depth - 1)).unwrap();
+    doc.display_depth -= 1;
+    assert_as_built(&mut app, &doc);
+}

@@ -2,19 +2,32 @@
 //! §11): a tangent edit in the first of three chained cars at depth 5
 //! (`ecs/patches/car-x3/d5/edit-first`: the first patch's incremental
 //! pipeline, then the joined patches rebuilt through the kernel's joins)
-//! beside the same edit with the car alone (`ecs/patches/car-x1/d5/edit-first`).
+//! beside the same edit with the car alone (`ecs/patches/car-x1/d5/edit-first`);
+//! the same three cars G2-chained, edited in the first car and in the last
+//! (`ecs/patches/car-g2x3/d5/edit-first`, `…/edit-last`: the run kept
+//! between edits, `joins::g2_state`), and the kernel's G2 run after an edit
+//! of the first car updated in place beside built whole
+//! (`joins/car-g2x3/d5/update`, `joins/car-g2x3/d5/whole`).
 
 use super::workloads::Workload;
 use crate::scene::document::{Document, PatchScene, Start};
+use crate::scene::patch_edit::PatchEdit;
 use crate::scene::{Scene, document::MAIN_PATCH};
+use streamline_kernel::joins::g2_state::G2State;
+use streamline_kernel::joins::merged::g2_run;
 use streamline_kernel::joins::{Continuity, Edge, Join};
 use streamline_kernel::levels::presets;
-use streamline_kernel::{DVec3, Design};
+use streamline_kernel::{DQuat, DVec3, Design};
 
 /// The car, and `n - 1` copies chained on its `End` edge one after the
 /// other with G1 (each copy's first column the previous one's last, its
 /// rows the car's, anchor 0), at display depth `depth`.
 pub fn chained_cars(n: usize, depth: u32) -> Document {
+    chained_cars_with(n, depth, Continuity::G1)
+}
+
+/// [`chained_cars`] with the given continuity at every seam.
+pub fn chained_cars_with(n: usize, depth: u32, continuity: Continuity) -> Document {
     let car = presets::car1();
     let mut doc = Document::from_scene(Scene::from_design("cars", car.clone(), depth));
     let last = car.net().cols() - 1;
@@ -40,7 +53,7 @@ pub fn chained_cars(n: usize, depth: u32) -> Document {
                 patch: if k == 1 { MAIN_PATCH.into() } else { parent },
                 join: Join {
                     edge: Edge::End,
-                    continuity: Continuity::G1,
+                    continuity,
                 },
             },
             design: copy.clone(),
@@ -57,12 +70,24 @@ pub fn rows() -> Vec<Workload> {
     use crate::ecs::{self, Edit, ModelConfig, SurfaceData};
     let depth = 5;
     let mut out = Vec::new();
-    for n in [1usize, 3] {
-        let doc = chained_cars(n, depth);
+    let rows = [
+        ("car-x1", 1, Continuity::G1, 0),
+        ("car-x3", 3, Continuity::G1, 0),
+        ("car-g2x3", 3, Continuity::G2, 0),
+        ("car-g2x3", 3, Continuity::G2, 2),
+    ];
+    for (name, n, continuity, patch) in rows {
+        let doc = chained_cars_with(n, depth, continuity);
         let mut app = ecs::headless_document_app(&doc, None, ModelConfig::default());
+        if patch > 0 {
+            let target = doc.patches[patch].name.clone();
+            ecs::apply(&mut app, Edit::Patch(PatchEdit::SetPatch(target)))
+                .expect("the patch exists");
+        }
         let mut sign = 1.0;
+        let which = if patch == 0 { "first" } else { "last" };
         out.push(Workload {
-            name: format!("ecs/patches/car-x{n}/d{depth}/edit-first"),
+            name: format!("ecs/patches/{name}/d{depth}/edit-{which}"),
             run: Box::new(move || {
                 sign = -sign;
                 let edit = Edit::Rotate {
@@ -77,5 +102,48 @@ pub fn rows() -> Vec<Workload> {
             }),
         });
     }
+    out.extend(kernel_rows(depth));
+    out
+}
+
+/// The kernel's G2 run of three cars: an edit of the first car's tangent
+/// (2, 4) updated in place (`G2State::update`) beside built whole
+/// (`g2_run`), each turning it back and forth.
+fn kernel_rows(depth: u32) -> Vec<Workload> {
+    let doc = chained_cars_with(3, depth, Continuity::G2);
+    let designs: Vec<Design> = doc.patches.iter().map(|p| p.design.clone()).collect();
+    let turned = |sign: f64, designs: &mut [Design]| {
+        let v = DQuat::from_rotation_y(0.01 * sign) * designs[0].net().get(2, 4);
+        designs[0].set_tangent(2, 4, v).expect("a unit tangent");
+    };
+    let mut out = Vec::new();
+    let (mut state, mut stacks) = {
+        let refs: Vec<&Design> = designs.iter().collect();
+        G2State::build(&refs, depth).expect("the cars are a G2 run")
+    };
+    let mut mine = designs.clone();
+    let mut sign = 1.0;
+    out.push(Workload {
+        name: format!("joins/car-g2x3/d{depth}/update"),
+        run: Box::new(move || {
+            sign = -sign;
+            turned(sign, &mut mine);
+            let refs: Vec<&Design> = mine.iter().collect();
+            let u = state.update(&refs, depth, &mut stacks).expect("updated");
+            u.reblended as f64 + stacks[2].finest_points().data()[0].x
+        }),
+    });
+    let mut mine = designs;
+    let mut sign = 1.0;
+    out.push(Workload {
+        name: format!("joins/car-g2x3/d{depth}/whole"),
+        run: Box::new(move || {
+            sign = -sign;
+            turned(sign, &mut mine);
+            let refs: Vec<&Design> = mine.iter().collect();
+            let stacks = g2_run(&refs, depth).expect("built");
+            stacks[2].finest_points().data()[0].x
+        }),
+    });
     out
 }

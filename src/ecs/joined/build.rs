@@ -24,6 +24,7 @@
 //! [`PatchSurface`], which equals [`crate::scene::Document::build`]'s.
 
 use super::components::*;
+use super::g2::G2RunState;
 use crate::ecs::SurfaceData;
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::patch::{
@@ -32,7 +33,7 @@ use crate::ecs::patch::{
 use bevy::prelude::*;
 use std::collections::HashMap;
 use streamline_kernel::joins::chain::chain;
-use streamline_kernel::joins::merged::g2_run;
+use streamline_kernel::joins::g2_state::G2State;
 use streamline_kernel::joins::rejoin::{Rejoin, RowSpan, StackRef, point_refs, rejoin};
 use streamline_kernel::joins::seam::{PatchMesh, chain_seam, side_seam};
 use streamline_kernel::joins::side::side;
@@ -107,11 +108,13 @@ type PatchRow = (
     Option<Ref<'static, JoinedDesign>>,
     &'static mut PatchSurface,
     Option<&'static mut SeamState>,
+    Option<&'static mut G2RunState>,
 );
 
 /// Rebuilds the patches whose inputs changed and the seams they touch
 /// (module documentation).
 pub(crate) fn build_joined(
+    mut commands: Commands,
     meter: Res<crate::ecs::meter::CpuMeter>,
     structure: Query<Ref<PatchStructure>, Without<Joined>>,
     pipeline: FirstPipeline,
@@ -179,6 +182,28 @@ pub(crate) fn build_joined(
             }
         })
         .collect();
+    // a G2 run's state and its members' stacks, moved out to be updated in
+    // place (super::g2); a member with patches of its own on it keeps a copy
+    // of what it was, which their rejoin reads
+    let head = |i: usize| parent[i].is_none() && run.iter().filter(|&&r| r == i).count() > 1;
+    let heads: Vec<bool> = (0..n).map(head).collect();
+    let mut g2_old: Vec<Option<Stack>> = vec![None; n];
+    let mut g2_was: Vec<Option<Stack>> = vec![None; n];
+    let mut states: Vec<Option<G2State>> = vec![None; n];
+    for i in 0..n {
+        if !heads[run[i]] || !run_changed[i] {
+            continue;
+        }
+        if let Some(c) = rows[i].7.as_mut() {
+            states[i] = c.bypass_change_detection().0.take();
+        }
+        if let Some(Ok(s)) = rows[i].5.bypass_change_detection().built.take() {
+            let has_own = (0..n).any(|j| run[j] != run[i] && parent[j].is_some_and(|p| p.0 == i));
+            g2_was[i] = has_own.then(|| s.clone());
+            g2_old[i] = Some(s);
+        }
+    }
+    let mut in_run = vec![false; n];
     let design = |i: usize| -> Option<&Design> {
         (rows[i].3.as_deref().map(|k| &k.design)).or(rows[i].4.as_deref().map(|j| &j.0))
     };
@@ -208,7 +233,7 @@ pub(crate) fn build_joined(
         // a patch is rebuilt when its G2 run changed, or (below) when its
         // parent was rebuilt and moved what it reads
         let parent_new = parent[i].is_some_and(|(a, ..)| a < i && new[a].is_some());
-        if new[i].is_some() || !(run_changed[i] || parent_new) {
+        if new[i].is_some() || in_run[i] || !(run_changed[i] || parent_new) {
             continue;
         }
         let Some(b) = design(i) else {
@@ -229,15 +254,23 @@ pub(crate) fn build_joined(
                     });
                 }
                 let designs: Vec<&Design> = owned.iter().collect();
-                match g2_run(&designs, depth) {
-                    Ok(stacks) => {
-                        for (&k, s) in members.iter().zip(stacks) {
-                            new[k] = Some(Ok(s));
+                let old: Option<Vec<Stack>> = members.iter().map(|&k| g2_old[k].take()).collect();
+                match super::g2::run(&mut states[i], &designs, depth, old) {
+                    Ok((stacks, changed)) => {
+                        for ((&k, s), moved) in members.iter().zip(stacks).zip(changed) {
+                            in_run[k] = true;
+                            if moved {
+                                new[k] = Some(Ok(s));
+                            } else {
+                                // not changed: put back as it is
+                                kept[k] = Some(s);
+                            }
                         }
                     }
                     Err(e) => {
                         let last = *members.last().unwrap_or(&i);
                         for &k in &members {
+                            in_run[k] = true;
                             new[k] = Some(Err(located(last, &e)));
                         }
                     }
@@ -261,7 +294,7 @@ pub(crate) fn build_joined(
                 let (kept_lo, kept_hi) = kept.split_at_mut(i);
                 // A as it was: its old stack, or (moved by a rejoin) its
                 // levels with the points it had
-                let was = (kept_lo[a].as_ref()).or(rows[a]
+                let was = (kept_lo[a].as_ref()).or(g2_was[a].as_ref()).or(rows[a]
                     .5
                     .built
                     .as_ref()
@@ -408,6 +441,18 @@ pub(crate) fn build_joined(
         }
         if let (Some(report), Some(state)) = (seams[i].take(), r.6.as_mut()) {
             state.report = report;
+        }
+        // the G2 run's state back on its head (a new one inserted), and
+        // dropped from a patch that no longer heads a run
+        match (r.7.as_mut(), states[i].take()) {
+            (Some(c), st @ Some(_)) => c.bypass_change_detection().0 = st,
+            (None, Some(st)) => {
+                commands.entity(r.0).try_insert(G2RunState(Some(st)));
+            }
+            (Some(_), None) if !heads[i] => {
+                commands.entity(r.0).try_remove::<G2RunState>();
+            }
+            _ => {}
         }
     }
 }

@@ -94,18 +94,9 @@ pub fn g2_run(patches: &[&Design], depth: u32) -> Result<Vec<Stack>, JoinError> 
         })
         .collect();
     for (d, (level, points)) in whole.levels.iter().zip(&whole.points).enumerate() {
-        let last = level.tangents.cols() - 1;
-        let mut cuts = vec![0];
-        cuts.extend(
-            merged
-                .seams
-                .iter()
-                .map(|&c| seam_column(scheme, c, d as u32)),
-        );
-        cuts.push(last);
+        let cuts = cuts(scheme, &merged.seams, d as u32, level.tangents.cols());
         for (p, stack) in out.iter_mut().enumerate() {
-            let (lo, hi) = (cuts[p], cuts[p + 1]);
-            let (part, pts) = cut(level, points, lo, hi, p == 0, hi == last);
+            let (part, pts) = cut(&level.tangents, &level.params, points, &cuts, p);
             stack.levels.push(part);
             stack.points.push(pts);
         }
@@ -113,39 +104,44 @@ pub fn g2_run(patches: &[&Design], depth: u32) -> Result<Vec<Stack>, JoinError> 
     Ok(out)
 }
 
-/// Columns `lo ..= hi` of a merged level and their points (Eq. 70): the
-/// merged points `lo + 1 ..= hi`, after the merged first point (`first`) or
-/// the seam point at `lo`, and before the merged last point (`last`) or the
-/// seam point at `hi`.
-fn cut(
-    level: &Level,
+/// The merged columns where a level of `cols` columns at depth `d` is cut:
+/// `0`, each seam's (Eq. 69), `cols − 1`; patch `p` holds columns
+/// `cuts[p] ..= cuts[p + 1]`.
+pub(crate) fn cuts(scheme: SurfaceScheme, seams: &[usize], d: u32, cols: usize) -> Vec<usize> {
+    let mut cuts = Vec::with_capacity(seams.len() + 2);
+    cuts.push(0);
+    cuts.extend(seams.iter().map(|&c| seam_column(scheme, c, d)));
+    cuts.push(cols - 1);
+    cuts
+}
+
+/// Patch `p`'s part of a merged level (its tangents, parameters and points)
+/// and its points (Eq. 70), the columns `cuts[p] ..= cuts[p + 1]`
+/// ([`cut_row`]).
+pub(crate) fn cut(
+    tangents: &Grid<DVec3>,
+    params: &ParamGrid,
     points: &Grid<DVec3>,
-    lo: usize,
-    hi: usize,
-    first: bool,
-    last: bool,
+    cuts: &[usize],
+    p: usize,
 ) -> (Level, Grid<DVec3>) {
-    let rows = level.tangents.rows();
-    let tangents = columns(&level.tangents, lo, hi);
-    let s = columns(&level.params.s, lo, hi);
-    let sigma = if first {
-        level.params.sigma.clone()
+    let (lo, hi) = (cuts[p], cuts[p + 1]);
+    let rows = tangents.rows();
+    let s = columns(&params.s, lo, hi);
+    let sigma = if p == 0 {
+        params.sigma.clone()
     } else {
         (0..rows).map(|r| s.get(r, 0)).collect()
     };
-    let mut data = Vec::with_capacity(rows * (hi - lo + 2));
-    for r in 0..rows {
-        let row = points.row(r);
-        let seam = |k: usize| seam_point(level, row, r, k);
-        data.push(if first { row[0] } else { seam(lo) });
-        data.extend_from_slice(&row[lo + 1..=hi]);
-        data.push(if last { row[hi + 1] } else { seam(hi) });
+    let mut data = vec![DVec3::ZERO; rows * (hi - lo + 2)];
+    for (r, out) in data.chunks_mut(hi - lo + 2).enumerate() {
+        cut_row(tangents, &params.s, points.row(r), r, cuts, p, out);
     }
     let part = Level {
-        tangents,
+        tangents: columns(tangents, lo, hi),
         params: ParamGrid {
             s,
-            t: level.params.t.clone(),
+            t: params.t.clone(),
             sigma,
         },
     };
@@ -153,8 +149,30 @@ fn cut(
     (part, pts)
 }
 
+/// Patch `p`'s points of merged row `r` (`row`, Eq. 70) into `out`
+/// (`cuts[p + 1] − cuts[p] + 2` points): the merged points `lo + 1 ..= hi`,
+/// after the merged first point (the first patch) or the seam point at
+/// `lo`, and before the merged last point (the last patch) or the seam point
+/// at `hi`.
+pub(crate) fn cut_row(
+    tangents: &Grid<DVec3>,
+    s: &Grid<f64>,
+    row: &[DVec3],
+    r: usize,
+    cuts: &[usize],
+    p: usize,
+    out: &mut [DVec3],
+) {
+    let (lo, hi) = (cuts[p], cuts[p + 1]);
+    let last = p + 2 == cuts.len();
+    let seam = |k: usize| seam_point(tangents, s, row, r, k);
+    out[0] = if p == 0 { row[0] } else { seam(lo) };
+    out[1..=hi - lo].copy_from_slice(&row[lo + 1..=hi]);
+    out[hi - lo + 1] = if last { row[hi + 1] } else { seam(hi) };
+}
+
 /// Columns `lo ..= hi` of `g`.
-fn columns<T: Copy>(g: &Grid<T>, lo: usize, hi: usize) -> Grid<T> {
+pub(crate) fn columns<T: Copy>(g: &Grid<T>, lo: usize, hi: usize) -> Grid<T> {
     let data = (0..g.rows())
         .flat_map(|r| g.row(r)[lo..=hi].iter().copied())
         .collect();
@@ -164,7 +182,7 @@ fn columns<T: Copy>(g: &Grid<T>, lo: usize, hi: usize) -> Grid<T> {
 /// The seam point of merged row `r` at column `k ≥ 1`: Eq. 65's last point of
 /// the row cut after `k`, `p_k + ½(s_k − s_{k−1}) t_k`, the middle of the
 /// merged segment `k` at arc length `s_k` (Eq. 70).
-fn seam_point(level: &Level, row: &[DVec3], r: usize, k: usize) -> DVec3 {
-    let s = level.params.s.row(r);
-    row[k] + level.tangents.get(r, k) * (0.5 * (s[k] - s[k - 1]))
+fn seam_point(tangents: &Grid<DVec3>, s: &Grid<f64>, row: &[DVec3], r: usize, k: usize) -> DVec3 {
+    let s = s.row(r);
+    row[k] + tangents.get(r, k) * (0.5 * (s[k] - s[k - 1]))
 }

@@ -6,7 +6,8 @@
 //! - [`kinds`]: [`Edge`] (`End`, `First`, `Last`), [`Continuity`] (`G0`–`G2`), [`Join`].
 //! - [`stack`]: a patch's levels and points at every depth, what a join reads.
 //! - [`chain`]: `edge: End` with G0 or G1 (§11.1); [`merged`]: G2 chains as
-//!   one merged net cut at the seams (§11.1).
+//!   one merged net cut at the seams (§11.1); [`g2_state`]: a G2 run kept
+//!   between edits, re-blended inside the edit's window.
 //! - [`edge_curve`]: `A`'s first or last streamline as a curve with normals;
 //!   [`side`]: joins on it, G0 or G1 (§11.2).
 //! - [`build`]: one join built whole; [`seam`]: the seam report (§11.3).
@@ -16,6 +17,7 @@ pub mod build;
 pub mod chain;
 pub mod edge_curve;
 pub mod error;
+pub mod g2_state;
 pub mod kinds;
 pub mod merged;
 pub mod rejoin;

@@ -1,0 +1,390 @@
+//! A G2 run kept between edits (docs/math.md §11.1, Eqs. 68–70; docs/math.md
+//! §5 for the incremental levels): what issue 28 asks of a local edit, "a
+//! G2 chain re-blends the merged window only".
+//!
+//! [`super::merged::g2_run`] subdivides the run's merged net whole. A
+//! [`G2State`] keeps the merged net's levels ([`LevelState`]), so that after
+//! an edit of one patch's tangents or `s` only the merged window those cells
+//! reach is re-blended ([`propagate`]), only the rows of that window (and
+//! the rows whose start point on the initial curve moved) are integrated
+//! again, and only those rows of each patch's [`Stack`] are cut again in
+//! place (none of a patch left of the window, whose points read nothing it
+//! changed). The result is bit for bit what `g2_run` builds: the incremental
+//! levels are the whole build's (docs/math.md §5), a row's points read only
+//! that row's tangents, parameters and start (Eq. 65), and the cut is the
+//! same per row (Eq. 70).
+
+use crate::grid::Grid;
+use crate::joins::error::JoinError;
+use crate::joins::merged::{MergedRun, cut, cut_row, cuts, merge_g2};
+use crate::joins::stack::Stack;
+use crate::levels::design::Design;
+use crate::levels::dirty_window::{DirtyWindow, Span};
+use crate::levels::incremental::{LevelState, build_levels, propagate};
+use crate::levels::multires::Details;
+use crate::streamline::integrate::{place_slice, segment_at};
+use glam::DVec3;
+
+/// A G2 run's merged levels at every depth `0 ..= d` (their points are
+/// held by the patches' stacks, cut).
+#[derive(Debug, Clone)]
+pub struct G2State {
+    run: MergedRun,
+    levels: Vec<LevelState>,
+    /// Each level's row starts on the initial curve (Eq. 65's origins).
+    origins: Vec<Vec<DVec3>>,
+}
+
+/// What an [`G2State::update`] did.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct G2Update {
+    /// Per patch: whether its stack may have changed (every stack that
+    /// changed, and those whose rows were cut again; a patch left of the
+    /// edit's window, whose points read nothing it changed, is not).
+    pub changed: Vec<bool>,
+    /// Merged tangents re-blended, over all levels (a whole build counts
+    /// every entry of levels `1 ..= d`).
+    pub reblended: usize,
+    /// Whether the run was built whole (its shape, depth, scheme, blend
+    /// order or anchor changed, or an update failed).
+    pub whole: bool,
+}
+
+/// The tangents of levels `1 ..= d` (what a whole build re-blends).
+fn whole_count(levels: &[LevelState]) -> usize {
+    levels
+        .iter()
+        .skip(1)
+        .map(|l| l.shape().0 * l.shape().1)
+        .sum()
+}
+
+/// The bits of a vector.
+fn bits(v: DVec3) -> [u64; 3] {
+    v.to_array().map(f64::to_bits)
+}
+
+impl G2State {
+    /// The run of `patches` built whole to `depth`, and each patch's stack
+    /// (bit for bit [`super::merged::g2_run`]'s).
+    pub fn build(patches: &[&Design], depth: u32) -> Result<(Self, Vec<Stack>), JoinError> {
+        let run = merge_g2(patches)?;
+        let levels = build_levels(&run.design, &Details::new(), depth)?;
+        let origins: Vec<Vec<DVec3>> = levels.iter().map(|l| origins(&run.design, l)).collect();
+        let me = G2State {
+            run,
+            levels,
+            origins,
+        };
+        let stacks = me.stacks(patches.len());
+        Ok((me, stacks))
+    }
+
+    /// The finest depth `d`.
+    pub fn depth(&self) -> u32 {
+        self.levels.len().saturating_sub(1) as u32
+    }
+
+    /// The merged design (docs/math.md Eq. 68).
+    pub fn design(&self) -> &Design {
+        &self.run.design
+    }
+
+    /// Every patch's stack, cut from the merged levels (Eqs. 69–70).
+    fn stacks(&self, n: usize) -> Vec<Stack> {
+        let scheme = self.run.design.scheme();
+        let mut out: Vec<Stack> = (0..n)
+            .map(|_| Stack {
+                levels: Vec::new(),
+                points: Vec::new(),
+            })
+            .collect();
+        for (d, (level, origins)) in self.levels.iter().zip(&self.origins).enumerate() {
+            let (rows, cols) = level.shape();
+            let mut points = Grid::filled(rows, cols + 1, DVec3::ZERO);
+            for r in 0..rows {
+                place(level, origins, r, points.row_mut(r));
+            }
+            let points = &points;
+            let cuts = cuts(scheme, &self.run.seams, d as u32, cols);
+            for (p, stack) in out.iter_mut().enumerate() {
+                let (part, pts) = cut(&level.tangents, &level.params, points, &cuts, p);
+                stack.levels.push(part);
+                stack.points.push(pts);
+            }
+        }
+        out
+    }
+
+    /// Brings the run up to date with `patches` (the same run, each patch's
+    /// design as it is now) at `depth`, and `stacks` (each patch's, as this
+    /// state cut them last) with it: in place and inside the edit's window
+    /// when only tangents and parameters changed, whole otherwise. On an
+    /// error (the whole build's) the state must be built again.
+    pub fn update(
+        &mut self,
+        patches: &[&Design],
+        depth: u32,
+        stacks: &mut Vec<Stack>,
+    ) -> Result<G2Update, JoinError> {
+        let run = merge_g2(patches)?;
+        let n = patches.len();
+        let fits = self.fits(&run, depth) && self.cut_as(stacks, n);
+        let seed = if fits { self.seed(&run) } else { None };
+        let Some(seed) = seed else {
+            return self.rebuild(patches, depth, stacks);
+        };
+        self.run = run;
+        let mut prop_dirty: Vec<Option<DirtyWindow>> = vec![None; self.levels.len()];
+        let mut reblended = 0;
+        if let Some(w) = seed {
+            let mut refs: Vec<&mut LevelState> = self.levels.iter_mut().collect();
+            match propagate(&self.run.design, &Details::new(), &mut refs, &[Some(w)]) {
+                Ok(p) => {
+                    reblended = p.reblended;
+                    prop_dirty = p.dirty;
+                }
+                // s stopped increasing somewhere: the whole build's error
+                Err(_) => return self.rebuild(patches, depth, stacks),
+            }
+        }
+        let mut changed = vec![false; n];
+        for (d, w) in prop_dirty.into_iter().enumerate() {
+            self.recut_level(d, w, stacks, &mut changed);
+        }
+        Ok(G2Update {
+            changed,
+            reblended,
+            whole: false,
+        })
+    }
+
+    /// Level `d` brought up to date in every stack after its merged
+    /// window `window` was re-blended: the rows of the window, and those
+    /// whose start on the initial curve moved, placed again (Eq. 65) and
+    /// cut into each patch's points (Eq. 70), and the window's tangents and
+    /// parameters cut into each patch's level; `changed` marks the patches
+    /// written.
+    fn recut_level(
+        &mut self,
+        d: usize,
+        window: Option<DirtyWindow>,
+        stacks: &mut [Stack],
+        changed: &mut [bool],
+    ) {
+        let scheme = self.run.design.scheme();
+        let level = &self.levels[d];
+        let origins = origins(&self.run.design, level);
+        // the rows whose points are placed again: the window's, and
+        // those whose start moved (the initial curve changed)
+        let mut rows: Vec<bool> = vec![false; level.shape().0];
+        if let Some(w) = window {
+            rows[w.rows.lo..=w.rows.hi].fill(true);
+        }
+        for (r, (o, n)) in self.origins[d].iter().zip(&origins).enumerate() {
+            rows[r] |= bits(*o) != bits(*n);
+        }
+        let before = std::mem::replace(&mut self.origins[d], origins);
+        if !rows.contains(&true) {
+            return;
+        }
+        let (nrows, cols) = level.shape();
+        let cuts = cuts(scheme, &self.run.seams, d as u32, cols);
+        let mut row = vec![DVec3::ZERO; cols + 1];
+        // the first merged column the window changed (none: only starts moved)
+        let from = window.map_or(usize::MAX, |w| w.cols.lo);
+        for r in (0..nrows).filter(|&r| rows[r]) {
+            place(level, &self.origins[d], r, &mut row);
+            let moved = bits(before[r]) != bits(self.origins[d][r]);
+            let k = segment_at(level.params.s.row(r), level.params.sigma[r]);
+            for (p, stack) in stacks.iter_mut().enumerate() {
+                // a patch's points read the merged tangents up to its
+                // last column and `s` one further, and the anchor's
+                // segment (Eq. 65): left of the window, they are as they were
+                if !moved && cuts[p + 1].max(k) + 1 < from {
+                    continue;
+                }
+                let to = stack.points[d].row_mut(r);
+                cut_row(&level.tangents, &level.params.s, &row, r, &cuts, p, to);
+                changed[p] = true;
+            }
+        }
+        if let Some(w) = window {
+            for (p, stack) in stacks.iter_mut().enumerate() {
+                changed[p] |= recut_window(level, w, &cuts, p, &mut stack.levels[d]);
+            }
+        }
+    }
+
+    /// Builds the run whole into `self` and `stacks` (every patch changed).
+    fn rebuild(
+        &mut self,
+        patches: &[&Design],
+        depth: u32,
+        stacks: &mut Vec<Stack>,
+    ) -> Result<G2Update, JoinError> {
+        let (me, built) = match G2State::build(patches, depth) {
+            Ok(b) => b,
+            Err(e) => {
+                // half-written by a failed update: built whole next time
+                self.levels.clear();
+                return Err(e);
+            }
+        };
+        *self = me;
+        *stacks = built;
+        Ok(G2Update {
+            changed: vec![true; patches.len()],
+            reblended: whole_count(&self.levels),
+            whole: true,
+        })
+    }
+
+    /// Whether `run` at `depth` has this state's shape (what an update in
+    /// place keeps): depth, merged net size, seams, scheme, blend order and
+    /// anchor.
+    fn fits(&self, run: &MergedRun, depth: u32) -> bool {
+        let (a, b) = (&self.run.design, &run.design);
+        !self.levels.is_empty()
+            && self.depth() == depth
+            && a.net().rows() == b.net().rows()
+            && a.net().cols() == b.net().cols()
+            && self.run.seams == run.seams
+            && a.scheme() == b.scheme()
+            && a.order() == b.order()
+            && a.anchor() == b.anchor()
+    }
+
+    /// Whether `stacks` are `n` stacks of the shapes this state cuts.
+    fn cut_as(&self, stacks: &[Stack], n: usize) -> bool {
+        let scheme = self.run.design.scheme();
+        stacks.len() == n
+            && stacks.iter().all(|s| s.levels.len() == self.levels.len())
+            && self.levels.iter().enumerate().all(|(d, level)| {
+                let (rows, cols) = level.shape();
+                let cuts = cuts(scheme, &self.run.seams, d as u32, cols);
+                stacks.iter().enumerate().all(|(p, s)| {
+                    let w = cuts[p + 1] - cuts[p] + 1;
+                    let (l, pts) = (&s.levels[d], &s.points[d]);
+                    l.tangents.rows() == rows
+                        && l.tangents.cols() == w
+                        && l.params.s.rows() == rows
+                        && l.params.s.cols() == w
+                        && l.params.t.len() == rows
+                        && l.params.sigma.len() == rows
+                        && pts.rows() == rows
+                        && pts.cols() == w + 1
+                })
+            })
+    }
+
+    /// The window of the merged control net that differs from `run`'s (its
+    /// tangents, `s`; a row whose `t` or `σ` differs, whole):
+    /// `Some(None)` when nothing does.
+    fn seed(&self, run: &MergedRun) -> Option<Option<DirtyWindow>> {
+        let (a, b) = (&self.run.design, &run.design);
+        let (pa, pb) = (a.params(), b.params());
+        let cols = a.net().cols();
+        let mut win: Option<DirtyWindow> = None;
+        let mut add = |w: DirtyWindow| win = Some(DirtyWindow::merge(win, w));
+        for r in 0..a.net().rows() {
+            let whole_row = pa.t[r].to_bits() != pb.t[r].to_bits()
+                || pa.sigma[r].to_bits() != pb.sigma[r].to_bits();
+            if whole_row {
+                add(DirtyWindow {
+                    rows: Span::single(r),
+                    cols: Span::all(cols),
+                });
+                continue;
+            }
+            let (ta, tb) = (a.net().row(r), b.net().row(r));
+            let (sa, sb) = (pa.s.row(r), pb.s.row(r));
+            for c in 0..cols {
+                if bits(ta[c]) != bits(tb[c]) || sa[c].to_bits() != sb[c].to_bits() {
+                    add(DirtyWindow::cell(r, c));
+                }
+            }
+        }
+        Some(win)
+    }
+}
+
+/// Each row's start on the initial curve at `level`'s `t` (Eq. 65's origin).
+fn origins(design: &Design, level: &LevelState) -> Vec<DVec3> {
+    level
+        .params
+        .t
+        .iter()
+        .map(|&t| design.initial().point(t))
+        .collect()
+}
+
+/// Row `r` of `level` placed from its start `origins[r]` (Eq. 65, as
+/// [`Design::place_row`]).
+fn place(level: &LevelState, origins: &[DVec3], r: usize, out: &mut [DVec3]) {
+    place_slice(
+        level.tangents.row(r),
+        level.params.s.row(r),
+        level.params.sigma[r],
+        origins[r],
+        out,
+    );
+}
+
+/// Patch `p`'s level (`part`) cut again from the merged `level` inside its
+/// window `w` (Eq. 69): the tangents and `s` of the window's cells in the
+/// patch's columns, and the window rows' `t` and `σ` (the first patch's
+/// merged `σ`, a later one's first `s`). Whether any of them changed.
+fn recut_window(
+    level: &LevelState,
+    w: DirtyWindow,
+    cuts: &[usize],
+    p: usize,
+    part: &mut crate::levels::design::Level,
+) -> bool {
+    let (lo, hi) = (cuts[p], cuts[p + 1]);
+    let mut changed = false;
+    for r in w.rows.iter() {
+        let sigma = if p == 0 {
+            level.params.sigma[r]
+        } else {
+            level.params.s.get(r, lo)
+        };
+        changed |= assign_f64(&mut part.params.t[r..=r], &level.params.t[r..=r]);
+        changed |= assign_f64(&mut part.params.sigma[r..=r], &[sigma]);
+        let (c0, c1) = (w.cols.lo.max(lo), w.cols.hi.min(hi));
+        if c0 > c1 {
+            continue;
+        }
+        changed |= assign(
+            &mut part.tangents.row_mut(r)[c0 - lo..=c1 - lo],
+            &level.tangents.row(r)[c0..=c1],
+        );
+        changed |= assign_f64(
+            &mut part.params.s.row_mut(r)[c0 - lo..=c1 - lo],
+            &level.params.s.row(r)[c0..=c1],
+        );
+    }
+    changed
+}
+
+/// Writes `from` into `to` (of the same length) in one pass; whether some
+/// bit differed.
+fn assign(to: &mut [DVec3], from: &[DVec3]) -> bool {
+    let mut differs = false;
+    for (t, f) in to.iter_mut().zip(from) {
+        differs |= bits(*t) != bits(*f);
+        *t = *f;
+    }
+    differs
+}
+
+/// [`assign`] for numbers.
+fn assign_f64(to: &mut [f64], from: &[f64]) -> bool {
+    let mut differs = false;
+    for (t, f) in to.iter_mut().zip(from) {
+        differs |= t.to_bits() != f.to_bits();
+        *t = *f;
+    }
+    differs
+}

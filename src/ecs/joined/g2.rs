@@ -1,0 +1,52 @@
+//! A G2 run's merged levels, kept on its first patch between edits
+//! (docs/math.md §11.1, Eqs. 68–70; issue 28: "a G2 chain re-blends the
+//! merged window only"). [`build_joined`](super::build::build_joined)
+//! moves the state and the run's stacks out, brings them up to date with
+//! [`run`] and puts them back: the kernel's [`G2State`] re-blends the merged
+//! net inside the edit's window and cuts again, in place, only the rows that
+//! moved, bit for bit what [`streamline_kernel::joins::merged::g2_run`]
+//! builds whole.
+
+use bevy::prelude::*;
+use streamline_kernel::Design;
+use streamline_kernel::joins::g2_state::G2State;
+use streamline_kernel::joins::{JoinError, Stack};
+
+/// The merged levels and points of the G2 run this patch heads (`None`
+/// while they are moved out, or after a failed build).
+#[derive(Component, Debug, Default)]
+pub struct G2RunState(pub Option<G2State>);
+
+/// Each member's stack and whether it changed.
+pub(crate) type RunBuilt = (Vec<Stack>, Vec<bool>);
+
+/// The run of `designs` (each one's seam column the previous one's last) at
+/// `depth`: updated in place from `state` and the members' stacks as they
+/// were (`old`, all of them, or `None`), or built whole into `state`. On an
+/// error `state` is dropped, so the next build is whole.
+pub(crate) fn run(
+    state: &mut Option<G2State>,
+    designs: &[&Design],
+    depth: u32,
+    old: Option<Vec<Stack>>,
+) -> Result<RunBuilt, JoinError> {
+    if let (Some(st), Some(mut stacks)) = (state.as_mut(), old) {
+        return match st.update(designs, depth, &mut stacks) {
+            Ok(u) => Ok((stacks, u.changed)),
+            Err(e) => {
+                *state = None;
+                Err(e)
+            }
+        };
+    }
+    match G2State::build(designs, depth) {
+        Ok((st, stacks)) => {
+            *state = Some(st);
+            Ok((stacks, vec![true; designs.len()]))
+        }
+        Err(e) => {
+            *state = None;
+            Err(e)
+        }
+    }
+}
