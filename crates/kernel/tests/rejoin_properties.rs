@@ -154,6 +154,172 @@ proptest! {
     }
 }
 
+/// The rows of `new` whose first point is not bit for bit `old`'s.
+fn moved_rows(
+    old: &streamline_kernel::Grid<DVec3>,
+    new: &streamline_kernel::Grid<DVec3>,
+) -> Vec<usize> {
+    (0..new.rows())
+        .filter(|&r| bits(old.get(r, 0)) != bits(new.get(r, 0)))
+        .collect()
+}
+
+/// A G0 chain's rejoin after an edit of `A` (`cell`): the row span of each
+/// depth is exactly that of the rows whose start moved, the rows outside it
+/// are `B`'s old rows bit for bit, and the span's first and last rows
+/// differ from the old ones (negative control: a rejoin that copied them,
+/// or placed no row again, would not be the join). Returns the finest
+/// depth's span length and row count, `None` when the case does not apply.
+fn check_row_spans(
+    spec: &common::joins::PairSpec,
+    cell: (usize, usize),
+    angle: f64,
+) -> Option<(usize, usize)> {
+    let a = spec.a(Field::Bent);
+    let b = spec.b_chain(&a, Field::Bent, false, spec.order_a);
+    let (row, col) = (cell.0 % a.net().rows(), cell.1 % a.net().cols());
+    let a2 = turned(&a, row, col, DVec3::new(0.3, 0.9, 0.2).normalize(), angle);
+    let (sa, sa2) = (stack(&a)?, stack(&a2)?);
+    let sb = chain(&a, &sa, &b, Continuity::G0).ok()?;
+    let whole = chain(&a2, &sa2, &b, Continuity::G0).unwrap();
+    let refs = point_refs(&sa);
+    let old_a = StackRef {
+        levels: &sa.levels,
+        points: &refs,
+    };
+    let (s, replaced, rows) =
+        match rejoin(&a2, old_a, &sa2, &b, sb.clone(), Edge::End, Continuity::G0) {
+            Rejoin::Moved {
+                stack,
+                replaced,
+                rows,
+            } => (stack, replaced, rows),
+            Rejoin::Unchanged(s) => {
+                assert!(same(&s, &whole));
+                return None;
+            }
+            Rejoin::Rebuild(_) => panic!("a G0 chain always rejoins"),
+        };
+    assert!(same(&s, &whole), "bit for bit the whole chain");
+    assert_eq!(rows.len(), whole.points.len());
+    let mut finest = None;
+    for (d, span) in rows.iter().enumerate() {
+        let (old, new) = (&sb.points[d], &whole.points[d]);
+        let moved = moved_rows(old, new);
+        match span {
+            None => {
+                assert!(
+                    moved.is_empty(),
+                    "depth {d}: rows {moved:?} moved unreported"
+                );
+                assert!(replaced[d].is_none());
+            }
+            Some(span) => {
+                assert_eq!(
+                    (span.lo, span.hi),
+                    (moved[0], *moved.last().unwrap()),
+                    "depth {d}"
+                );
+                let before = replaced[d].as_ref().expect("the old points kept");
+                for r in 0..new.rows() {
+                    let same_row = old
+                        .row(r)
+                        .iter()
+                        .zip(new.row(r))
+                        .all(|(x, y)| bits(*x) == bits(*y));
+                    assert_eq!(same_row, !moved.contains(&r), "depth {d} row {r}");
+                    assert!(
+                        before
+                            .row(r)
+                            .iter()
+                            .zip(old.row(r))
+                            .all(|(x, y)| bits(*x) == bits(*y))
+                    );
+                }
+                // negative control: copying the span's ends would be wrong
+                for r in [span.lo, span.hi] {
+                    assert!(
+                        old.row(r)
+                            .iter()
+                            .zip(new.row(r))
+                            .any(|(x, y)| bits(*x) != bits(*y))
+                    );
+                }
+                if d + 1 == rows.len() {
+                    finest = Some((span.hi - span.lo + 1, new.rows()));
+                    check_normals_window(old, new, span.lo, span.hi);
+                }
+            }
+        }
+    }
+    finest
+}
+
+/// What `build_joined` does with a rejoin's span (docs/math.md §4): the
+/// old mesh normals with the moved rows ± 1 recomputed by `normals_window`
+/// are the new points' whole mesh normals bit for bit; recomputing the
+/// moved rows alone is not (negative control, when a row borders them).
+fn check_normals_window(
+    old: &streamline_kernel::Grid<DVec3>,
+    new: &streamline_kernel::Grid<DVec3>,
+    lo: usize,
+    hi: usize,
+) {
+    use streamline_kernel::streamline::surface_mesh::{SurfaceMesh, normals_window};
+    let whole = SurfaceMesh::from_points(new).normals;
+    let window = |lo: usize, hi: usize| {
+        let mut out = SurfaceMesh::from_points(old).normals;
+        normals_window(new.data(), new.cols(), lo, hi, 0, &mut out);
+        out
+    };
+    let last = new.rows() - 1;
+    let local = window(lo.saturating_sub(1), (hi + 1).min(last));
+    assert!(local.iter().zip(&whole).all(|(x, y)| bits(*x) == bits(*y)));
+    if lo > 0 || hi < last {
+        let short = window(lo, hi);
+        assert!(short.iter().zip(&whole).any(|(x, y)| bits(*x) != bits(*y)));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    /// A rejoin places again only the rows whose start moved, and says
+    /// which (see [`check_row_spans`]).
+    #[test]
+    fn a_rejoin_places_only_the_moved_rows(
+        spec in pair_spec(),
+        cell in (0usize..8, 0usize..8),
+        angle in 0.01f64..0.5,
+    ) {
+        check_row_spans(&spec, cell, angle);
+    }
+}
+
+/// An edit of one handle of a net with several rows moves a strict part of
+/// the finest depth's rows (the rejoin is local), on most nets.
+#[test]
+fn an_edit_of_one_row_moves_a_few_rows_only() {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::TestRunner;
+    let mut runner = TestRunner::deterministic();
+    let (mut local, mut checked) = (0, 0);
+    for _ in 0..48 {
+        let spec = pair_spec().new_tree(&mut runner).unwrap().current();
+        if let Some((span, rows)) = check_row_spans(&spec, (0, 0), 0.3) {
+            checked += 1;
+            if span < rows {
+                local += 1;
+            }
+        }
+    }
+    assert!(checked >= 16, "only {checked} nets checked");
+    assert!(
+        local * 2 >= checked,
+        "only {local} of {checked} edits were local"
+    );
+}
+
 /// Negative control: under G1, keeping `B`'s levels after `A`'s seam column
 /// turned (placing the old levels at the new starts, what `rejoin` refuses
 /// to do) is not the join: its seam tangents are not `A`'s.

@@ -34,7 +34,7 @@ use bevy::prelude::*;
 use std::collections::HashMap;
 use streamline_kernel::joins::chain::chain;
 use streamline_kernel::joins::g2_state::G2State;
-use streamline_kernel::joins::rejoin::{Rejoin, StackRef, point_refs, rejoin};
+use streamline_kernel::joins::rejoin::{Rejoin, RowSpan, StackRef, point_refs, rejoin};
 use streamline_kernel::joins::seam::{PatchMesh, chain_seam, side_seam};
 use streamline_kernel::joins::side::side;
 use streamline_kernel::joins::{Continuity, Edge, JoinError, Stack};
@@ -119,6 +119,7 @@ pub(crate) fn build_joined(
     structure: Query<Ref<PatchStructure>, Without<Joined>>,
     pipeline: FirstPipeline,
     mut patches: Query<PatchRow>,
+    mut spare: Local<FirstSpare>,
 ) {
     if patches.is_empty() {
         return;
@@ -220,10 +221,14 @@ pub(crate) fn build_joined(
         None => format!("patch `{}`: {e}", name(i)),
     };
     let mut new: Vec<Option<Result<Stack, String>>> = vec![None; n];
+    // the patch whose stack the pipeline made in `spare`'s buffers
+    let mut lent: Option<usize> = None;
     // the display depth's mesh normals of a rebuilt patch, when it has them already
     let mut normals: Vec<Option<Vec<DVec3>>> = vec![None; n];
     // what a rejoin replaced of a patch's points (its children compare them)
     let mut replaced: Vec<Option<Vec<Option<Grid<DVec3>>>>> = vec![None; n];
+    // the display depth's rows a rejoin placed again (`None`: all)
+    let mut moved: Vec<Option<RowSpan>> = vec![None; n];
     for i in 0..n {
         // a patch is rebuilt when its G2 run changed, or (below) when its
         // parent was rebuilt and moved what it reads
@@ -275,11 +280,12 @@ pub(crate) fn build_joined(
             None => match rows[i]
                 .3
                 .is_some()
-                .then(|| pipeline.stack(b, depth))
+                .then(|| pipeline.stack(b, depth, spare.0.take()))
                 .flatten()
             {
                 Some((s, n)) => {
                     normals[i] = Some(n);
+                    lent = Some(i);
                     Ok(s)
                 }
                 None => Stack::build(b, depth).map_err(|e| located(i, &JoinError::Kernel(e))),
@@ -339,7 +345,12 @@ pub(crate) fn build_joined(
                             kept_hi[0] = Some(s);
                             continue;
                         }
-                        Rejoin::Moved { stack, replaced: r } => {
+                        Rejoin::Moved {
+                            stack,
+                            replaced: r,
+                            rows: spans,
+                        } => {
+                            moved[i] = spans.last().copied().flatten();
                             new[i] = Some(Ok(stack));
                             replaced[i] = Some(r);
                             continue;
@@ -360,21 +371,26 @@ pub(crate) fn build_joined(
         };
         new[i] = Some(built);
     }
-    // every rebuilt patch's normals (the seams and the drawing read them)
+    // every rebuilt patch's normals (the seams and the drawing read them):
+    // a rejoin's in its moved rows ± 1 only, from the old ones (a normal
+    // reads its row's neighbours, docs/math.md §4), bit for bit the whole
+    let mut written: Vec<Option<RowSpan>> = vec![None; n];
     for i in 0..n {
         if normals[i].is_none()
             && let Some(Ok(s)) = &new[i]
         {
             let p = s.finest_points();
-            let mut out = vec![DVec3::Z; p.data().len()];
-            normals_window(
-                p.data(),
-                p.cols(),
-                0,
-                p.rows().saturating_sub(1),
-                0,
-                &mut out,
-            );
+            let last = p.rows().saturating_sub(1);
+            let old = &mut rows[i].5.bypass_change_detection().normals;
+            let (mut out, lo, hi) = match moved[i] {
+                Some(span) if old.len() == p.data().len() && span.hi <= last => {
+                    let (lo, hi) = (span.lo.saturating_sub(1), (span.hi + 1).min(last));
+                    written[i] = Some(RowSpan { lo, hi });
+                    (std::mem::take(old), lo, hi)
+                }
+                _ => (vec![DVec3::Z; p.data().len()], 0, last),
+            };
+            normals_window(p.data(), p.cols(), lo, hi, 0, &mut out);
             normals[i] = Some(out);
         }
     }
@@ -409,8 +425,16 @@ pub(crate) fn build_joined(
     }
     for (i, r) in rows.iter_mut().enumerate() {
         if let Some(b) = new[i].take() {
-            r.5.built = Some(b);
-            r.5.normals = normals[i].take().unwrap_or_default();
+            let was = r.5.built.replace(b);
+            let was_normals =
+                std::mem::replace(&mut r.5.normals, normals[i].take().unwrap_or_default());
+            // the first patch's old stack lends its buffers to its next one
+            if lent == Some(i)
+                && let Some(Ok(old)) = was
+            {
+                spare.0 = Some((old, was_normals));
+            }
+            r.5.rows = written[i];
         } else if let Some(s) = kept[i].take() {
             // not rebuilt: put back, not marked changed
             r.5.bypass_change_detection().built = Some(Ok(s));
@@ -433,6 +457,11 @@ pub(crate) fn build_joined(
     }
 }
 
+/// The first patch's stack and normals from before its last one, whose
+/// buffers [`FirstPipeline::stack`] fills again.
+#[derive(Default)]
+pub(crate) struct FirstSpare(Option<(Stack, Vec<DVec3>)>);
+
 /// The first patch's pipeline, read: its level entities and its points.
 #[derive(bevy::ecs::system::SystemParam)]
 pub(crate) struct FirstPipeline<'w, 's> {
@@ -450,16 +479,43 @@ impl FirstPipeline<'_, '_> {
     /// [`SurfaceData`]'s, and only the coarser depths' streamlines (a third
     /// of the finest's points) are integrated. `None` while the pipeline
     /// holds another depth or another net (then build it whole).
-    fn stack(&self, design: &Design, depth: u32) -> Option<(Stack, Vec<DVec3>)> {
-        let mut levels: Vec<Option<Level>> = vec![None; depth as usize + 1];
+    ///
+    /// `spare` (the stack and normals this patch had two edits ago, which
+    /// no one reads any more) lends its buffers: a level or grid of the same
+    /// shape is copied into them, so that a drag does not allocate (and
+    /// fault in) several megabytes a frame.
+    fn stack(
+        &self,
+        design: &Design,
+        depth: u32,
+        spare: Option<(Stack, Vec<DVec3>)>,
+    ) -> Option<(Stack, Vec<DVec3>)> {
+        let (mut old_levels, mut old_points, mut normals) = match spare {
+            Some((s, n)) => (s.levels, s.points, n),
+            None => Default::default(),
+        };
+        old_levels.truncate(depth as usize + 1);
+        old_levels.resize_with(depth as usize + 1, || Level {
+            tangents: Grid::filled(0, 0, DVec3::ZERO),
+            params: streamline_kernel::levels::params::ParamGrid {
+                s: Grid::filled(0, 0, 0.0),
+                t: Vec::new(),
+                sigma: Vec::new(),
+            },
+        });
+        let mut seen = vec![false; depth as usize + 1];
         for (l, data) in &self.levels {
-            let slot = levels.get_mut(l.0 as usize)?;
-            *slot = Some(Level {
-                tangents: data.0.tangents.clone(),
-                params: data.0.params.clone(),
-            });
+            let slot = old_levels.get_mut(l.0 as usize)?;
+            copy_grid(&mut slot.tangents, &data.0.tangents);
+            copy_grid(&mut slot.params.s, &data.0.params.s);
+            slot.params.t.clone_from(&data.0.params.t);
+            slot.params.sigma.clone_from(&data.0.params.sigma);
+            seen[l.0 as usize] = true;
         }
-        let levels: Vec<Level> = levels.into_iter().collect::<Option<_>>()?;
+        if !seen.iter().all(|&b| b) {
+            return None;
+        }
+        let levels = old_levels;
         let (net, base) = (design.net(), &levels[0].tangents);
         if base.rows() != net.rows() || base.cols() != net.cols() || base.data() != net.data() {
             return None;
@@ -472,12 +528,26 @@ impl FirstPipeline<'_, '_> {
         {
             return None;
         }
+        let mut fine = old_points
+            .pop()
+            .unwrap_or_else(|| Grid::filled(0, 0, DVec3::ZERO));
+        copy_grid(&mut fine, p);
         let mut points: Vec<_> = levels[..depth as usize]
             .iter()
             .map(|l| design.streamlines(l))
             .collect();
-        points.push(p.clone());
-        Some((Stack { levels, points }, self.surface.normals.clone()))
+        points.push(fine);
+        normals.clone_from(&self.surface.normals);
+        Some((Stack { levels, points }, normals))
+    }
+}
+
+/// `src` copied into `dst`, into its buffer when the shapes agree.
+fn copy_grid<T: Copy>(dst: &mut Grid<T>, src: &Grid<T>) {
+    if (dst.rows(), dst.cols()) == (src.rows(), src.cols()) {
+        dst.data_mut().copy_from_slice(src.data());
+    } else {
+        *dst = src.clone();
     }
 }
 

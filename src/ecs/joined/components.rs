@@ -9,6 +9,7 @@
 pub use crate::ecs::patch::{Joined, JoinedHandle};
 use bevy::prelude::*;
 use streamline_kernel::Design;
+use streamline_kernel::joins::rejoin::RowSpan;
 use streamline_kernel::joins::{Continuity, Edge, SeamReport, Stack};
 
 /// A patch's name in the document (`main` for a version-1 or -2 design)
@@ -55,6 +56,11 @@ pub struct PatchSurface {
     /// them from the stack's finest points (docs/math.md §4): written with
     /// `built`, read by the seam reports and by whatever draws the patch.
     pub normals: Vec<streamline_kernel::DVec3>,
+    /// The rows of the finest points and normals that the last write
+    /// changed (a rejoin's moved rows ± 1, whose normals read them), when
+    /// the grid kept its shape; `None`: all of them (a whole build). What
+    /// draws the patch may rewrite only these.
+    pub rows: Option<RowSpan>,
 }
 
 impl PatchSurface {

@@ -26,9 +26,12 @@ use super::super::interaction::{EditorMode, EditorSet};
 use super::analysis::{AnalysisSettings, SurfaceMode};
 use super::shaded::{ShadedMaterial, SurfaceEntity, to_bevy_mesh};
 use crate::ecs::joined::{Joined, PatchHidden, PatchStart, PatchSurface};
+use crate::ecs::vertex_mirror::write_f32;
+use bevy::mesh::VertexAttributeValues;
 use bevy::prelude::*;
 use bevy_state::prelude::State;
 use std::collections::HashMap;
+use streamline_kernel::joins::rejoin::RowSpan;
 use streamline_kernel::joins::{Continuity, Edge};
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 use streamline_kernel::{DVec3, Grid};
@@ -50,6 +53,9 @@ pub struct PatchMeshes {
     /// How many meshes were rebuilt since the start (a meter for the tests:
     /// only a changed surface rebuilds its mesh).
     pub rebuilt: u64,
+    /// How many of those wrote only a rejoin's moved rows into the meshes
+    /// in place ([`PatchSurface::rows`]).
+    pub partial: u64,
 }
 
 pub struct PatchSurfacesPlugin;
@@ -122,6 +128,54 @@ fn mesh_of(
     }
 }
 
+/// Writes rows `span` of `points` and `normals` (a rejoin's moved rows ± 1,
+/// [`PatchSurface::rows`]) into the patch's Bevy mesh, its kernel mesh `m`
+/// and its grid `g` in place, as the first patch's mesh takes a window
+/// ([`super::shaded`]); `false`, writing nothing, when any of them has
+/// another shape (then the mesh is made again).
+fn write_rows(
+    mesh: &mut Mesh,
+    m: &mut SurfaceMesh,
+    g: &mut Grid<DVec3>,
+    points: &Grid<DVec3>,
+    normals: &[DVec3],
+    span: RowSpan,
+) -> bool {
+    let (rows, cols) = (points.rows(), points.cols());
+    let len = rows * cols;
+    if span.hi >= rows
+        || span.lo > span.hi
+        || (g.rows(), g.cols()) != (rows, cols)
+        || normals.len() != len
+        || m.positions.len() != len
+        || m.normals.len() != len
+        || mesh.count_vertices() != len
+        || !matches!(
+            mesh.attribute(Mesh::ATTRIBUTE_NORMAL),
+            Some(VertexAttributeValues::Float32x3(_))
+        )
+    {
+        return false;
+    }
+    let range = span.lo * cols..(span.hi + 1) * cols;
+    let data = &points.data()[range.clone()];
+    if let Some(VertexAttributeValues::Float32x3(p)) = mesh.attribute_mut(Mesh::ATTRIBUTE_POSITION)
+    {
+        write_f32(&mut p[range.clone()], data);
+    } else {
+        return false;
+    }
+    if let Some(VertexAttributeValues::Float32x3(n)) = mesh.attribute_mut(Mesh::ATTRIBUTE_NORMAL) {
+        write_f32(&mut n[range.clone()], &normals[range.clone()]);
+    }
+    m.positions[range.clone()].copy_from_slice(data);
+    m.normals[range.clone()].copy_from_slice(&normals[range]);
+    for r in span.lo..=span.hi {
+        g.row_mut(r).copy_from_slice(points.row(r));
+    }
+    true
+}
+
 /// Spawns, rebuilds, shows, hides and despawns the patch meshes (module
 /// documentation), and shows or hides the first patch's incremental mesh.
 #[allow(clippy::too_many_arguments)]
@@ -175,7 +229,26 @@ fn sync_patch_meshes(
         let (patch, surface, hidden) = (r.0, &r.1, r.4);
         let visible = streamline && !hidden && surface.stack().is_some();
         let fresh = !have.contains_key(&patch);
-        if fresh || surface.is_changed() || !kernel.meshes.contains_key(&patch) {
+        // the moved rows only, written into the meshes in place
+        let partial = !fresh && surface.is_changed() && {
+            let k = &mut *kernel;
+            match (
+                surface.rows,
+                surface.stack(),
+                have.get(&patch).and_then(|(_, h)| meshes.get_mut(h)),
+                k.meshes.get_mut(&patch),
+                k.grids.get_mut(&patch),
+            ) {
+                (Some(span), Some(s), Some(mut mesh), Some(m), Some(g)) => {
+                    write_rows(&mut mesh, m, g, s.finest_points(), &surface.normals, span)
+                }
+                _ => false,
+            }
+        };
+        if partial {
+            kernel.rebuilt += 1;
+            kernel.partial += 1;
+        } else if fresh || surface.is_changed() || !kernel.meshes.contains_key(&patch) {
             let m = match surface.stack() {
                 Some(s) => mesh_of(
                     s.finest_points(),
@@ -445,6 +518,84 @@ mod tests {
         let new = drawn(&mut app, wing).unwrap().0;
         assert_ne!(new, old);
         assert_eq!(new, stack_points(&app, wing));
+    }
+
+    /// A drag of the first of two G1-chained cars off the seam column
+    /// moves the second car's rows that start on the moved edge only: the
+    /// mesh takes those rows in place (no new mesh), and the whole Bevy
+    /// mesh, kernel mesh and grid then equal the stack's finest points and
+    /// their whole mesh normals (`SurfaceMesh::from_points`, computed
+    /// independently here), bit for bit. Controls: the rows written are a
+    /// strict part of the grid, and the mesh did move.
+    #[test]
+    fn a_rejoin_writes_only_the_moved_rows_into_the_mesh() {
+        let doc = crate::cli::bench::patches::chained_cars(2, 3);
+        let mut app = crate::ecs::headless_document_app(&doc, None, ModelConfig::default());
+        app.add_plugins(StatesPlugin)
+            .init_state::<EditorMode>()
+            .init_resource::<Assets<Mesh>>()
+            .insert_resource(AnalysisSettings::default())
+            .insert_resource(ShadedMaterial(Handle::default()))
+            .init_resource::<PatchMeshes>()
+            .add_systems(
+                Update,
+                sync_patch_meshes.after(crate::ecs::ModelSet::Output),
+            );
+        app.world_mut()
+            .spawn((SurfaceEntity, Visibility::Inherited));
+        app.update();
+        app.update();
+        let car = by_name(&mut app, "car1");
+        let old = drawn(&mut app, car).expect("car1 drawn").0;
+        let partial = app.world().resource::<PatchMeshes>().partial;
+        let dir = DVec3::new(0.8, 0.1, 0.5).normalize();
+        crate::ecs::apply(
+            &mut app,
+            crate::ecs::Edit::SetDirection {
+                row: 2,
+                col: 4,
+                dir,
+            },
+        )
+        .unwrap();
+        app.update();
+        let surface = app.world().get::<PatchSurface>(car).unwrap().clone();
+        let points = surface.stack().unwrap().finest_points().clone();
+        let span = surface.rows.expect("a rejoin's moved rows");
+        assert!(
+            span.hi - span.lo + 1 < points.rows(),
+            "local: {span:?} of {}",
+            points.rows()
+        );
+        let meters = app.world().resource::<PatchMeshes>();
+        assert!(meters.partial > partial, "written in place");
+        let whole = SurfaceMesh::from_points(&points);
+        let bits = |v: &[DVec3]| {
+            v.iter()
+                .map(|p| p.to_array().map(f64::to_bits))
+                .collect::<Vec<_>>()
+        };
+        let m = &meters.meshes[&car];
+        assert_eq!(bits(&m.positions), bits(&whole.positions));
+        assert_eq!(bits(&m.normals), bits(&whole.normals));
+        assert_eq!(m.indices, whole.indices);
+        assert_eq!(bits(meters.grids[&car].data()), bits(points.data()));
+        let (pos, _) = drawn(&mut app, car).unwrap();
+        assert_eq!(pos, stack_points(&app, car));
+        assert_ne!(pos, old, "the edit moved the mesh");
+        let w = app.world_mut();
+        let h = w
+            .query::<(&PatchSurfaceMesh, &Mesh3d)>()
+            .iter(w)
+            .find(|(of, _)| of.0 == car)
+            .map(|(_, m)| m.0.clone())
+            .unwrap();
+        let mesh = w.resource::<Assets<Mesh>>().get(&h).unwrap();
+        let f32s = |v: &[DVec3]| v.iter().map(|n| n.as_vec3().to_array()).collect::<Vec<_>>();
+        match mesh.attribute(Mesh::ATTRIBUTE_NORMAL) {
+            Some(VertexAttributeValues::Float32x3(n)) => assert_eq!(*n, f32s(&whole.normals)),
+            _ => panic!("no normals"),
+        }
     }
 
     /// What docs/editor.md says of the G2 head: its incremental surface and

@@ -22,6 +22,7 @@ use crate::joins::kinds::{Continuity, Edge};
 use crate::joins::side::check_rows;
 use crate::joins::stack::{Stack, place_at_starts};
 use crate::levels::design::{Design, Level};
+use crate::streamline::integrate::place_slice;
 use glam::DVec3;
 
 /// What [`rejoin`] found; each holds `B`'s stack.
@@ -30,17 +31,40 @@ pub enum Rejoin {
     /// Nothing `B` reads of `A` changed: `B`'s stack as it was.
     Unchanged(Stack),
     /// `B`'s levels as they were (moved, not copied), its points placed
-    /// again; `replaced` holds the old points of each depth that moved
-    /// (`None`: the same), so that `B`'s stack before can still be read
-    /// ([`StackRef::before`]) by the patches that start on `B`.
+    /// again in the rows whose start point moved (the others copied);
+    /// `replaced` holds the old points of each depth that moved (`None`:
+    /// the same), so that `B`'s stack before can still be read
+    /// ([`StackRef::points_before`]) by the patches that start on `B`, and
+    /// `rows` the first and last row placed again at each depth (`None`
+    /// where nothing moved), so that callers can be local too.
     Moved {
         stack: Stack,
         replaced: Vec<Option<Grid<DVec3>>>,
+        rows: Vec<Option<RowSpan>>,
     },
     /// `B`'s levels read something of `A` that changed, the depths differ,
     /// the join is G2 (a G2 chain is one net) or no longer valid: build `B`
     /// whole (its error is the whole build's). `B`'s old stack, handed back.
     Rebuild(Stack),
+}
+
+/// The first and last row (inclusive) of a grid that moved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RowSpan {
+    /// The first moved row.
+    pub lo: usize,
+    /// The last moved row.
+    pub hi: usize,
+}
+
+impl RowSpan {
+    /// The span of `rows` (`None` when empty).
+    fn of(rows: &[usize]) -> Option<Self> {
+        Some(RowSpan {
+            lo: *rows.iter().min()?,
+            hi: *rows.iter().max()?,
+        })
+    }
 }
 
 /// A stack's levels and each depth's points, borrowed: a stack as it was
@@ -111,10 +135,14 @@ pub fn rejoin(
                 levels,
                 points: mut old,
             } = b_old;
+            let mut rows = Vec::with_capacity(points.len());
             let replaced = old
                 .iter_mut()
                 .zip(points)
-                .map(|(slot, p)| p.map(|p| std::mem::replace(slot, p)))
+                .map(|(slot, p)| {
+                    rows.push(p.as_ref().map(|(_, span)| *span));
+                    p.map(|(p, _)| std::mem::replace(slot, p))
+                })
                 .collect();
             Rejoin::Moved {
                 stack: Stack {
@@ -122,14 +150,43 @@ pub fn rejoin(
                     points: old,
                 },
                 replaced,
+                rows,
             }
         }
     }
 }
 
-/// `B`'s new points at each depth (`None`: as they were), or `None` when
-/// its levels must be made again.
-type Placed = Option<Vec<Option<Grid<DVec3>>>>;
+/// `B`'s new points at each depth with the rows placed again (`None`: as
+/// they were), or `None` when its levels must be made again.
+type Placed = Option<Vec<Option<(Grid<DVec3>, RowSpan)>>>;
+
+/// `old` (`B`'s points on `level`) with the rows whose start in `starts`
+/// is not bit for bit their first point placed again (Eq. 65, as
+/// [`place_at_starts`] places every row; the rows are independent, so the
+/// others are copied); `None` when no start moved or the sizes differ.
+fn replace_moved(
+    level: &Level,
+    old: &Grid<DVec3>,
+    starts: &[DVec3],
+) -> Option<(Grid<DVec3>, RowSpan)> {
+    let (rows, cols) = (level.tangents.rows(), level.tangents.cols());
+    if old.rows() != rows || old.cols() != cols + 1 || starts.len() != rows {
+        // sizes differ (not a stack of this level): every row again
+        let all = place_at_starts(level, starts);
+        let span = RowSpan::of(&(0..rows).collect::<Vec<_>>())?;
+        return Some((all, span));
+    }
+    let moved: Vec<usize> = (0..rows)
+        .filter(|&r| bits(old.get(r, 0)) != bits(starts[r]))
+        .collect();
+    let span = RowSpan::of(&moved)?;
+    let mut out = old.clone();
+    for &r in &moved {
+        let s = level.params.s.row(r);
+        place_slice(level.tangents.row(r), s, s[0], starts[r], out.row_mut(r));
+    }
+    Some((out, span))
+}
 
 /// The bits of a vector.
 fn bits(v: DVec3) -> [u64; 3] {
@@ -171,12 +228,15 @@ fn rechain(
         }
     }
     let mut out = Vec::with_capacity(b_old.points.len());
-    for ((po, pn), level) in a_old.points.iter().zip(&a_new.points).zip(&b_old.levels) {
+    for (((po, pn), level), bp) in (a_old.points.iter().zip(&a_new.points))
+        .zip(&b_old.levels)
+        .zip(&b_old.points)
+    {
         let (old, new) = (po.column(po.cols() - 1), pn.column(pn.cols() - 1));
         if old.len() != level.tangents.rows() || new.len() != old.len() {
             return None;
         }
-        out.push((!same(&old, &new)).then(|| place_at_starts(level, &new)));
+        out.push(replace_moved(level, bp, &new));
     }
     Some(out)
 }
@@ -205,16 +265,14 @@ fn reside(
         return None;
     }
     Some(
-        b_old
-            .levels
-            .iter()
+        (b_old.levels.iter().zip(&b_old.points))
             .zip(old.iter().zip(&new))
-            .map(|(level, (o, curve))| {
-                (!o.same_bits(curve)).then(|| {
-                    let starts: Vec<DVec3> =
-                        level.params.t.iter().map(|&t| curve.point(t)).collect();
-                    place_at_starts(level, &starts)
-                })
+            .map(|((level, bp), (o, curve))| {
+                if o.same_bits(curve) {
+                    return None;
+                }
+                let starts: Vec<DVec3> = level.params.t.iter().map(|&t| curve.point(t)).collect();
+                replace_moved(level, bp, &starts)
             })
             .collect(),
     )
