@@ -6,5 +6,6 @@
 
 pub(super) mod analysis;
 pub(super) mod deviation;
+mod patch_mesh;
 pub(super) mod patches;
 pub(super) mod shaded;
