@@ -9,7 +9,7 @@
 
 use super::coords::kernel_to_view;
 use super::interaction::{EditorMode, FrameRequest};
-use super::surface::shaded::SurfaceEntity;
+use super::surface::shaded::{SurfaceEntity, set_visible};
 use crate::scene::job::{Job, Poll, Progress};
 use crate::scene::obj;
 use bevy::asset::RenderAssetUsages;
@@ -403,17 +403,6 @@ type StreamlineSurface<'w, 's> = Query<
         Without<MeshModeWire>,
     ),
 >;
-
-fn set_visible(v: &mut Visibility, on: bool) {
-    let want = if on {
-        Visibility::Inherited
-    } else {
-        Visibility::Hidden
-    };
-    if *v != want {
-        *v = want;
-    }
-}
 
 /// Mirrors the view state into entities (spawned anew when the surface
 /// changes).

@@ -241,7 +241,7 @@ pub(crate) fn build_joined(
             continue;
         };
         let built = match parent[i] {
-            None if run.iter().filter(|&&r| r == i).count() > 1 => {
+            None if heads[i] => {
                 // a G2 run from patch i: one merged net, cut at its seams
                 let members: Vec<usize> = (0..n).filter(|&k| run[k] == i).collect();
                 // each member's seam column is the previous one's last (one handle)

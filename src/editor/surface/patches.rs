@@ -25,7 +25,7 @@
 use super::super::interaction::{EditorMode, EditorSet};
 use super::analysis::{AnalysisSettings, SurfaceMode};
 use super::patch_mesh::{mesh_of, write_rows};
-use super::shaded::{ShadedMaterial, SurfaceEntity, to_bevy_mesh};
+use super::shaded::{ShadedMaterial, SurfaceEntity, set_visible, to_bevy_mesh};
 use crate::ecs::joined::{Joined, PatchHidden, PatchStart, PatchSurface};
 use bevy::prelude::*;
 use bevy_state::prelude::State;
@@ -227,17 +227,6 @@ fn sync_patch_meshes(
     }
 }
 
-fn set_visible(v: &mut Visibility, on: bool) {
-    let want = if on {
-        Visibility::Inherited
-    } else {
-        Visibility::Hidden
-    };
-    if *v != want {
-        *v = want;
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -255,7 +244,12 @@ mod tests {
     /// The model of hood-screen-wing with the patch mesh sync (no window,
     /// no renderer).
     fn app(mode: SurfaceMode) -> App {
-        let mut app = crate::ecs::headless_document_app(&hood(), None, ModelConfig::default());
+        app_of(&hood(), mode)
+    }
+
+    /// `doc`'s model with the patch mesh sync, two updates in.
+    fn app_of(doc: &crate::scene::Document, mode: SurfaceMode) -> App {
+        let mut app = crate::ecs::headless_document_app(doc, None, ModelConfig::default());
         app.add_plugins(StatesPlugin)
             .init_state::<EditorMode>()
             .init_resource::<Assets<Mesh>>()
@@ -414,21 +408,7 @@ mod tests {
     #[test]
     fn a_rejoin_writes_only_the_moved_rows_into_the_mesh() {
         let doc = crate::cli::bench::patches::chained_cars(2, 3);
-        let mut app = crate::ecs::headless_document_app(&doc, None, ModelConfig::default());
-        app.add_plugins(StatesPlugin)
-            .init_state::<EditorMode>()
-            .init_resource::<Assets<Mesh>>()
-            .insert_resource(AnalysisSettings::default())
-            .insert_resource(ShadedMaterial(Handle::default()))
-            .init_resource::<PatchMeshes>()
-            .add_systems(
-                Update,
-                sync_patch_meshes.after(crate::ecs::ModelSet::Output),
-            );
-        app.world_mut()
-            .spawn((SurfaceEntity, Visibility::Inherited));
-        app.update();
-        app.update();
+        let mut app = app_of(&doc, SurfaceMode::default());
         let car = by_name(&mut app, "car1");
         let old = drawn(&mut app, car).expect("car1 drawn").0;
         let partial = app.world().resource::<PatchMeshes>().partial;

@@ -204,6 +204,19 @@ pub fn to_bevy_mesh(positions: &[DVec3], normals: &[DVec3], indices: &[u32]) -> 
     .with_inserted_indices(Indices::U32(indices.to_vec()))
 }
 
+/// Shows (`Inherited`) or hides a surface, writing the visibility only when
+/// it differs (so that change detection sees real changes only).
+pub(in crate::editor) fn set_visible(v: &mut Visibility, on: bool) {
+    let want = if on {
+        Visibility::Inherited
+    } else {
+        Visibility::Hidden
+    };
+    if *v != want {
+        *v = want;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
