@@ -52,11 +52,13 @@ type Levels<'w, 's> = Query<
 /// a mirrored scene is the doubled net (docs/math.md §9), whose rows `m − 1 ±
 /// j` are the scene's row `j`: its pairs are named by the scene's cells.
 pub(crate) fn find_antipodal_blends(
+    meter: Res<super::meter::CpuMeter>,
     patch: PatchRef,
     levels: Levels,
     mut warnings: ResMut<BuildWarnings>,
     mut known: Local<LevelPairs>,
 ) {
+    let _meter = meter.start();
     if !levels.iter().any(|(_, d, _)| d.is_changed()) && !patch.design_changed() {
         return;
     }

@@ -68,3 +68,62 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    /// A window's scan (which rules a row out by its smallest dot product
+    /// first) lists exactly the pairs that the predicate, applied to every
+    /// row and column neighbour with a first cell in the window, finds: on
+    /// grids of random unit tangents with antipodes planted anywhere
+    /// (first and last rows and columns included), in any window.
+    #[test]
+    fn a_window_scan_lists_every_antipodal_pair_and_no_other(
+        rows in 1usize..9,
+        cols in 1usize..13,
+        seed in any::<u64>(),
+        plants in prop::collection::vec((0usize..64, 0usize..64, any::<bool>()), 0..6),
+        win in (0usize..10, 0usize..10, 0usize..14, 0usize..14),
+    ) {
+        use streamline_kernel::Grid;
+        use streamline_kernel::DVec3;
+        use streamline_kernel::sphere::antipodal::antipodal_pairs_from;
+        let mut x = seed | 1;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut g = Grid::filled(rows, cols, DVec3::X);
+        for r in 0..rows {
+            for c in 0..cols {
+                let v = DVec3::new(next(), next(), next()) + DVec3::new(2.0, 0.0, 0.0);
+                g.set(r, c, v.normalize());
+            }
+        }
+        for (r, c, down) in plants {
+            let (r, c) = (r % rows, c % cols);
+            let (r1, c1) = if down { ((r + 1).min(rows - 1), c) } else { (r, (c + 1).min(cols - 1)) };
+            let a = g.get(r, c);
+            g.set(r1, c1, -a);
+        }
+        let (r0, r1) = (win.0.min(win.1), win.0.max(win.1));
+        let (c0, c1) = (win.2.min(win.3), win.2.max(win.3));
+        let mut found = Vec::new();
+        antipodal_pairs_from(3, &g, r0..=r1, c0..=c1, &mut found);
+        let mut expected = Vec::new();
+        for r in r0..=r1.min(rows - 1) {
+            for c in c0..=c1.min(cols - 1) {
+                if c + 1 < cols && is_antipodal(g.get(r, c), g.get(r, c + 1)) {
+                    expected.push(((r, c), (r, c + 1)));
+                }
+                if r + 1 < rows && is_antipodal(g.get(r, c), g.get(r + 1, c)) {
+                    expected.push(((r, c), (r + 1, c)));
+                }
+            }
+        }
+        let got: Vec<_> = found.iter().map(|p| (p.a, p.b)).collect();
+        prop_assert_eq!(got, expected);
+    }
+}

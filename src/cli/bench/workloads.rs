@@ -124,6 +124,7 @@ pub fn car_builder(depth: u32) -> Vec<Workload> {
 /// Every row `streamline-studio bench` reports.
 pub fn all() -> Vec<Workload> {
     let mut rows = table1();
+    rows.extend(car_drag(6));
     rows.extend(car_surface([3, 5]));
     rows.extend(car_builder(5));
     rows.extend(incremental());
@@ -132,6 +133,40 @@ pub fn all() -> Vec<Workload> {
     rows.extend(authoring());
     rows.extend(fit_rows());
     rows
+}
+
+/// A drag's frame on the car at `depth` as the editor runs it: control
+/// tangent (2, 4) turned back and forth, with the mesh stage's `f32` staging
+/// pair ([`crate::ecs::vertex_mirror::VertexMirror`]) that the editor's
+/// renderer swaps in (`ecs/car/d6/drag`; issue 26 item 7's frame, less the
+/// panels and the renderer).
+pub fn car_drag(depth: u32) -> Vec<Workload> {
+    use crate::ecs::{self, Edit, SurfaceData, vertex_mirror::VertexMirror};
+    use crate::scene::Scene;
+    use streamline_kernel::parallel;
+    let mut app = ecs::headless_app(Scene::from_design("car", presets::car1(), depth));
+    app.init_resource::<VertexMirror>();
+    app.update();
+    let mut sign = 1.0;
+    vec![Workload {
+        name: format!("ecs/car/d{depth}/drag"),
+        run: Box::new(move || {
+            sign = -sign;
+            let edit = Edit::Rotate {
+                row: 2,
+                col: 4,
+                axis: DVec3::Y,
+                radians: 0.01 * sign,
+            };
+            // one thread, as the editor runs on a machine of fewer than
+            // four cores (`editor::kernel_helper_wanted`)
+            parallel::set_enabled(false);
+            ecs::send(&mut app, edit);
+            app.update();
+            parallel::set_enabled(true);
+            app.world().resource::<SurfaceData>().points.data()[0].x
+        }),
+    }]
 }
 
 /// Authoring on the car at depth 5 (issue 20, `docs/math.md §9`), each

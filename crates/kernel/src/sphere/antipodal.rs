@@ -92,10 +92,21 @@ pub fn antipodal_pairs_from(
     if n_rows == 0 || n_cols == 0 || *rows.start() > r1 || *cols.start() > c1 {
         return;
     }
+    let c0 = *cols.start();
     for r in *rows.start()..=r1 {
         let row = level.row(r);
         let below = (r + 1 < n_rows).then(|| level.row(r + 1));
-        for c in *cols.start()..=c1 {
+        // most rows have no pair over 120° apart: one branch-free pass of
+        // dot products rules the row out (a pair it lets through is then
+        // tested as before, so the list is the same)
+        let right = &row[c0..(c1 + 2).min(n_cols)];
+        let down = below.map_or(&[][..], |b| &b[c0..=c1]);
+        if min_dot(right, &right[1.min(right.len())..]) >= SCAN_DOT
+            && min_dot(&row[c0..=c1], down) >= SCAN_DOT
+        {
+            continue;
+        }
+        for c in c0..=c1 {
             let a = row[c];
             if c + 1 < n_cols && is_antipodal(a, row[c + 1]) {
                 out.push(AntipodalPair {
@@ -115,6 +126,25 @@ pub fn antipodal_pairs_from(
             }
         }
     }
+}
+
+/// The smallest `a[i]·b[i]` over the common length (`+∞` when empty), with
+/// four running minima so that the compares do not wait on each other.
+fn min_dot(a: &[DVec3], b: &[DVec3]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut m = [f64::INFINITY; 4];
+    let (qa, qb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (qa.remainder(), qb.remainder());
+    for (x, y) in qa.zip(qb) {
+        for k in 0..4 {
+            m[k] = m[k].min(x[k].dot(y[k]));
+        }
+    }
+    for (x, y) in ra.iter().zip(rb) {
+        m[0] = m[0].min(x.dot(*y));
+    }
+    m[0].min(m[1]).min(m[2].min(m[3]))
 }
 
 /// The indices `k` of consecutive control tangents `k, k + 1` of a curve
