@@ -86,6 +86,7 @@ impl Plugin for EditorPlugin {
             handles::box_select::BoxSelectPlugin,
             document::file_browser::FileBrowserPlugin,
             surface::patches::PatchSurfacesPlugin,
+            surface::patch_maps::PatchMapsPlugin,
             seams::SeamsPlugin,
         ));
     }

@@ -113,11 +113,15 @@ pub struct CurvatureField {
     stale: bool,
 }
 
+/// The maps' materials: a texture looked up through the vertex's `u`.
 #[derive(Resource)]
-struct AnalysisMaterials {
-    colormap: Handle<StandardMaterial>,
-    zebra: Handle<StandardMaterial>,
-    bands: Handle<StandardMaterial>,
+pub(super) struct AnalysisMaterials {
+    /// The diverging colour map of `K` and `H`.
+    pub colormap: Handle<StandardMaterial>,
+    /// The zebra stripes.
+    pub zebra: Handle<StandardMaterial>,
+    /// The deviation map's bands.
+    pub bands: Handle<StandardMaterial>,
 }
 
 pub struct AnalysisPlugin;
@@ -212,8 +216,11 @@ fn setup(
     });
 }
 
+/// Sets the first patch's material and map coordinates for the mode
+/// (its incremental surface, [`SurfaceData`]); `super::patch_maps` does the
+/// other patches after it, with the limit it chose.
 #[allow(clippy::too_many_arguments)]
-fn apply_mode(
+pub(super) fn apply_mode(
     meter: Res<crate::ecs::meter::CpuMeter>,
     settings: Res<AnalysisSettings>,
     data: Res<SurfaceData>,
@@ -248,10 +255,7 @@ fn apply_mode(
     if material.0 != *want {
         material.0 = want.clone();
     }
-    let eye = camera
-        .single()
-        .map(|c| c.target + c.eye_dir() * c.distance)
-        .unwrap_or(DVec3::new(10.0, -10.0, 10.0));
+    let eye = eye_point(&camera);
     let zebra = settings.mode == SurfaceMode::Zebra;
     // zebra stripes are reflections: they move with the eye
     let key = (settings.clone(), zebra.then_some(eye));
@@ -295,14 +299,11 @@ fn apply_mode(
             } else {
                 settings.limit.abs().max(1e-12)
             };
-            let uv = v
-                .iter()
-                .map(|&x| [(0.5 + 0.5 * (x / limit).clamp(-1.0, 1.0)) as f32, 0.5])
-                .collect();
+            let uv = colormap_uv(v, limit);
             field.limit = limit;
             uv
         }
-        SurfaceMode::Zebra => zebra_uv(&data, &settings, eye),
+        SurfaceMode::Zebra => zebra_uv(data.points.data(), &data.normals, settings.stripes, eye),
         SurfaceMode::Deviation => {
             if deviation.stale || (deviation.values.is_none() && deviation.error.is_none()) {
                 match model.scene() {
@@ -361,18 +362,42 @@ fn vertex_color(mode: SurfaceMode, u: f32) -> [f32; 4] {
 /// The zebra texture's two colours (dark, light), half its width each.
 const STRIPES: [[u8; 3]; 2] = [[20, 20, 24], [245, 245, 245]];
 
-/// Zebra `u` coordinates for an eye point (kernel coordinates).
-fn zebra_uv(data: &SurfaceData, settings: &AnalysisSettings, eye: DVec3) -> Vec<[f32; 2]> {
-    data.points
-        .data()
+/// The colour map's `u` of curvature values: `[−limit, limit]` onto the
+/// ramp, clamped beyond.
+pub(super) fn colormap_uv(values: &[f64], limit: f64) -> Vec<[f32; 2]> {
+    values
         .iter()
-        .zip(&data.normals)
+        .map(|&x| [(0.5 + 0.5 * (x / limit).clamp(-1.0, 1.0)) as f32, 0.5])
+        .collect()
+}
+
+/// Zebra `u` coordinates of points with their unit normals for an eye point
+/// (kernel coordinates): `stripes` stripes over the half circle of
+/// reflected directions.
+pub(super) fn zebra_uv(
+    points: &[DVec3],
+    normals: &[DVec3],
+    stripes: f64,
+    eye: DVec3,
+) -> Vec<[f32; 2]> {
+    points
+        .iter()
+        .zip(normals)
         .map(|(&p, &n)| {
             let view = (p - eye).normalize_or(DVec3::NEG_Z);
-            let z = zebra_coordinate(n, view, DVec3::Z, settings.stripes);
+            let z = zebra_coordinate(n, view, DVec3::Z, stripes);
             [(z * 0.5) as f32, 0.5]
         })
         .collect()
+}
+
+/// The eye point of the main camera (kernel coordinates): zebra stripes
+/// are reflections and move with it.
+pub(super) fn eye_point(camera: &Query<&OrbitCamera, With<MainCamera>>) -> DVec3 {
+    camera
+        .single()
+        .map(|c| c.target + c.eye_dir() * c.distance)
+        .unwrap_or(DVec3::new(10.0, -10.0, 10.0))
 }
 
 /// Combs on up to `comb_lines` streamlines, spread evenly over the surface.

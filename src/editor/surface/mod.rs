@@ -2,10 +2,12 @@
 //! surface (`shaded`), and the analysis displays over it (`analysis`: the
 //! curvature comb, Gaussian and mean curvature maps, zebra stripes; and
 //! `deviation`: the deviation map against the CAD export's fit), and the
-//! shaded surfaces of a document's other patches (`patches`).
+//! shaded surfaces of a document's other patches (`patches`) with the same
+//! maps on them (`patch_maps`).
 
 pub(super) mod analysis;
 pub(super) mod deviation;
+pub(super) mod patch_maps;
 mod patch_mesh;
 pub(super) mod patches;
 pub(super) mod shaded;
