@@ -135,13 +135,26 @@ pub fn all() -> Vec<Workload> {
     rows
 }
 
+/// An edit of a drag: tangent (`row`, `col`) turned 0.01 rad about `y`,
+/// the other way each time (`sign` flips), so that a row alternates
+/// between two states.
+pub(super) fn wiggle(row: usize, col: usize, sign: &mut f64) -> crate::ecs::Edit {
+    *sign = -*sign;
+    crate::ecs::Edit::Rotate {
+        row,
+        col,
+        axis: DVec3::Y,
+        radians: 0.01 * *sign,
+    }
+}
+
 /// A drag's frame on the car at `depth` as the editor runs it: control
 /// tangent (2, 4) turned back and forth, with the mesh stage's `f32` staging
 /// pair ([`crate::ecs::vertex_mirror::VertexMirror`]) that the editor's
 /// renderer swaps in (`ecs/car/d6/drag`; issue 26 item 7's frame, less the
 /// panels and the renderer).
 pub fn car_drag(depth: u32) -> Vec<Workload> {
-    use crate::ecs::{self, Edit, SurfaceData, vertex_mirror::VertexMirror};
+    use crate::ecs::{self, SurfaceData, vertex_mirror::VertexMirror};
     use crate::scene::Scene;
     use streamline_kernel::parallel;
     let mut app = ecs::headless_app(Scene::from_design("car", presets::car1(), depth));
@@ -151,13 +164,7 @@ pub fn car_drag(depth: u32) -> Vec<Workload> {
     vec![Workload {
         name: format!("ecs/car/d{depth}/drag"),
         run: Box::new(move || {
-            sign = -sign;
-            let edit = Edit::Rotate {
-                row: 2,
-                col: 4,
-                axis: DVec3::Y,
-                radians: 0.01 * sign,
-            };
+            let edit = wiggle(2, 4, &mut sign);
             // one thread, as the editor runs on a machine of fewer than
             // four cores (`editor::kernel_helper_wanted`)
             parallel::set_enabled(false);
@@ -233,13 +240,7 @@ pub fn authoring() -> Vec<Workload> {
     out.push(Workload {
         name: format!("ecs/car-mirrored/d{depth}/edit-interior"),
         run: Box::new(move || {
-            sign = -sign;
-            let edit = Edit::Rotate {
-                row: 2,
-                col: 4,
-                axis: DVec3::Y,
-                radians: 0.01 * sign,
-            };
+            let edit = wiggle(2, 4, &mut sign);
             ecs::send(&mut app, edit);
             app.update();
             point(&app)

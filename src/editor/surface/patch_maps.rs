@@ -212,7 +212,9 @@ mod tests {
 
     /// Each drawn patch: its surface, its mesh's `u` coordinates (if any)
     /// and its material.
-    fn drawn(app: &mut App) -> Vec<(PatchSurface, Option<Vec<f32>>, Handle<StandardMaterial>)> {
+    type Drawn = (PatchSurface, Option<Vec<f32>>, Handle<StandardMaterial>);
+
+    fn drawn(app: &mut App) -> Vec<Drawn> {
         let w = app.world_mut();
         let mut q = w.query::<(
             &PatchSurfaceMesh,
@@ -287,6 +289,21 @@ mod tests {
         }
     }
 
+    /// Each drawn patch's `u` are the zebra coordinates of its points and
+    /// normals for `eye`, bit for bit.
+    fn stripes_match(rows: &[Drawn], eye: DVec3) {
+        for (surface, uv, _) in rows {
+            let points = surface.stack().unwrap().finest_points();
+            let want = zebra_uv(points.data(), &surface.normals, 16.0, eye);
+            let got = uv.as_ref().unwrap();
+            assert!(
+                got.iter()
+                    .zip(&want)
+                    .all(|(a, b)| a.to_bits() == b[0].to_bits())
+            );
+        }
+    }
+
     /// Zebra stripes: the zebra material, and coordinates that follow an
     /// edit of the surface (the wing rebuilt, its stripes made again) while
     /// an untouched frame rewrites nothing.
@@ -297,16 +314,7 @@ mod tests {
         let before = drawn(&mut app);
         assert!(before.iter().all(|(_, uv, m)| *m == zebra && uv.is_some()));
         let eye = DVec3::new(10.0, -10.0, 10.0); // no camera: the default eye
-        for (surface, uv, _) in &before {
-            let points = surface.stack().unwrap().finest_points();
-            let want = zebra_uv(points.data(), &surface.normals, 16.0, eye);
-            let got = uv.as_ref().unwrap();
-            assert!(
-                got.iter()
-                    .zip(&want)
-                    .all(|(a, b)| a.to_bits() == b[0].to_bits())
-            );
-        }
+        stripes_match(&before, eye);
         // a frame without a change keeps them
         app.update();
         let again = drawn(&mut app);
@@ -327,16 +335,7 @@ mod tests {
         app.update();
         app.update();
         let after = drawn(&mut app);
-        for (surface, uv, _) in &after {
-            let points = surface.stack().unwrap().finest_points();
-            let want = zebra_uv(points.data(), &surface.normals, 16.0, eye);
-            let got = uv.as_ref().unwrap();
-            assert!(
-                got.iter()
-                    .zip(&want)
-                    .all(|(a, b)| a.to_bits() == b[0].to_bits())
-            );
-        }
+        stripes_match(&after, eye);
         assert_ne!(
             before.iter().map(|r| r.1.clone()).collect::<Vec<_>>(),
             after.iter().map(|r| r.1.clone()).collect::<Vec<_>>(),
