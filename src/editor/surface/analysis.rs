@@ -11,13 +11,15 @@ use super::deviation::{BANDS, DeviationField, band_u};
 use super::shaded::{ShadedMaterial, SurfaceEntity};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::exchange::ExportSettings;
+use crate::ecs::joined::{PatchHidden, PatchSurface};
+use crate::ecs::patch::Joined;
 use crate::ecs::{SurfaceChanges, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
 use bevy::prelude::*;
 use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
-use streamline_kernel::DVec3;
 use streamline_kernel::analysis::{SurfaceCurvature, comb, surface_curvature, zebra_coordinate};
+use streamline_kernel::{DVec3, Grid};
 
 /// What the surface shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -400,7 +402,30 @@ pub(super) fn eye_point(camera: &Query<&OrbitCamera, With<MainCamera>>) -> DVec3
         .unwrap_or(DVec3::new(10.0, -10.0, 10.0))
 }
 
-/// Combs on up to `comb_lines` streamlines, spread evenly over the surface.
+/// One patch's streamlines for its combs: row `r` is the streamline of
+/// points `points.row(r)`, tangents `tangents.row(r)` at arc lengths
+/// `s.row(r)`.
+struct CombRows<'a> {
+    points: &'a Grid<DVec3>,
+    tangents: &'a Grid<DVec3>,
+    s: &'a Grid<f64>,
+}
+
+impl CombRows<'_> {
+    /// Up to `lines` rows, spread evenly, the last one always.
+    fn chosen(&self, lines: usize) -> impl Iterator<Item = usize> {
+        let rows = self.points.rows();
+        let step = rows.div_ceil(lines.max(1)).max(1);
+        (0..rows).filter(move |&r| r.is_multiple_of(step) || r + 1 == rows)
+    }
+}
+
+/// Combs on up to `comb_lines` streamlines of every shown patch, spread
+/// evenly over each, all at one scale (the largest tooth of all is a tenth of
+/// the scene, times the factor): the first patch's from its levels and
+/// surface, a joined patch's from its stack's finest level (docs/math.md
+/// §11).
+#[allow(clippy::too_many_arguments)]
 fn draw_combs(
     meter: Res<crate::ecs::meter::CpuMeter>,
     settings: Res<AnalysisSettings>,
@@ -408,6 +433,7 @@ fn draw_combs(
     patch: crate::ecs::patch::PatchRef,
     levels: Query<(&SubdivisionLevel, &LevelData)>,
     data: Res<SurfaceData>,
+    joined: Query<&PatchSurface, (With<Joined>, Without<PatchHidden>)>,
     mut gizmos: Gizmos,
 ) {
     let _meter = meter.start();
@@ -415,22 +441,31 @@ fn draw_combs(
         return;
     }
     let depth = patch.structure().display_depth;
-    let Some((_, level)) = levels.iter().find(|(l, _)| l.0 == depth) else {
-        return;
-    };
-    // the streamlines are the surface's rows
-    let rows = data.points.rows();
-    if rows == 0 || rows != level.0.shape().0 {
-        return;
+    let mut patches = Vec::new();
+    // the first patch's streamlines are its surface's rows
+    if let Some((_, level)) = levels.iter().find(|(l, _)| l.0 == depth)
+        && data.points.rows() > 0
+        && data.points.rows() == level.0.tangents.rows()
+    {
+        patches.push(CombRows {
+            points: &data.points,
+            tangents: &level.0.tangents,
+            s: &level.0.params.s,
+        });
     }
-    let step = rows.div_ceil(settings.comb_lines.max(1)).max(1);
-    let chosen = |r: usize| r.is_multiple_of(step) || r + 1 == rows;
-    // one scale for all combs: the largest tooth is a tenth of the scene, times the factor
-    let kmax = (0..rows)
-        .filter(|&r| chosen(r))
-        .flat_map(|r| {
-            let (tangents, s) = level.row(r);
-            streamline_kernel::analysis::streamline_curvature(tangents, s)
+    for stack in joined.iter().filter_map(PatchSurface::stack) {
+        let finest = stack.finest();
+        patches.push(CombRows {
+            points: stack.finest_points(),
+            tangents: &finest.tangents,
+            s: &finest.params.s,
+        });
+    }
+    let lines = settings.comb_lines;
+    let kmax = (patches.iter())
+        .flat_map(|p| p.chosen(lines).map(move |r| (p, r)))
+        .flat_map(|(p, r)| {
+            streamline_kernel::analysis::streamline_curvature(p.tangents.row(r), p.s.row(r))
         })
         .fold(0.0f64, f64::max);
     if kmax <= 0.0 {
@@ -439,12 +474,13 @@ fn draw_combs(
     let scale = settings.comb_scale * 0.1 * bounds.size() / kmax;
     let tooth = Color::srgba(0.95, 0.35, 0.85, 0.8);
     let hull = Color::srgb(0.95, 0.35, 0.85);
-    for r in (0..rows).filter(|&r| chosen(r)) {
-        let (tangents, s) = level.row(r);
-        let teeth = comb(data.points.row(r), tangents, s, scale);
-        for c in &teeth {
-            gizmos.line(to_view(c.base), to_view(c.tip), tooth);
+    for p in &patches {
+        for r in p.chosen(lines) {
+            let teeth = comb(p.points.row(r), p.tangents.row(r), p.s.row(r), scale);
+            for c in &teeth {
+                gizmos.line(to_view(c.base), to_view(c.tip), tooth);
+            }
+            gizmos.linestrip(teeth.iter().map(|c| to_view(c.tip)), hull);
         }
-        gizmos.linestrip(teeth.iter().map(|c| to_view(c.tip)), hull);
     }
 }
