@@ -346,6 +346,21 @@ fn save_writes_every_patch_and_one_patch_as_version_2() {
     ecs::apply(&mut one, Edit::Save(a.clone())).unwrap();
     io::save(&scene, &b).unwrap();
     assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
+    // one renamed patch: still version 2 (issue 28 item 1), and the save
+    // says that the name is not kept
+    let said = ecs::apply(&mut one, Edit::Save(a.clone())).unwrap();
+    assert_eq!(said, format!("saved {}", a.display()));
+    patch(
+        &mut one,
+        PatchEdit::RenamePatch("main".into(), "body".into()),
+    )
+    .unwrap();
+    let said = ecs::apply(&mut one, Edit::Save(a.clone())).unwrap();
+    assert!(
+        said.contains("as version 2") && said.contains("`body` opens again as `main`"),
+        "{said}"
+    );
+    assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
 }
 
 /// Loading a version-3 file replaces every patch (and the history); a

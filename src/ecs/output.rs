@@ -7,6 +7,7 @@ use super::exchange::{ExportSettings, LastExport};
 use super::messages::{Edit, EditMessage};
 use super::resources::*;
 use crate::scene::SceneError;
+use crate::scene::document::{Document, MAIN_PATCH};
 use crate::scene::document_export::{DocumentExportSettings, export_document};
 use crate::scene::document_io;
 use crate::scene::export::{ExportOptions, export_scene};
@@ -42,14 +43,17 @@ pub(crate) fn write_files(
         };
         match &msg.edit {
             // the design: version 2 for one patch (the bytes io::save writes), 3 for several
-            Edit::Save(path) => match document_io::save(&joined.document(scene.clone()), path) {
-                Ok(()) => {
-                    model.path = Some(path.clone());
-                    model.unsaved = false;
-                    log.entries.push(Ok(format!("saved {}", path.display())));
+            Edit::Save(path) => {
+                let doc = joined.document(scene.clone());
+                match document_io::save(&doc, path) {
+                    Ok(()) => {
+                        model.path = Some(path.clone());
+                        model.unsaved = false;
+                        log.entries.push(Ok(saved_note(path, &doc)));
+                    }
+                    Err(e) => log.entries.push(Err(EditError::Save(e))),
                 }
-                Err(e) => log.entries.push(Err(EditError::Save(e))),
-            },
+            }
             Edit::Export(path) if joined.several() => {
                 // every patch, as `build --export` writes them (docs/math.md §11)
                 let doc = joined.document(scene.clone());
@@ -117,5 +121,19 @@ pub(crate) fn write_files(
             }
             _ => {}
         }
+    }
+}
+
+/// What a save says: the file, and for one renamed patch that version 2
+/// (what a one-patch design saves as, so that the last release reads it)
+/// keeps no patch name.
+fn saved_note(path: &std::path::Path, doc: &Document) -> String {
+    match doc.patches.as_slice() {
+        [p] if p.name != MAIN_PATCH => format!(
+            "saved {} as version 2 (one patch, readable by the last release), which has no patch names: `{}` opens again as `{MAIN_PATCH}`; a design of several patches saves as version 3 and keeps every name",
+            path.display(),
+            p.name
+        ),
+        _ => format!("saved {}", path.display()),
     }
 }

@@ -136,14 +136,6 @@ impl Document {
         }
     }
 
-    /// The design as the version-2 scene it saves as: one patch that starts
-    /// on its own curve and is named [`MAIN_PATCH`], the name version 2 reads
-    /// back. A renamed single patch saves as version 3, which keeps its name.
-    pub fn saved_as_scene(&self) -> Option<Scene> {
-        self.one_scene()
-            .filter(|_| self.patches.first().is_some_and(|p| p.name == MAIN_PATCH))
-    }
-
     /// Patch `i` as a scene of its own (the design's depths and view; the
     /// mirror for the first patch only; a placeholder initial curve for a
     /// patch that starts on an edge).
@@ -197,10 +189,10 @@ impl Document {
         }
     }
 
-    /// The text saved: version 2 for one patch named [`MAIN_PATCH`] (what
-    /// [`Scene::to_ron`] writes), version 3 for several or a renamed one.
+    /// The text saved: version 2 for one patch (what [`Scene::to_ron`]
+    /// writes), version 3 for several.
     pub fn to_ron(&self) -> String {
-        if let Some(scene) = self.saved_as_scene() {
+        if let Some(scene) = self.one_scene() {
             return scene.to_ron();
         }
         let cfg = ron::ser::PrettyConfig::new()

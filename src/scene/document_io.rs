@@ -71,11 +71,10 @@ pub fn load(path: &Path) -> Result<Document, SceneError> {
 }
 
 /// Saves `doc` atomically and verified: through [`io::save`] (version 2, the
-/// same bytes) when it has one patch named `main`, else as version 3 (several
-/// patches, or one renamed: version 2 has no patch name), read back and
+/// same bytes) when it has one patch, else as version 3, read back and
 /// compared field by field before it replaces the file.
 pub fn save(doc: &Document, path: &Path) -> Result<(), SceneError> {
-    if let Some(scene) = doc.saved_as_scene() {
+    if let Some(scene) = doc.one_scene() {
         return io::save(&scene, path);
     }
     let text = doc.to_ron();

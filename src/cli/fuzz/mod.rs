@@ -62,7 +62,7 @@ pub fn scene(data: &[u8]) {
     let again = Document::parse(&doc.to_ron(), path)
         .unwrap_or_else(|e| panic!("a parsed design's own text does not parse: {e}"));
     match doc.one_scene() {
-        // one patch (version 2 when it is named `main`, else version 3)
+        // one patch saves as version 2, which names its patch `main`
         Some(scene) => {
             let back = again.one_scene().expect("one patch reads back as one");
             assert_eq!(
