@@ -197,27 +197,6 @@ fn entry(
     })
 }
 
-fn opencascade(dir: &Path, manifest: &[serde_json::Value]) -> Vec<serde_json::Value> {
-    let py = common::venv_python("OpenCascade (cadquery-ocp-novtk)");
-    let m = dir.join("manifest.json");
-    std::fs::write(&m, serde_json::to_string(manifest).unwrap()).unwrap();
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_shell.py");
-    let out = Command::new(&py).arg(&script).arg(&m).output().unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "OpenCascade refused a file:\n{stdout}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let results: Vec<serde_json::Value> = stdout
-        .lines()
-        .filter(|l| l.starts_with('{'))
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
-    assert_eq!(results.len(), manifest.len(), "{stdout}");
-    results
-}
-
 fn seam_angle(r: &serde_json::Value, faces: [usize; 2]) -> f64 {
     let s = r["seams"]
         .as_array()
@@ -286,7 +265,7 @@ fn opencascade_reads_the_document_as_one_shell_and_as_iges_faces() {
     manifest.push(entry(&dir, "raised", &path, &doc, &raised));
     outs.push(raised);
 
-    let results = opencascade(&dir, &manifest);
+    let results = common::opencascade_manifest("check_shell.py", &dir, &manifest);
     let tags = [
         "plain.step",
         "plain.igs",

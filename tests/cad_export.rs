@@ -7,7 +7,6 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use streamline_kernel::authoring::Template;
 use streamline_kernel::levels::surface::SurfaceScheme;
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
@@ -20,10 +19,6 @@ fn scratch(name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
-}
-
-fn venv_python() -> PathBuf {
-    common::venv_python("OpenCascade (cadquery-ocp-novtk)")
 }
 
 fn mesh_of(scene: &Scene, depth: u32) -> SurfaceMesh {
@@ -153,35 +148,6 @@ fn a_mirrored_scene_is_fitted_over_both_halves() {
     assert!(fit.fit.report.deviation.max <= fit.fit.report.tolerance);
 }
 
-/// Runs tests/python/check_cad.py on `manifest` (written into `dir`) and
-/// returns its results, one a file, in the manifest's order; fails with
-/// OpenCascade's reason when it refuses a file.
-fn opencascade_check(dir: &Path, manifest: &[serde_json::Value]) -> Vec<serde_json::Value> {
-    let py = venv_python();
-    let m = dir.join("manifest.json");
-    std::fs::write(&m, serde_json::to_string(manifest).unwrap()).unwrap();
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_cad.py");
-    let out = Command::new(&py).arg(&script).arg(&m).output().unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "OpenCascade refused a file:\n{stdout}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    // OpenCascade's own messages go to stdout too: the results are the JSON lines
-    let results: Vec<serde_json::Value> = stdout
-        .lines()
-        .filter(|l| l.starts_with('{'))
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
-    assert_eq!(
-        results.len(),
-        manifest.len(),
-        "one result per file:\n{stdout}"
-    );
-    results
-}
-
 #[test]
 fn opencascade_reads_every_step_and_iges_file_we_write() {
     let dir = scratch("occ");
@@ -216,7 +182,7 @@ fn opencascade_reads_every_step_and_iges_file_we_write() {
             }));
         }
     }
-    let results = opencascade_check(&dir, &manifest);
+    let results = common::opencascade_manifest("check_cad.py", &dir, &manifest);
     for (r, m) in results.iter().zip(&manifest) {
         assert_eq!(r["file"], m["file"]);
         assert!(r.get("error").is_none() && r["valid"] == true, "{r}");
@@ -324,7 +290,7 @@ fn any_scene_name_gives_step_and_iges_files_that_opencascade_reads_with_the_name
             }));
         }
     }
-    let results = opencascade_check(&dir, &manifest);
+    let results = common::opencascade_manifest("check_cad.py", &dir, &manifest);
     for (r, m) in results.iter().zip(&manifest) {
         assert_eq!(r["file"], m["file"]);
         assert!(r.get("error").is_none() && r["valid"] == true, "{r}");

@@ -13,7 +13,6 @@ mod common;
 
 use glam::DVec3;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use streamline_kernel::Design;
 use streamline_kernel::grid::Grid;
 use streamline_kernel::joins::chain::chain;
@@ -158,27 +157,6 @@ fn point_files(dir: &Path, tag: &str, patches: &[PatchGrid]) -> Vec<String> {
         .collect()
 }
 
-fn opencascade(dir: &Path, manifest: &[serde_json::Value]) -> Vec<serde_json::Value> {
-    let py = common::venv_python("OpenCascade (cadquery-ocp-novtk)");
-    let m = dir.join("manifest.json");
-    std::fs::write(&m, serde_json::to_string(manifest).unwrap()).unwrap();
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_shell.py");
-    let out = Command::new(&py).arg(&script).arg(&m).output().unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "OpenCascade refused a file:\n{stdout}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let results: Vec<serde_json::Value> = stdout
-        .lines()
-        .filter(|l| l.starts_with('{'))
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
-    assert_eq!(results.len(), manifest.len(), "{stdout}");
-    results
-}
-
 struct Case {
     tag: String,
     patches: Vec<PatchGrid>,
@@ -268,7 +246,7 @@ fn opencascade_reads_one_shell_whose_seams_are_shared() {
         "tolerance": alone.iter().map(|f| f.tolerance).fold(f64::INFINITY, f64::min),
         "samples": 40,
     }));
-    let results = opencascade(&dir, &manifest);
+    let results = common::opencascade_manifest("check_shell.py", &dir, &manifest);
     for ((c, shell), r) in cases.iter().zip(&fits).zip(&results) {
         eprintln!("{}: {r}", c.tag);
         let n = c.patches.len();

@@ -12,7 +12,6 @@
 mod common;
 
 use std::path::Path;
-use std::process::Command;
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 use streamline_studio::scene::builtin;
 use streamline_studio::scene::document_export::{DocumentExportSettings, export_document};
@@ -48,20 +47,11 @@ fn ours(mesh: &SurfaceMesh) -> impl Iterator<Item = Tri> + '_ {
 
 /// What OpenCascade read from each file: its triangles.
 fn read_back(files: &[&Path]) -> Vec<Vec<Keyed>> {
-    let py = common::venv_python("OpenCascade (cadquery-ocp-novtk)");
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_stl.py");
-    let out = Command::new(&py).arg(&script).args(files).output().unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "OpenCascade did not read a file: {}\n{}",
-        stdout.chars().take(2000).collect::<String>(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    stdout
-        .lines()
-        .map(|line| {
-            let v: serde_json::Value = serde_json::from_str(line).unwrap();
+    let lines = common::opencascade_lines("check_stl.py", files);
+    assert_eq!(lines.len(), files.len());
+    lines
+        .iter()
+        .map(|v| {
             let nodes: Vec<[u64; 3]> = serde_json::from_value(v["nodes"].clone()).unwrap();
             let nodes: Vec<[f64; 3]> = nodes.iter().map(|n| n.map(f64::from_bits)).collect();
             let corners: Vec<[usize; 3]> = serde_json::from_value(v["corners"].clone()).unwrap();

@@ -52,3 +52,50 @@ pub fn venv_python(holds: &str) -> std::path::PathBuf {
     );
     py
 }
+
+/// Runs `tests/python/<script>` with OpenCascade in the test virtual
+/// environment on `args`, and returns the JSON lines it printed, in order
+/// (OpenCascade's own messages also go to stdout: the results are the lines
+/// that start with `{`). Fails with OpenCascade's reason when the script
+/// exits non-zero (it refused a file).
+pub fn opencascade_lines(script: &str, args: &[&std::path::Path]) -> Vec<serde_json::Value> {
+    let py = venv_python("OpenCascade (cadquery-ocp-novtk)");
+    let script = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/python")
+        .join(script);
+    let out = std::process::Command::new(&py)
+        .arg(&script)
+        .args(args)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let head: String = stdout.chars().take(4000).collect();
+    assert!(
+        out.status.success(),
+        "OpenCascade refused a file:\n{head}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    stdout
+        .lines()
+        .filter(|l| l.starts_with('{'))
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect()
+}
+
+/// [`opencascade_lines`] with a manifest of files to check (written as
+/// `manifest.json` into `dir`): one result per entry, in its order.
+pub fn opencascade_manifest(
+    script: &str,
+    dir: &std::path::Path,
+    manifest: &[serde_json::Value],
+) -> Vec<serde_json::Value> {
+    let m = dir.join("manifest.json");
+    std::fs::write(&m, serde_json::to_string(manifest).unwrap()).unwrap();
+    let results = opencascade_lines(script, &[&m]);
+    assert_eq!(
+        results.len(),
+        manifest.len(),
+        "one result per file: {results:?}"
+    );
+    results
+}
