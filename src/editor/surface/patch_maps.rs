@@ -11,7 +11,8 @@
 //! shows, so a colour means the same value on every patch (a patch that
 //! curves more saturates). A patch's coordinates are made again only when
 //! its surface was rebuilt, its mesh was made afresh, or the mode, the
-//! limit, the stripes or (for zebra) the eye moved. The deviation map is
+//! limit, the stripes or (for zebra) the eye moved, and only while it is
+//! shown (a hidden patch gets its map when shown again). The deviation map is
 //! the first patch's (the fit is per patch, docs/cad.md): the others stay
 //! shaded under it.
 
@@ -95,6 +96,7 @@ fn color_patch_maps(
         &PatchSurfaceMesh,
         &Mesh3d,
         &mut MeshMaterial3d<StandardMaterial>,
+        &Visibility,
     )>,
     camera: Query<&OrbitCamera, With<MainCamera>>,
     mut meshes: ResMut<Assets<Mesh>>,
@@ -114,10 +116,15 @@ fn color_patch_maps(
         eye: (mode == SurfaceMode::Zebra).then(|| eye_point(&camera)),
     };
     made.retain(|e, _| drawn.contains(*e));
-    for (e, of, mesh, mut material) in &mut drawn {
+    for (e, of, mesh, mut material, visibility) in &mut drawn {
         let Ok(surface) = patches.get(of.0) else {
             continue;
         };
+        if *visibility == Visibility::Hidden {
+            // a hidden patch (or mesh mode) gets its map when shown again
+            made.remove(&e);
+            continue;
+        }
         if !shows_map(mode) {
             if material.0 != *want {
                 material.0 = want.clone();
@@ -286,6 +293,38 @@ mod tests {
             for (_, _, mat) in drawn(&mut app) {
                 assert_eq!(mat, shaded, "{mode:?}");
             }
+        }
+    }
+
+    /// A hidden patch is left alone and gets the map of the mode of the
+    /// moment it is shown again.
+    #[test]
+    fn a_hidden_patch_gets_its_map_when_shown() {
+        use crate::scene::patch_edit::PatchEdit;
+        let mut app = app(SurfaceMode::Gaussian, 0.8);
+        let hide = |app: &mut App, on: bool| {
+            let e = crate::ecs::Edit::Patch(PatchEdit::HidePatch("wing".into(), on));
+            crate::ecs::apply(app, e).unwrap();
+            app.update();
+        };
+        hide(&mut app, true);
+        app.world_mut().resource_mut::<AnalysisSettings>().mode = SurfaceMode::Mean;
+        app.update();
+        let mean = |surface: &PatchSurface| {
+            let points = surface.stack().unwrap().finest_points();
+            colormap_uv(&surface_curvature(points).mean, 0.8)
+                .iter()
+                .map(|t| t[0])
+                .collect::<Vec<f32>>()
+        };
+        let rows = drawn(&mut app);
+        let stale = rows
+            .iter()
+            .filter(|(s, uv, _)| uv.as_ref() != Some(&mean(s)));
+        assert_eq!(stale.count(), 1, "the hidden wing keeps its Gaussian map");
+        hide(&mut app, false);
+        for (surface, uv, _) in drawn(&mut app) {
+            assert_eq!(uv, Some(mean(&surface)), "shown again: the mean map");
         }
     }
 
