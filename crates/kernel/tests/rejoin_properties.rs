@@ -108,7 +108,7 @@ proptest! {
         let b2 = if g1 { shared(&a2, &b) } else { b.clone() };
         let whole = chain(&a2, &sa2, &b2, c).unwrap();
         let last = a.net().cols() - 1;
-        match rejoin(&a2, &Edges::of(&sa), &Edges::of(&sa2), &b2, sb.clone(), Edge::End, c) {
+        match rejoin(&a2, &Edges::of(&sa, true), &Edges::of(&sa2, true), &b2, sb.clone(), Edge::End, c) {
             Rejoin::Moved { stack: s, .. } => prop_assert!(same(&s, &whole)),
             Rejoin::Unchanged(s) => prop_assert!(same(&s, &whole) && same(&sb, &whole)),
             Rejoin::Rebuild(s) => {
@@ -119,7 +119,7 @@ proptest! {
             }
         }
         if g1 && col == last {
-            let again = rejoin(&a2, &Edges::of(&sa), &Edges::of(&sa2), &b2, sb, Edge::End, c);
+            let again = rejoin(&a2, &Edges::of(&sa, true), &Edges::of(&sa2, true), &b2, sb, Edge::End, c);
             prop_assert!(matches!(again, Rejoin::Rebuild(_)));
         }
     }
@@ -144,7 +144,7 @@ proptest! {
         let Some(sa2) = stack(&a2) else { return Ok(()) };
         let Ok(sb) = side(&sa, &b, edge, c) else { return Ok(()) };
         let whole = side(&sa2, &b, edge, c);
-        match rejoin(&a2, &Edges::of(&sa), &Edges::of(&sa2), &b, sb.clone(), edge, c) {
+        match rejoin(&a2, &Edges::of(&sa, true), &Edges::of(&sa2, true), &b, sb.clone(), edge, c) {
             Rejoin::Moved { stack: s, .. } => prop_assert!(same(&s, &whole.unwrap())),
             Rejoin::Unchanged(s) => prop_assert!(same(&s, &whole.unwrap())),
             Rejoin::Rebuild(s) => {
@@ -183,7 +183,7 @@ fn check_row_spans(
     let (sa, sa2) = (stack(&a)?, stack(&a2)?);
     let sb = chain(&a, &sa, &b, Continuity::G0).ok()?;
     let whole = chain(&a2, &sa2, &b, Continuity::G0).unwrap();
-    let (old_a, new_a) = (Edges::of(&sa), Edges::of(&sa2));
+    let (old_a, new_a) = (Edges::of(&sa, true), Edges::of(&sa2, true));
     let (s, rows) = match rejoin(
         &a2,
         &old_a,
@@ -336,8 +336,8 @@ fn keeping_the_levels_after_a_seam_column_edit_is_wrong() {
         let whole = chain(&a2, &sa2, &b2, Continuity::G1).unwrap();
         let again = rejoin(
             &a2,
-            &Edges::of(&sa),
-            &Edges::of(&sa2),
+            &Edges::of(&sa, true),
+            &Edges::of(&sa2, true),
             &b2,
             sb.clone(),
             Edge::End,

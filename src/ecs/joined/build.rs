@@ -184,11 +184,16 @@ pub(crate) fn build_joined(
         .collect();
     // what the patches on a patch read of it as it was (`Edges`: a few
     // hundred values per depth), before any stack is changed in place
+    let on = |i: usize, side: bool| {
+        (0..n).any(|j| parent[j].is_some_and(|(a, e, _)| a == i && (e != Edge::End) == side))
+    };
+    // whether side joins start on a patch (they read its edge curves)
+    let sides: Vec<bool> = (0..n).map(|i| on(i, true)).collect();
     let old_edges: Vec<Option<Edges>> = (0..n)
         .map(|i| {
-            let has_children = (0..n).any(|j| parent[j].is_some_and(|p| p.0 == i));
             let s = kept[i].as_ref().or(rows[i].5.stack());
-            s.filter(|_| has_children).map(Edges::of)
+            s.filter(|_| sides[i] || on(i, false))
+                .map(|s| Edges::of(s, sides[i]))
         })
         .collect();
     // a G2 run's state and its members' stacks, moved out to be updated in
@@ -345,7 +350,7 @@ pub(crate) fn build_joined(
                 // only the parent moved: keep the levels if what they read of
                 // it did not change (A before and after, as its edges)
                 if new[a].is_some() && new_edges[a].is_none() {
-                    new_edges[a] = Some(Edges::of(sa));
+                    new_edges[a] = Some(Edges::of(sa, sides[a]));
                 }
                 let (old_a, new_a) = (old_edges[a].as_ref(), new_edges[a].as_ref());
                 if let (Some(old_b), Some(old_a), Some(new_a)) = (kept_hi[0].take(), old_a, new_a) {

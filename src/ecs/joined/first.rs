@@ -8,9 +8,9 @@
 //! blend stage re-blended ([`LevelWindow`]), its `t` and `σ`, the display
 //! depth's points and mesh normals inside the window the mesh stage
 //! announced ([`SurfaceChanges`]), and of the coarser depths' streamlines
-//! only the rows whose tangents, parameters or start on the initial curve
-//! changed (each row is placed on its own, Eq. 65, so the others keep their
-//! bits). The changes are gathered every frame ([`FirstPipeline::track`])
+//! only the rows whose tangents or parameters changed, or all of them when
+//! the initial curve they start on did (each row is placed on its own,
+//! Eq. 65, so the others keep their bits). The changes are gathered every frame ([`FirstPipeline::track`])
 //! until the stack is next brought up to date, so a frame that does not
 //! update it loses nothing. The result is bit for bit the whole build's
 //! (the incremental build equals the whole one, docs/math.md §5, and a
@@ -26,6 +26,7 @@ use streamline_kernel::joins::Stack;
 use streamline_kernel::levels::design::Level;
 use streamline_kernel::levels::dirty_window::DirtyWindow;
 use streamline_kernel::levels::params::ParamGrid;
+use streamline_kernel::streamline::initial_curve::InitialCurve;
 use streamline_kernel::{DVec3, Design, Grid};
 
 /// What changed of a grid since the stack was last brought up to date.
@@ -62,9 +63,28 @@ pub(crate) struct Pending {
     /// The patch whose stack was last made from the pipeline (`None`: no
     /// stack the changes can be written into).
     synced: Option<Entity>,
-    /// Per coarser depth, each row's start on the initial curve when its
-    /// points were placed.
-    origins: Vec<Vec<DVec3>>,
+    /// What the initial curve the stack's streamlines start on was made
+    /// from ([`curve_key`]).
+    curve: Vec<u64>,
+}
+
+/// What an initial curve is made from, as bits: its QI curve's tangents,
+/// order and knots, its length, origin and mirror. The curve's points are a
+/// function of these alone, so two curves with the same key place every
+/// streamline at the same point, bit for bit.
+fn curve_key(c: &InitialCurve) -> Vec<u64> {
+    let v = |p: DVec3| p.to_array().map(f64::to_bits);
+    let mut k: Vec<u64> = c.qi().tangents().iter().flat_map(|&t| v(t)).collect();
+    k.push(c.qi().order() as u64);
+    k.extend(c.qi().knots().iter().map(|x| x.to_bits()));
+    k.push(c.length().to_bits());
+    k.extend(v(c.origin()));
+    if let Some((t0, plane)) = c.mirror() {
+        k.push(t0.to_bits());
+        k.extend(v(plane.point));
+        k.extend(v(plane.normal));
+    }
+    k
 }
 
 /// The first patch's pipeline, read: its level entities and its surface.
@@ -152,15 +172,19 @@ impl FirstPipeline<'_, '_> {
             return None;
         }
         let kept = old.filter(|(s, n)| {
-            self.pending.synced == Some(patch)
-                && fits(s, &levels, p)
-                && n.len() == p.data().len()
-                && self.pending.origins.len() == depth as usize
+            self.pending.synced == Some(patch) && fits(s, &levels, p) && n.len() == p.data().len()
         });
         let pending = std::mem::take(&mut *self.pending);
-        let (stack, normals, origins) = match kept {
+        let curve = curve_key(design.initial());
+        let (stack, normals) = match kept {
             Some((mut stack, mut normals)) => {
-                let origins = update(&mut stack, &levels, design, &pending);
+                update(
+                    &mut stack,
+                    &levels,
+                    design,
+                    &pending,
+                    curve != pending.curve,
+                );
                 match pending.surface {
                     Dirt::Clean => {}
                     Dirt::Cells(w) => {
@@ -183,7 +207,7 @@ impl FirstPipeline<'_, '_> {
                         normals.copy_from_slice(&self.surface.normals);
                     }
                 }
-                (stack, normals, origins)
+                (stack, normals)
             }
             None => {
                 let all: Vec<Level> = levels.iter().map(|l| level_of(&l.0)).collect();
@@ -192,22 +216,18 @@ impl FirstPipeline<'_, '_> {
                     .map(|l| design.streamlines(l))
                     .collect();
                 points.push(p.clone());
-                let origins = all[..depth as usize]
-                    .iter()
-                    .map(|l| origins_of(design, l))
-                    .collect();
                 let stack = Stack {
                     levels: all,
                     points,
                 };
-                (stack, self.surface.normals.clone(), origins)
+                (stack, self.surface.normals.clone())
             }
         };
         *self.pending = Pending {
             levels: Vec::new(),
             surface: Dirt::Clean,
             synced: Some(patch),
-            origins,
+            curve,
         };
         Some((stack, normals))
     }
@@ -245,30 +265,17 @@ fn level_of(l: &streamline_kernel::levels::incremental::LevelState) -> Level {
     }
 }
 
-/// Each row's start on `design`'s initial curve (where
-/// [`Design::place_row`] places it).
-fn origins_of(design: &Design, level: &Level) -> Vec<DVec3> {
-    (level.params.t.iter())
-        .map(|&t| design.initial().point(t))
-        .collect()
-}
-
-/// The bits of a vector.
-fn bits(v: DVec3) -> [u64; 3] {
-    v.to_array().map(f64::to_bits)
-}
-
 /// Writes into `stack` (of the pipeline's shapes) what `pending` says
 /// changed of `levels`, and places again the coarser depths' rows that
-/// moved; returns the rows' starts.
+/// moved (all of them when the initial curve `moved`).
 fn update(
     stack: &mut Stack,
     levels: &[&LevelData],
     design: &Design,
     pending: &Pending,
-) -> Vec<Vec<DVec3>> {
+    moved_curve: bool,
+) {
     let depth = levels.len() - 1;
-    let mut origins = Vec::with_capacity(depth);
     for (d, (level, data)) in stack.levels.iter_mut().zip(levels).enumerate() {
         let src = &data.0;
         let rows = level.tangents.rows();
@@ -313,20 +320,11 @@ fn update(
         if d == depth {
             break;
         }
-        // a coarser depth's streamlines: the rows that read a change, or
-        // whose start on the initial curve moved
-        let starts = origins_of(design, level);
-        let was = pending.origins.get(d);
+        // a coarser depth's streamlines: the rows that read a change (all
+        // of them when their initial curve changed)
         let points = &mut stack.points[d];
-        for r in 0..rows {
-            let start_moved = was
-                .and_then(|o| o.get(r))
-                .is_none_or(|&o| bits(o) != bits(starts[r]));
-            if moved[r] || start_moved {
-                design.place_row(level, r, points.row_mut(r));
-            }
+        for r in (0..rows).filter(|&r| moved[r] || moved_curve) {
+            design.place_row(level, r, points.row_mut(r));
         }
-        origins.push(starts);
     }
-    origins
 }

@@ -48,12 +48,17 @@ pub struct Edges {
 }
 
 impl Edges {
-    /// Read from `A`'s stack.
-    pub fn of(a: &Stack) -> Self {
+    /// Read from `A`'s stack; its edge curves only when `sides` (a side
+    /// join on `A` reads them, a chain does not).
+    pub fn of(a: &Stack, sides: bool) -> Self {
         let levels = (a.levels.iter().zip(&a.points).enumerate())
             .map(|(d, (level, points))| {
                 let cols = level.tangents.cols();
-                let curve = |edge| EdgeCurve::at(&a.levels, points, d as u32, edge);
+                let curve = |edge| {
+                    sides
+                        .then(|| EdgeCurve::at(&a.levels, points, d as u32, edge))
+                        .flatten()
+                };
                 EdgeLevel {
                     t: level.params.t.clone(),
                     last_tangents: match cols {
