@@ -87,18 +87,17 @@ fn curve_key(c: &InitialCurve) -> Vec<u64> {
     k
 }
 
+/// A level entity of the first patch's pipeline, with its last window.
+type LevelRow = (
+    &'static SubdivisionLevel,
+    Ref<'static, LevelData>,
+    Option<Ref<'static, LevelWindow>>,
+);
+
 /// The first patch's pipeline, read: its level entities and its surface.
 #[derive(bevy::ecs::system::SystemParam)]
 pub(crate) struct FirstPipeline<'w, 's> {
-    levels: Query<
-        'w,
-        's,
-        (
-            &'static SubdivisionLevel,
-            Ref<'static, LevelData>,
-            Option<Ref<'static, LevelWindow>>,
-        ),
-    >,
+    levels: Query<'w, 's, LevelRow>,
     surface: Res<'w, SurfaceData>,
     changes: SurfaceChanges<'w, 's>,
     pending: Local<'s, Pending>,
@@ -286,12 +285,13 @@ fn update(
             Dirt::Cells(w) => {
                 let cols = level.tangents.cols();
                 let range = w.cols.lo.min(cols)..(w.cols.hi + 1).min(cols);
-                for r in w.rows.lo..=w.rows.hi.min(rows.saturating_sub(1)) {
+                let window = moved.iter_mut().enumerate();
+                for (r, m) in window.take(w.rows.hi + 1).skip(w.rows.lo) {
                     level.tangents.row_mut(r)[range.clone()]
                         .copy_from_slice(&src.tangents.row(r)[range.clone()]);
                     level.params.s.row_mut(r)[range.clone()]
                         .copy_from_slice(&src.params.s.row(r)[range.clone()]);
-                    moved[r] = true;
+                    *m = true;
                 }
             }
             Dirt::All => {
@@ -307,14 +307,14 @@ fn update(
                 moved.fill(true);
             }
         }
-        for r in 0..rows {
+        for (r, m) in moved.iter_mut().enumerate() {
             let (t, sigma) = (src.params.t[r], src.params.sigma[r]);
             if level.params.t[r].to_bits() != t.to_bits()
                 || level.params.sigma[r].to_bits() != sigma.to_bits()
             {
                 level.params.t[r] = t;
                 level.params.sigma[r] = sigma;
-                moved[r] = true;
+                *m = true;
             }
         }
         if d == depth {
