@@ -11,9 +11,12 @@
 //!   they read of the parent (a chain's `t` and G1 seam column, a side G1
 //!   join's edge curve) did not change, and only its points are placed
 //!   again on the parent's moved edge (bit for bit the whole join's); it is
-//!   left alone, and so are the patches on it, when nothing it reads moved. The first patch's stack is made from
-//!   its [`PatchKernel`] (which the incremental pipeline keeps up to date),
-//!   rebuilt when that or the display depth changes.
+//!   left alone, and so are the patches on it, when nothing it reads moved.
+//!   What a patch's children read of it before and after is compared as
+//!   [`Edges`], taken before any stack is changed in place. The first
+//!   patch's stack is kept between edits and brought up to date in place
+//!   from its incremental pipeline ([`super::first`]) when its
+//!   [`PatchKernel`] or the display depth changes.
 //!
 //! A G2 run from the first patch: the run is one merged net (docs/math.md
 //! §11.1), so the first patch's cut of it ([`PatchSurface`]) differs from
