@@ -355,3 +355,53 @@ fn keeping_the_levels_after_a_seam_column_edit_is_wrong() {
     }
     assert!(checked >= 16, "only {checked} nets checked");
 }
+
+/// The drag of the two-car scene (issue 28 item 4): the car and a copy
+/// G1-chained on its `End` at depth 5, the car's tangent (2, 4) turned. The
+/// rejoin moves most of the 161 rows at depth 5, not all (enough points to
+/// be placed on two threads) and equals the whole chain bit for bit; the rows it did
+/// not place are the old ones (negative control: the span's end rows moved).
+#[test]
+fn the_two_car_drag_rejoins_bit_for_bit_at_depth_5() {
+    use streamline_kernel::levels::presets;
+    let depth = 5;
+    let a = presets::car1();
+    let b = shared(&a, &a);
+    let a2 = turned(&a, 2, 4, DVec3::Y, 0.01);
+    let (sa, sa2) = (
+        Stack::build(&a, depth).unwrap(),
+        Stack::build(&a2, depth).unwrap(),
+    );
+    let sb = chain(&a, &sa, &b, Continuity::G1).unwrap();
+    let whole = chain(&a2, &sa2, &b, Continuity::G1).unwrap();
+    let (s, rows) = match rejoin(
+        &a2,
+        &Edges::of(&sa, false),
+        &Edges::of(&sa2, false),
+        &b,
+        sb.clone(),
+        Edge::End,
+        Continuity::G1,
+    ) {
+        Rejoin::Moved { stack, rows } => (stack, rows),
+        other => panic!("a rejoin that moves rows, not {other:?}"),
+    };
+    assert!(same(&s, &whole), "bit for bit the whole chain");
+    let span = rows[depth as usize].expect("rows moved at depth 5");
+    let fine = &whole.points[depth as usize];
+    assert_eq!(fine.rows(), 161);
+    assert!(
+        (span.hi - span.lo + 1) * fine.cols() >= 16_384,
+        "placed on two threads"
+    );
+    let old = &sb.points[depth as usize];
+    let moved = moved_rows(old, fine);
+    assert!(
+        moved.len() > 140 && moved.len() < 161,
+        "{} rows moved",
+        moved.len()
+    );
+    for r in [span.lo, span.hi] {
+        assert_ne!(bits(old.get(r, 1)), bits(fine.get(r, 1)));
+    }
+}
