@@ -358,8 +358,7 @@ fn keeping_the_levels_after_a_seam_column_edit_is_wrong() {
 
 /// The drag of the two-car scene (issue 28 item 4): the car and a copy
 /// G1-chained on its `End` at depth 5, the car's tangent (2, 4) turned. The
-/// rejoin moves most of the 161 rows at depth 5, not all (enough points to
-/// be placed on two threads) and equals the whole chain bit for bit; the rows it did
+/// rejoin moves most of the 161 rows at depth 5, not all, and equals the whole chain bit for bit; the rows it did
 /// not place are the old ones (negative control: the span's end rows moved).
 #[test]
 fn the_two_car_drag_rejoins_bit_for_bit_at_depth_5() {

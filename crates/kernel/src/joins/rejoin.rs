@@ -119,8 +119,7 @@ pub fn rejoin(
 /// Places again, in `out` (`B`'s points on `level`), the rows whose start
 /// in `starts` is not bit for bit their first point (Eq. 65, as
 /// [`place_at_starts`] places every row; the rows are independent, so the
-/// others stay, and a large grid's two halves are placed on two threads,
-/// the same bits); every row when the sizes differ. The rows placed again,
+/// others stay); every row when the sizes differ. The rows placed again,
 /// `None` when no start moved.
 fn replace_moved(level: &Level, out: &mut Grid<DVec3>, starts: &[DVec3]) -> Option<RowSpan> {
     let (rows, cols) = (level.tangents.rows(), level.tangents.cols());
@@ -132,36 +131,17 @@ fn replace_moved(level: &Level, out: &mut Grid<DVec3>, starts: &[DVec3]) -> Opti
             hi: rows - 1,
         });
     }
-    let moved: Vec<bool> = (0..rows)
-        .map(|r| bits(out.get(r, 0)) != bits(starts[r]))
-        .collect();
-    let span = RowSpan {
-        lo: moved.iter().position(|&m| m)?,
-        hi: moved.iter().rposition(|&m| m)?,
-    };
-    // rows `from..` of the grid, whose data is `data`
-    let place = |from: usize, data: &mut [DVec3]| {
-        for (k, row) in data.chunks_mut(cols + 1).enumerate() {
-            let r = from + k;
-            if moved[r] {
-                let s = level.params.s.row(r);
-                place_slice(level.tangents.row(r), s, s[0], starts[r], row);
-            }
+    let mut span: Option<RowSpan> = None;
+    for (r, &start) in starts.iter().enumerate() {
+        if bits(out.get(r, 0)) == bits(start) {
+            continue;
         }
-    };
-    let n = span.hi - span.lo + 1;
-    let data = &mut out.data_mut()[span.lo * (cols + 1)..(span.hi + 1) * (cols + 1)];
-    if n < 2 || n * (cols + 1) < PARALLEL_MIN_POINTS {
-        place(span.lo, data);
-    } else {
-        let (top, bottom) = data.split_at_mut((n / 2) * (cols + 1));
-        crate::parallel::join(|| place(span.lo, top), || place(span.lo + n / 2, bottom));
+        let s = level.params.s.row(r);
+        place_slice(level.tangents.row(r), s, s[0], start, out.row_mut(r));
+        span = Some(span.map_or(RowSpan { lo: r, hi: r }, |sp| RowSpan { lo: sp.lo, hi: r }));
     }
-    Some(span)
+    span
 }
-
-/// Moved points at least this many are placed on two threads.
-const PARALLEL_MIN_POINTS: usize = 16_384;
 
 /// The bits of a vector.
 fn bits(v: DVec3) -> [u64; 3] {
