@@ -69,6 +69,22 @@ fn assert_as_built(app: &mut App, doc: &Document) {
     for (i, &e) in ids.iter().enumerate() {
         let s = stack(app, e);
         assert_eq!(s.depth(), depth);
+        let name = &doc.patches[i].name;
+        for (d, (l, w)) in s.levels.iter().zip(&built.patches[i].levels).enumerate() {
+            let f = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(
+                bits(&l.tangents),
+                bits(&w.tangents),
+                "{name} depth {d} tangents"
+            );
+            assert_eq!(
+                f(l.params.s.data()),
+                f(w.params.s.data()),
+                "{name} depth {d} s"
+            );
+            assert_eq!(f(&l.params.t), f(&w.params.t), "{name} depth {d} t");
+            assert_eq!(f(&l.params.sigma), f(&w.params.sigma), "{name} depth {d} σ");
+        }
         for d in 0..=depth as usize {
             assert_eq!(
                 bits(&s.points[d]),
@@ -313,4 +329,65 @@ fn a_g2_run_is_updated_in_place_and_an_edit_of_its_far_end_leaves_its_head() {
     ecs::apply(&mut app, Edit::SetDisplayDepth(doc.display_depth - 1)).unwrap();
     doc.display_depth -= 1;
     assert_as_built(&mut app, &doc);
+}
+
+/// The first patch's stack is kept between edits and brought up to date in
+/// place from its pipeline (`ecs::joined::first`: the blend stage's level
+/// windows, the mesh stage's surface window, the coarser rows that read a
+/// change): after each step of a drag, an edit of an edge row and of the
+/// seam column, an `s` edit, two initial-curve edits, a depth change and an
+/// undo, every patch (levels and points at every depth, and the seam)
+/// equals `Document::build` of the world's designs, bit for bit.
+/// Negative control: the stack before the drag is not the one after it.
+#[test]
+fn the_first_patch_s_stack_follows_a_drag_and_other_edits_in_place_bit_for_bit() {
+    use streamline_studio::cli::bench::patches::chained_cars;
+    use streamline_studio::ecs::joined::document;
+    use streamline_studio::scene::edit::AuthorEdit;
+    let doc = chained_cars(2, 3);
+    let mut app = app(&doc);
+    assert_as_built(&mut app, &doc);
+    let first = patches(&mut app)[0];
+    let before = stack(&app, first);
+    let last = doc.patches[0].design.net().cols() - 1;
+    let turn = |row, col, radians| Edit::Rotate {
+        row,
+        col,
+        axis: DVec3::new(0.2, 1.0, 0.1).normalize(),
+        radians,
+    };
+    let mut edits: Vec<Edit> = (0..6).map(|k| turn(2, 4, 0.01 * (k + 1) as f64)).collect();
+    edits.extend([
+        turn(0, 1, 0.05),
+        turn(5, 7, -0.04),
+        turn(3, last, 0.03),
+        Edit::SetLength {
+            row: 1,
+            col: 3,
+            coefficient: 1.1,
+        },
+        Edit::Author(AuthorEdit::RotateInitial {
+            index: 1,
+            axis: DVec3::X,
+            radians: 0.05,
+        }),
+        Edit::Author(AuthorEdit::SetInitialOrigin(DVec3::new(0.1, -0.2, 0.05))),
+        turn(2, 4, 0.02),
+        Edit::SetDisplayDepth(2),
+        turn(2, 4, 0.02),
+        Edit::SetDisplayDepth(3),
+        turn(1, 5, -0.03),
+        Edit::Undo,
+        turn(4, 2, 0.02),
+    ]);
+    for (k, e) in edits.into_iter().enumerate() {
+        let label = format!("{e:?}");
+        ecs::apply(&mut app, e).unwrap_or_else(|err| panic!("step {k} {label}: {err}"));
+        let now = document(app.world()).unwrap();
+        assert_as_built(&mut app, &now);
+        if k == 0 {
+            let d = doc.display_depth as usize;
+            assert_ne!(bits(&stack(&app, first).points[d]), bits(&before.points[d]));
+        }
+    }
 }

@@ -11,9 +11,12 @@
 //!   they read of the parent (a chain's `t` and G1 seam column, a side G1
 //!   join's edge curve) did not change, and only its points are placed
 //!   again on the parent's moved edge (bit for bit the whole join's); it is
-//!   left alone, and so are the patches on it, when nothing it reads moved. The first patch's stack is made from
-//!   its [`PatchKernel`] (which the incremental pipeline keeps up to date),
-//!   rebuilt when that or the display depth changes.
+//!   left alone, and so are the patches on it, when nothing it reads moved.
+//!   What a patch's children read of it before and after is compared as
+//!   [`Edges`], taken before any stack is changed in place. The first
+//!   patch's stack is kept between edits and brought up to date in place
+//!   from its incremental pipeline ([`super::first`]) when its
+//!   [`PatchKernel`] or the display depth changes.
 //!
 //! A G2 run from the first patch: the run is one merged net (docs/math.md
 //! §11.1), so the first patch's cut of it ([`PatchSurface`]) differs from
@@ -24,23 +27,22 @@
 //! [`PatchSurface`], which equals [`crate::scene::Document::build`]'s.
 
 use super::components::*;
+use super::first::FirstPipeline;
 use super::g2::G2RunState;
-use crate::ecs::SurfaceData;
-use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::patch::{
     ArcParam, Direction, PatchIndex, PatchKernel, PatchStructure, SurfaceHandle,
 };
 use bevy::prelude::*;
 use std::collections::HashMap;
 use streamline_kernel::joins::chain::chain;
+use streamline_kernel::joins::edges::Edges;
 use streamline_kernel::joins::g2_state::G2State;
-use streamline_kernel::joins::rejoin::{Rejoin, RowSpan, StackRef, point_refs, rejoin};
+use streamline_kernel::joins::rejoin::{Rejoin, RowSpan, rejoin};
 use streamline_kernel::joins::seam::{PatchMesh, chain_seam, side_seam};
 use streamline_kernel::joins::side::side;
 use streamline_kernel::joins::{Continuity, Edge, JoinError, Stack};
-use streamline_kernel::levels::design::Level;
 use streamline_kernel::streamline::surface_mesh::normals_window;
-use streamline_kernel::{DVec3, Design, Grid};
+use streamline_kernel::{DVec3, Design};
 
 /// A joined patch's net handles whose value changed since the last run.
 type ChangedJoinedNet<'w, 's> = Query<
@@ -117,10 +119,11 @@ pub(crate) fn build_joined(
     mut commands: Commands,
     meter: Res<crate::ecs::meter::CpuMeter>,
     structure: Query<Ref<PatchStructure>, Without<Joined>>,
-    pipeline: FirstPipeline,
+    mut pipeline: FirstPipeline,
     mut patches: Query<PatchRow>,
-    mut spare: Local<FirstSpare>,
 ) {
+    // what the first patch's pipeline changed, gathered every frame
+    pipeline.track();
     if patches.is_empty() {
         return;
     }
@@ -182,13 +185,25 @@ pub(crate) fn build_joined(
             }
         })
         .collect();
+    // what the patches on a patch read of it as it was (`Edges`: a few
+    // hundred values per depth), before any stack is changed in place
+    let on = |i: usize, side: bool| {
+        (0..n).any(|j| parent[j].is_some_and(|(a, e, _)| a == i && (e != Edge::End) == side))
+    };
+    // whether side joins start on a patch (they read its edge curves)
+    let sides: Vec<bool> = (0..n).map(|i| on(i, true)).collect();
+    let old_edges: Vec<Option<Edges>> = (0..n)
+        .map(|i| {
+            let s = kept[i].as_ref().or(rows[i].5.stack());
+            s.filter(|_| sides[i] || on(i, false))
+                .map(|s| Edges::of(s, sides[i]))
+        })
+        .collect();
     // a G2 run's state and its members' stacks, moved out to be updated in
-    // place (super::g2); a member with patches of its own on it keeps a copy
-    // of what it was, which their rejoin reads
+    // place (super::g2)
     let head = |i: usize| parent[i].is_none() && run.iter().filter(|&&r| r == i).count() > 1;
     let heads: Vec<bool> = (0..n).map(head).collect();
     let mut g2_old: Vec<Option<Stack>> = vec![None; n];
-    let mut g2_was: Vec<Option<Stack>> = vec![None; n];
     let mut states: Vec<Option<G2State>> = vec![None; n];
     for i in 0..n {
         if !heads[run[i]] || !run_changed[i] {
@@ -198,9 +213,19 @@ pub(crate) fn build_joined(
             states[i] = c.bypass_change_detection().0.take();
         }
         if let Some(Ok(s)) = rows[i].5.bypass_change_detection().built.take() {
-            let has_own = (0..n).any(|j| run[j] != run[i] && parent[j].is_some_and(|p| p.0 == i));
-            g2_was[i] = has_own.then(|| s.clone());
             g2_old[i] = Some(s);
+        }
+    }
+    // the first patch's stack and normals, moved out to be brought up to
+    // date in place (super::first)
+    let mut first_old: Vec<Option<(Stack, Vec<DVec3>)>> = vec![None; n];
+    for i in 0..n {
+        if parent[i].is_some() || heads[i] || !run_changed[i] || rows[i].3.is_none() {
+            continue;
+        }
+        let r = rows[i].5.bypass_change_detection();
+        if let Some(Ok(s)) = r.built.take() {
+            first_old[i] = Some((s, std::mem::take(&mut r.normals)));
         }
     }
     let mut in_run = vec![false; n];
@@ -221,12 +246,10 @@ pub(crate) fn build_joined(
         None => format!("patch `{}`: {e}", name(i)),
     };
     let mut new: Vec<Option<Result<Stack, String>>> = vec![None; n];
-    // the patch whose stack the pipeline made in `spare`'s buffers
-    let mut lent: Option<usize> = None;
+    // what the patches on a rebuilt patch read of it now
+    let mut new_edges: Vec<Option<Edges>> = vec![None; n];
     // the display depth's mesh normals of a rebuilt patch, when it has them already
     let mut normals: Vec<Option<Vec<DVec3>>> = vec![None; n];
-    // what a rejoin replaced of a patch's points (its children compare them)
-    let mut replaced: Vec<Option<Vec<Option<Grid<DVec3>>>>> = vec![None; n];
     // the display depth's rows a rejoin placed again (`None`: all)
     let mut moved: Vec<Option<RowSpan>> = vec![None; n];
     for i in 0..n {
@@ -243,6 +266,10 @@ pub(crate) fn build_joined(
         let built = match parent[i] {
             None if heads[i] => {
                 // a G2 run from patch i: one merged net, cut at its seams
+                // (not the pipeline's surface: its stack is made afresh next)
+                if rows[i].3.is_some() {
+                    pipeline.forget();
+                }
                 let members: Vec<usize> = (0..n).filter(|&k| run[k] == i).collect();
                 // each member's seam column is the previous one's last (one handle)
                 let mut owned: Vec<Design> = Vec::with_capacity(members.len());
@@ -277,48 +304,33 @@ pub(crate) fn build_joined(
                 }
                 continue;
             }
-            None => match rows[i]
-                .3
-                .is_some()
-                .then(|| pipeline.stack(b, depth, spare.0.take()))
-                .flatten()
-            {
-                Some((s, n)) => {
-                    normals[i] = Some(n);
-                    lent = Some(i);
-                    Ok(s)
+            None => {
+                // the first patch's stack, kept and brought up to date from
+                // its pipeline (super::first)
+                let made = match rows[i].3.is_some() {
+                    true => pipeline.stack(rows[i].0, b, depth, first_old[i].take()),
+                    false => None,
+                };
+                match made {
+                    Some((s, n)) => {
+                        normals[i] = Some(n);
+                        Ok(s)
+                    }
+                    None => {
+                        if rows[i].3.is_some() {
+                            pipeline.forget();
+                        }
+                        Stack::build(b, depth).map_err(|e| located(i, &JoinError::Kernel(e)))
+                    }
                 }
-                None => Stack::build(b, depth).map_err(|e| located(i, &JoinError::Kernel(e))),
-            },
+            }
             Some((a, edge, c)) => {
                 let (kept_lo, kept_hi) = kept.split_at_mut(i);
-                // A as it was: its old stack, or (moved by a rejoin) its
-                // levels with the points it had
-                let was = (kept_lo[a].as_ref()).or(g2_was[a].as_ref()).or(rows[a]
-                    .5
-                    .built
-                    .as_ref()
-                    .and_then(|b| b.as_ref().ok()));
+                // A as it is now: rebuilt, or as it was
+                let was = (kept_lo[a].as_ref()).or(rows[a].5.stack());
                 let sa = match new[a].as_ref() {
                     Some(built) => built.as_ref().ok(),
                     None => was,
-                };
-                let mut refs = Vec::new();
-                let old_a = match (sa, &replaced[a]) {
-                    (Some(s), Some(r)) if new[a].is_some() => {
-                        StackRef::points_before(s, r, &mut refs);
-                        Some(StackRef {
-                            levels: &s.levels,
-                            points: &refs,
-                        })
-                    }
-                    _ => was.map(|s| {
-                        refs = point_refs(s);
-                        StackRef {
-                            levels: &s.levels,
-                            points: &refs,
-                        }
-                    }),
                 };
                 let Some(sa) = sa else {
                     new[i] = Some(Err(format!(
@@ -338,21 +350,21 @@ pub(crate) fn build_joined(
                 } else {
                     b
                 };
-                // only the parent moved: keep the levels if what they read of it did not change
-                if let (Some(old_b), Some(old_a)) = (kept_hi[0].take(), old_a) {
-                    match rejoin(da, old_a, sa, b, old_b, edge, c) {
+                // only the parent moved: keep the levels if what they read of
+                // it did not change (A before and after, as its edges)
+                if new[a].is_some() && new_edges[a].is_none() {
+                    new_edges[a] = Some(Edges::of(sa, sides[a]));
+                }
+                let (old_a, new_a) = (old_edges[a].as_ref(), new_edges[a].as_ref());
+                if let (Some(old_b), Some(old_a), Some(new_a)) = (kept_hi[0].take(), old_a, new_a) {
+                    match rejoin(da, old_a, new_a, b, old_b, edge, c) {
                         Rejoin::Unchanged(s) => {
                             kept_hi[0] = Some(s);
                             continue;
                         }
-                        Rejoin::Moved {
-                            stack,
-                            replaced: r,
-                            rows: spans,
-                        } => {
+                        Rejoin::Moved { stack, rows: spans } => {
                             moved[i] = spans.last().copied().flatten();
                             new[i] = Some(Ok(stack));
-                            replaced[i] = Some(r);
                             continue;
                         }
                         // built whole below
@@ -425,15 +437,8 @@ pub(crate) fn build_joined(
     }
     for (i, r) in rows.iter_mut().enumerate() {
         if let Some(b) = new[i].take() {
-            let was = r.5.built.replace(b);
-            let was_normals =
-                std::mem::replace(&mut r.5.normals, normals[i].take().unwrap_or_default());
-            // the first patch's old stack lends its buffers to its next one
-            if lent == Some(i)
-                && let Some(Ok(old)) = was
-            {
-                spare.0 = Some((old, was_normals));
-            }
+            r.5.built = Some(b);
+            r.5.normals = normals[i].take().unwrap_or_default();
             r.5.rows = written[i];
         } else if let Some(s) = kept[i].take() {
             // not rebuilt: put back, not marked changed
@@ -454,100 +459,6 @@ pub(crate) fn build_joined(
             }
             _ => {}
         }
-    }
-}
-
-/// The first patch's stack and normals from before its last one, whose
-/// buffers [`FirstPipeline::stack`] fills again.
-#[derive(Default)]
-pub(crate) struct FirstSpare(Option<(Stack, Vec<DVec3>)>);
-
-/// The first patch's pipeline, read: its level entities and its points.
-#[derive(bevy::ecs::system::SystemParam)]
-pub(crate) struct FirstPipeline<'w, 's> {
-    levels: Query<'w, 's, (&'static SubdivisionLevel, &'static LevelData)>,
-    surface: Res<'w, SurfaceData>,
-}
-
-impl FirstPipeline<'_, '_> {
-    /// The first patch's [`Stack`] at `depth`, read from what its
-    /// incremental pipeline keeps (its levels are `design`'s, bit for bit:
-    /// the incremental build equals the whole one, docs/math.md §5, and a
-    /// patch with joins has no details, fine tuning nor interpolated
-    /// tangents, docs/math.md §11), so that an edit of it does not build it
-    /// a second time: the levels are copied, the display depth's points are
-    /// [`SurfaceData`]'s, and only the coarser depths' streamlines (a third
-    /// of the finest's points) are integrated. `None` while the pipeline
-    /// holds another depth or another net (then build it whole).
-    ///
-    /// `spare` (the stack and normals this patch had two edits ago, which
-    /// no one reads any more) lends its buffers: a level or grid of the same
-    /// shape is copied into them, so that a drag does not allocate (and
-    /// fault in) several megabytes a frame.
-    fn stack(
-        &self,
-        design: &Design,
-        depth: u32,
-        spare: Option<(Stack, Vec<DVec3>)>,
-    ) -> Option<(Stack, Vec<DVec3>)> {
-        let (mut old_levels, mut old_points, mut normals) = match spare {
-            Some((s, n)) => (s.levels, s.points, n),
-            None => Default::default(),
-        };
-        old_levels.truncate(depth as usize + 1);
-        old_levels.resize_with(depth as usize + 1, || Level {
-            tangents: Grid::filled(0, 0, DVec3::ZERO),
-            params: streamline_kernel::levels::params::ParamGrid {
-                s: Grid::filled(0, 0, 0.0),
-                t: Vec::new(),
-                sigma: Vec::new(),
-            },
-        });
-        let mut seen = vec![false; depth as usize + 1];
-        for (l, data) in &self.levels {
-            let slot = old_levels.get_mut(l.0 as usize)?;
-            copy_grid(&mut slot.tangents, &data.0.tangents);
-            copy_grid(&mut slot.params.s, &data.0.params.s);
-            slot.params.t.clone_from(&data.0.params.t);
-            slot.params.sigma.clone_from(&data.0.params.sigma);
-            seen[l.0 as usize] = true;
-        }
-        if !seen.iter().all(|&b| b) {
-            return None;
-        }
-        let levels = old_levels;
-        let (net, base) = (design.net(), &levels[0].tangents);
-        if base.rows() != net.rows() || base.cols() != net.cols() || base.data() != net.data() {
-            return None;
-        }
-        let finest = levels.last()?;
-        let p = &self.surface.points;
-        if p.rows() != finest.tangents.rows()
-            || p.cols() != finest.tangents.cols() + 1
-            || self.surface.normals.len() != p.data().len()
-        {
-            return None;
-        }
-        let mut fine = old_points
-            .pop()
-            .unwrap_or_else(|| Grid::filled(0, 0, DVec3::ZERO));
-        copy_grid(&mut fine, p);
-        let mut points: Vec<_> = levels[..depth as usize]
-            .iter()
-            .map(|l| design.streamlines(l))
-            .collect();
-        points.push(fine);
-        normals.clone_from(&self.surface.normals);
-        Some((Stack { levels, points }, normals))
-    }
-}
-
-/// `src` copied into `dst`, into its buffer when the shapes agree.
-fn copy_grid<T: Copy>(dst: &mut Grid<T>, src: &Grid<T>) {
-    if (dst.rows(), dst.cols()) == (src.rows(), src.cols()) {
-        dst.data_mut().copy_from_slice(src.data());
-    } else {
-        *dst = src.clone();
     }
 }
 

@@ -8,6 +8,7 @@
 pub mod build;
 pub mod census;
 pub mod components;
+pub mod first;
 pub mod g2;
 pub mod patch_ops;
 pub mod spawn;

@@ -11,11 +11,14 @@
 //! - [`edge_curve`]: `A`'s first or last streamline as a curve with normals;
 //!   [`side`]: joins on it, G0 or G1 (§11.2).
 //! - [`build`]: one join built whole; [`seam`]: the seam report (§11.3).
+//! - [`edges`]: what the patches on a patch read of it; [`rejoin`]: a
+//!   joined patch brought up to date after its parent changed.
 //! - [`error`]: why a join is refused, and what to do.
 
 pub mod build;
 pub mod chain;
 pub mod edge_curve;
+pub mod edges;
 pub mod error;
 pub mod g2_state;
 pub mod kinds;
