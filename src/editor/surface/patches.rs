@@ -20,7 +20,8 @@
 //! every export writes: the cut. So in the shaded display the first patch
 //! of a G2 run is drawn from its stack here and the incremental mesh is
 //! hidden; the analysis maps (which read the incremental surface) show that
-//! one instead, and the joined patches stay shaded under them.
+//! one instead, and `super::patch_maps` puts the same maps on the joined
+//! patches.
 
 use super::super::interaction::{EditorMode, EditorSet};
 use super::analysis::{AnalysisSettings, SurfaceMode};
