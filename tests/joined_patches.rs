@@ -60,6 +60,13 @@ fn bits(g: &streamline_kernel::Grid<DVec3>) -> Vec<[u64; 3]> {
         .collect()
 }
 
+/// Sets tangent (`row`, `col`) of the first patch to `dir` through the
+/// edit stage, and in `doc`, the design the world must equal.
+fn set_first(app: &mut App, doc: &mut Document, row: usize, col: usize, dir: DVec3) {
+    ecs::apply(app, Edit::SetDirection { row, col, dir }).unwrap();
+    doc.patches[0].design.set_tangent(row, col, dir).unwrap();
+}
+
 /// The world's patches and seams equal `Document::build`'s, bit for bit.
 fn assert_as_built(app: &mut App, doc: &Document) {
     let depth = doc.display_depth;
@@ -151,41 +158,23 @@ fn an_edit_of_the_first_patch_rebuilds_every_patch_that_starts_on_it() {
     // row 4 is the wing's edge (`Last`): its edge curve moves
     let before = changed_ticks(&mut app);
     let dir = DVec3::new(0.9, 0.2, 0.3).normalize();
-    ecs::apply(
-        &mut app,
-        Edit::SetDirection {
-            row: 4,
-            col: 2,
-            dir,
-        },
-    )
-    .unwrap();
+    set_first(&mut app, &mut doc, 4, 2, dir);
     let after = changed_ticks(&mut app);
     assert!(
         before.iter().zip(&after).all(|(a, b)| a != b),
         "all three rebuilt"
     );
-    doc.patches[0].design.set_tangent(4, 2, dir).unwrap();
     assert_as_built(&mut app, &doc);
     // row 1 is out of the reach of the wing's edge curve (Kobbelt's stencil
     // spans two rows): the G2 run is rebuilt, the wing is left as it is
     // (`joins::rejoin`), and every patch still equals the whole build
     let before = changed_ticks(&mut app);
     let dir = DVec3::new(0.9, 0.2, 0.3).normalize();
-    ecs::apply(
-        &mut app,
-        Edit::SetDirection {
-            row: 1,
-            col: 2,
-            dir,
-        },
-    )
-    .unwrap();
+    set_first(&mut app, &mut doc, 1, 2, dir);
     let after = changed_ticks(&mut app);
     assert_ne!(after[0], before[0], "the hood rebuilt");
     assert_ne!(after[1], before[1], "the screen rebuilt");
     assert_eq!(after[2], before[2], "the wing kept");
-    doc.patches[0].design.set_tangent(1, 2, dir).unwrap();
     assert_as_built(&mut app, &doc);
     // the G2 run moved the screen: a negative control against the old build
     let old = hood().build(doc.display_depth).unwrap();
@@ -239,16 +228,7 @@ fn the_bench_s_three_chained_cars_build_as_the_library_builds_them_and_follow_an
     let mut app = app(&doc);
     assert_as_built(&mut app, &doc);
     let dir = DVec3::new(0.8, 0.1, 0.5).normalize();
-    ecs::apply(
-        &mut app,
-        Edit::SetDirection {
-            row: 2,
-            col: 4,
-            dir,
-        },
-    )
-    .unwrap();
-    doc.patches[0].design.set_tangent(2, 4, dir).unwrap();
+    set_first(&mut app, &mut doc, 2, 4, dir);
     assert_as_built(&mut app, &doc);
     // the seam column is one handle of both cars (G1): turning the first's
     // last column turns the second's first
@@ -314,16 +294,7 @@ fn a_g2_run_is_updated_in_place_and_an_edit_of_its_far_end_leaves_its_head() {
     }
     // an edit of the hood moves both, still as the whole build
     let dir = DVec3::new(0.9, 0.2, 0.3).normalize();
-    ecs::apply(
-        &mut app,
-        Edit::SetDirection {
-            row: 1,
-            col: 2,
-            dir,
-        },
-    )
-    .unwrap();
-    doc.patches[0].design.set_tangent(1, 2, dir).unwrap();
+    set_first(&mut app, &mut doc, 1, 2, dir);
     assert_as_built(&mut app, &doc);
     // a new depth builds the run whole, as the whole build
     ecs::apply(&mut app, Edit::SetDisplayDepth(doc.display_depth - 1)).unwrap();

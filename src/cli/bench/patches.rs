@@ -17,7 +17,7 @@ use streamline_kernel::joins::g2_state::G2State;
 use streamline_kernel::joins::merged::g2_run;
 use streamline_kernel::joins::{Continuity, Edge, Join};
 use streamline_kernel::levels::presets;
-use streamline_kernel::{DQuat, DVec3, Design};
+use streamline_kernel::{DQuat, Design};
 
 /// The car, and `n - 1` copies chained on its `End` edge one after the
 /// other with G1 (each copy's first column the previous one's last, its
@@ -89,13 +89,7 @@ pub fn rows() -> Vec<Workload> {
         out.push(Workload {
             name: format!("ecs/patches/{name}/d{depth}/edit-{which}"),
             run: Box::new(move || {
-                sign = -sign;
-                let edit = Edit::Rotate {
-                    row: 2,
-                    col: 4,
-                    axis: DVec3::Y,
-                    radians: 0.01 * sign,
-                };
+                let edit = super::workloads::wiggle(2, 4, &mut sign);
                 ecs::send(&mut app, edit);
                 app.update();
                 app.world().resource::<SurfaceData>().points.data()[0].x
