@@ -251,6 +251,7 @@ type PatchReport<'w, 's> = (
             Entity,
             &'static crate::ecs::joined::PatchSlot,
             Has<crate::ecs::joined::PatchHidden>,
+            Option<&'static crate::ecs::joined::PatchSurface>,
         ),
     >,
 );
@@ -276,11 +277,11 @@ fn write_patch_positions(
         return false;
     };
     let mut text = String::new();
-    for (e, slot, _) in slots {
-        let Some(m) = patch_meshes.meshes.get(&e) else {
+    for (e, slot, _, surface) in slots {
+        let Some((points, _)) = surface.and_then(|s| patch_meshes.mesh(e, s)) else {
             continue;
         };
-        let Some(mid) = m.positions.get(m.positions.len() / 2) else {
+        let Some(mid) = points.data().get(points.data().len() / 2) else {
             continue;
         };
         if let Ok(q) = cam.world_to_viewport(gt, to_view(*mid)) {
@@ -442,9 +443,10 @@ fn drive(
                         let mut v: Vec<_> = slots.iter().collect();
                         v.sort_by_key(|r| r.1.index);
                         v.into_iter()
-                            .map(|(e, slot, hidden)| {
-                                let n =
-                                    patch_meshes.meshes.get(&e).map_or(0, |m| m.positions.len());
+                            .map(|(e, slot, hidden, surface)| {
+                                let n = surface
+                                    .and_then(|s| patch_meshes.mesh(e, s))
+                                    .map_or(0, |(p, _)| p.data().len());
                                 (slot.name.clone(), !hidden, n)
                             })
                             .collect()

@@ -10,9 +10,8 @@ use super::super::coords::to_view;
 use super::super::interaction::{
     EditorMode, EditorSet, MainCamera, Selection, SphereArea, segment_distance,
 };
-use super::super::surface::patches::PatchMeshes;
+use super::super::surface::patches::{PatchMeshes, PickedPatches};
 use crate::ecs::SurfaceData;
-use crate::ecs::joined::{Joined, PatchHidden, PatchSlot};
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use bevy_egui::input::egui_wants_any_pointer_input;
@@ -76,7 +75,7 @@ fn right_click(
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
     (sphere, selection): (Res<SphereArea>, Res<Selection>),
     (kernel, data): (Res<PatchMeshes>, Res<SurfaceData>),
-    patches: Query<(Entity, &PatchSlot, Has<Joined>, Has<PatchHidden>)>,
+    patches: PickedPatches,
     mut press: Local<Option<Vec2>>,
     mut request: ResMut<NewPatchRequest>,
 ) {
@@ -98,14 +97,16 @@ fn right_click(
     };
     let project = |p: DVec3| camera.world_to_viewport(gt, to_view(p)).ok();
     let mut best: Option<(f32, String, Edge)> = None;
-    for (e, slot, joined, hidden) in &patches {
+    for (e, slot, joined, hidden, surface) in &patches {
         if hidden {
             continue;
         }
-        let grid = match kernel.grids.get(&e) {
-            Some(g) => Some(g),
-            None if !joined => Some(&data.points),
-            None => None,
+        let grid = if kernel.is_drawn(e) {
+            surface.and_then(|s| kernel.mesh(e, s)).map(|(g, _)| g)
+        } else if !joined {
+            Some(&data.points)
+        } else {
+            None
         };
         let Some(grid) = grid else { continue };
         for (edge, line) in edges(grid) {

@@ -13,9 +13,9 @@
 
 use super::super::coords::from_view;
 use super::super::interaction::{EditorMode, EditorSet, HandlePressed, MainCamera, SphereArea};
-use super::super::surface::patches::PatchMeshes;
+use super::super::surface::patches::{PatchMeshes, PickedPatches};
 use crate::ecs::SurfaceData;
-use crate::ecs::joined::{ActivePatch, Joined, PatchHidden, PatchSlot};
+use crate::ecs::joined::ActivePatch;
 use crate::ecs::{Edit, EditMessage};
 use crate::scene::patch_edit::PatchEdit;
 use bevy::prelude::*;
@@ -80,7 +80,7 @@ fn pick(
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
     sphere: Res<SphereArea>,
     (kernel, data): (Res<PatchMeshes>, Res<SurfaceData>),
-    patches: Query<(Entity, &PatchSlot, Has<Joined>, Has<PatchHidden>)>,
+    patches: PickedPatches,
     active: Res<ActivePatch>,
     mut edits: MessageWriter<EditMessage>,
 ) {
@@ -90,7 +90,7 @@ fn pick(
         return;
     }
     // a document of one patch has no patch to choose
-    if !patches.iter().any(|(_, _, joined, _)| joined) {
+    if !patches.iter().any(|r| r.2) {
         return;
     }
     let Some(cursor) = window.cursor_position().filter(|p| !sphere.contains(*p)) else {
@@ -104,15 +104,18 @@ fn pick(
     };
     let (origin, dir) = (from_view(ray.origin), from_view(*ray.direction));
     let mut best: Option<(f64, Entity)> = None;
-    for (e, _, joined, hidden) in &patches {
+    for (e, _, joined, hidden, surface) in &patches {
         if hidden {
             continue;
         }
-        let hit = match kernel.meshes.get(&e) {
-            Some(m) => ray_mesh(origin, dir, &m.positions, &m.indices),
+        let hit = if kernel.is_drawn(e) {
+            (surface.and_then(|s| kernel.mesh(e, s)))
+                .and_then(|(points, triangles)| ray_mesh(origin, dir, points.data(), triangles))
+        } else if !joined {
             // the first patch, drawn from its incremental surface
-            None if !joined => ray_mesh(origin, dir, data.points.data(), &data.indices),
-            None => None,
+            ray_mesh(origin, dir, data.points.data(), &data.indices)
+        } else {
+            None
         };
         if let Some(t) = hit
             && best.is_none_or(|(b, _)| t < b)

@@ -25,14 +25,13 @@
 
 use super::super::interaction::{EditorMode, EditorSet};
 use super::analysis::{AnalysisSettings, SurfaceMode};
-use super::patch_mesh::{mesh_of, write_rows};
+use super::patch_mesh::{Triangles, normals_for, write_rows};
 use super::shaded::{ShadedMaterial, SurfaceEntity, set_visible, to_bevy_mesh};
 use crate::ecs::joined::{Joined, PatchHidden, PatchStart, PatchSurface};
 use bevy::prelude::*;
 use bevy_state::prelude::State;
 use std::collections::HashMap;
 use streamline_kernel::joins::{Continuity, Edge};
-use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 use streamline_kernel::{DVec3, Grid};
 
 use super::super::coords::kernel_to_view;
@@ -41,14 +40,14 @@ use super::super::coords::kernel_to_view;
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
 pub struct PatchSurfaceMesh(pub Entity);
 
-/// The kernel mesh of every patch drawn from its stack (display depth), for
-/// picking: written when a patch's surface is.
+/// The patches drawn from their stack, for picking and the boundary: a
+/// drawn patch's kernel mesh is its stack's finest points (the display
+/// depth, not copied) and the triangles kept here ([`PatchMeshes::mesh`]).
 #[derive(Resource, Debug, Default)]
 pub struct PatchMeshes {
-    /// Patch entity → its mesh (kernel coordinates).
-    pub meshes: HashMap<Entity, SurfaceMesh>,
-    /// Patch entity → its points (the mesh's vertices as a grid: its edges).
-    pub grids: HashMap<Entity, Grid<DVec3>>,
+    /// Patch entity → the triangles of its drawn mesh (one entry per patch
+    /// drawn from its stack).
+    pub triangles: HashMap<Entity, Triangles>,
     /// How many meshes were rebuilt since the start (a meter for the tests:
     /// only a changed surface rebuilds its mesh).
     pub rebuilt: u64,
@@ -56,6 +55,43 @@ pub struct PatchMeshes {
     /// in place ([`PatchSurface::rows`]).
     pub partial: u64,
 }
+
+impl PatchMeshes {
+    /// Whether patch `p` is drawn from its stack (else, the first patch,
+    /// from its incremental surface, [`crate::ecs::SurfaceData`]).
+    pub fn is_drawn(&self, p: Entity) -> bool {
+        self.triangles.contains_key(&p)
+    }
+
+    /// The mesh patch `p` is drawn with, `surface` being its
+    /// [`PatchSurface`]: its vertices (the stack's finest points, kernel
+    /// coordinates, as a grid: its edges) and its triangles; `None` when it
+    /// is not drawn from its stack or not built.
+    pub fn mesh<'a>(
+        &'a self,
+        p: Entity,
+        surface: &'a PatchSurface,
+    ) -> Option<(&'a Grid<DVec3>, &'a [u32])> {
+        let t = self.triangles.get(&p)?;
+        let g = surface.stack()?.finest_points();
+        (t.shape == (g.rows(), g.cols())).then_some((g, t.indices.as_slice()))
+    }
+}
+
+/// What picking and the boundary read of every patch: its slot, whether it
+/// is joined (not the first) or hidden, and its surface, whose stack's
+/// finest points a drawn patch's mesh is ([`PatchMeshes::mesh`]).
+pub type PickedPatches<'w, 's> = Query<
+    'w,
+    's,
+    (
+        Entity,
+        &'static crate::ecs::joined::PatchSlot,
+        Has<Joined>,
+        Has<PatchHidden>,
+        Option<&'static PatchSurface>,
+    ),
+>;
 
 pub struct PatchSurfacesPlugin;
 
@@ -145,46 +181,42 @@ fn sync_patch_meshes(
             }
             _ => {
                 commands.entity(e).despawn();
-                kernel.meshes.remove(&of.0);
+                kernel.triangles.remove(&of.0);
             }
         }
     }
-    kernel.meshes.retain(|p, _| patches.get(*p).is_ok());
-    kernel.grids.retain(|p, _| patches.get(*p).is_ok());
     for r in patches.iter().filter(|r| drawn(r)) {
         let (patch, surface, hidden) = (r.0, &r.1, r.4);
         let visible = streamline && !hidden && surface.stack().is_some();
         let fresh = !have.contains_key(&patch);
-        // the moved rows only, written into the meshes in place
-        let partial = !fresh && surface.is_changed() && {
-            let k = &mut *kernel;
-            match (
+        // the moved rows only, written into the mesh in place
+        let partial = !fresh
+            && surface.is_changed()
+            && kernel.is_drawn(patch)
+            && match (
                 surface.rows,
                 surface.stack(),
                 have.get(&patch).and_then(|(_, h)| meshes.get_mut(h)),
-                k.meshes.get_mut(&patch),
-                k.grids.get_mut(&patch),
             ) {
-                (Some(span), Some(s), Some(mut mesh), Some(m), Some(g)) => {
-                    write_rows(&mut mesh, m, g, s.finest_points(), &surface.normals, span)
+                (Some(span), Some(s), Some(mut mesh)) => {
+                    write_rows(&mut mesh, s.finest_points(), &surface.normals, span)
                 }
                 _ => false,
-            }
-        };
+            };
         if partial {
             kernel.rebuilt += 1;
             kernel.partial += 1;
-        } else if fresh || surface.is_changed() || !kernel.meshes.contains_key(&patch) {
-            let m = match surface.stack() {
-                Some(s) => mesh_of(
-                    s.finest_points(),
-                    &surface.normals,
-                    kernel.meshes.remove(&patch),
-                    kernel.grids.get(&patch).map(|g| (g.rows(), g.cols())),
-                ),
-                None => SurfaceMesh::default(),
+        } else if fresh || surface.is_changed() || !kernel.is_drawn(patch) {
+            let old = kernel.triangles.remove(&patch);
+            let (bevy_mesh, triangles) = match surface.stack() {
+                Some(s) => {
+                    let p = s.finest_points();
+                    let t = Triangles::of(p.rows(), p.cols(), old);
+                    let normals = normals_for(p, &surface.normals);
+                    (to_bevy_mesh(p.data(), &normals, &t.indices), t)
+                }
+                None => (to_bevy_mesh(&[], &[], &[]), Triangles::default()),
             };
-            let bevy_mesh = to_bevy_mesh(&m.positions, &m.normals, &m.indices);
             match have.get(&patch) {
                 Some((_, h)) => {
                     if let Some(mut mesh) = meshes.get_mut(h) {
@@ -208,12 +240,7 @@ fn sync_patch_meshes(
                     have.insert(patch, (e, Handle::default()));
                 }
             }
-            kernel.meshes.insert(patch, m);
-            if let Some(s) = surface.stack() {
-                kernel.grids.insert(patch, s.finest_points().clone());
-            } else {
-                kernel.grids.remove(&patch);
-            }
+            kernel.triangles.insert(patch, triangles);
             kernel.rebuilt += 1;
         }
         if let Ok((_, _, _, mut v)) = shown.get_mut(have[&patch].0) {
@@ -222,10 +249,7 @@ fn sync_patch_meshes(
     }
     // a patch no longer drawn from its stack leaves the picking
     let keep: Vec<Entity> = patches.iter().filter(|r| drawn(r)).map(|r| r.0).collect();
-    if kernel.meshes.keys().any(|p| !keep.contains(p)) {
-        kernel.meshes.retain(|p, _| keep.contains(p));
-        kernel.grids.retain(|p, _| keep.contains(p));
-    }
+    kernel.triangles.retain(|p, _| keep.contains(p));
 }
 
 #[cfg(test)]
@@ -237,6 +261,7 @@ mod tests {
     use bevy::mesh::VertexAttributeValues;
     use bevy_state::app::{AppExtStates, StatesPlugin};
     use std::path::Path;
+    use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 
     fn hood() -> crate::scene::Document {
         load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron")).unwrap()
@@ -328,7 +353,7 @@ mod tests {
             Visibility::Hidden,
             "the incremental mesh gives way to the cut"
         );
-        assert_eq!(app.world().resource::<PatchMeshes>().meshes.len(), 3);
+        assert_eq!(app.world().resource::<PatchMeshes>().triangles.len(), 3);
     }
 
     /// Negative control of the G2 choice: in an analysis map the hood's
@@ -361,12 +386,7 @@ mod tests {
         app.update();
         app.update();
         assert!(drawn(&mut app, wing).is_none());
-        assert!(
-            !app.world()
-                .resource::<PatchMeshes>()
-                .meshes
-                .contains_key(&wing)
-        );
+        assert!(!app.world().resource::<PatchMeshes>().is_drawn(wing));
     }
 
     /// Only a changed `PatchSurface` rewrites a mesh: an update with
@@ -402,10 +422,11 @@ mod tests {
     /// A drag of the first of two G1-chained cars off the seam column
     /// moves the second car's rows that start on the moved edge only: the
     /// mesh takes those rows in place (no new mesh), and the whole Bevy
-    /// mesh, kernel mesh and grid then equal the stack's finest points and
-    /// their whole mesh normals (`SurfaceMesh::from_points`, computed
-    /// independently here), bit for bit. Controls: the rows written are a
-    /// strict part of the grid, and the mesh did move.
+    /// mesh then equals the stack's finest points and their whole mesh
+    /// normals (`SurfaceMesh::from_points`, computed independently here),
+    /// the picking mesh being those points and the whole mesh's triangles.
+    /// Controls: the rows written are a strict part of the grid, and the
+    /// mesh did move.
     #[test]
     fn a_rejoin_writes_only_the_moved_rows_into_the_mesh() {
         let doc = crate::cli::bench::patches::chained_cars(2, 3);
@@ -435,16 +456,17 @@ mod tests {
         let meters = app.world().resource::<PatchMeshes>();
         assert!(meters.partial > partial, "written in place");
         let whole = SurfaceMesh::from_points(&points);
+        let (g, t) = meters
+            .mesh(car, &surface)
+            .expect("car1 picked from its stack");
+        assert_eq!(g.data(), points.data());
+        assert_eq!(t, whole.indices.as_slice());
         let bits = |v: &[DVec3]| {
             v.iter()
                 .map(|p| p.to_array().map(f64::to_bits))
                 .collect::<Vec<_>>()
         };
-        let m = &meters.meshes[&car];
-        assert_eq!(bits(&m.positions), bits(&whole.positions));
-        assert_eq!(bits(&m.normals), bits(&whole.normals));
-        assert_eq!(m.indices, whole.indices);
-        assert_eq!(bits(meters.grids[&car].data()), bits(points.data()));
+        assert_eq!(bits(&surface.normals), bits(&whole.normals));
         let (pos, _) = drawn(&mut app, car).unwrap();
         assert_eq!(pos, stack_points(&app, car));
         assert_ne!(pos, old, "the edit moved the mesh");

@@ -104,8 +104,8 @@ pub fn normals_window(
     );
 }
 
-/// Triangle indices of a `rows × cols` point grid.
-pub(crate) fn write_indices(rows: usize, cols: usize, out: &mut Vec<u32>) {
+/// Triangle indices of a `rows × cols` point grid (appended to `out`).
+pub fn write_indices(rows: usize, cols: usize, out: &mut Vec<u32>) {
     out.reserve(rows.saturating_sub(1) * cols.saturating_sub(1) * 6);
     for r in 0..rows.saturating_sub(1) {
         for c in 0..cols.saturating_sub(1) {
