@@ -139,6 +139,7 @@ impl Plugin for NewDesignPlugin {
 }
 
 fn dialog(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     mut contexts: EguiContexts,
     mut form: ResMut<NewDesignForm>,
     model: Res<Model>,
@@ -146,6 +147,7 @@ fn dialog(
     mut edits: MessageWriter<EditMessage>,
     mut exit: MessageWriter<AppExit>,
 ) -> Result {
+    let _meter = meter.start();
     if !form.open {
         return Ok(());
     }

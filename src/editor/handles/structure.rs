@@ -187,12 +187,14 @@ const CLICK_SLOP: f32 = 4.0;
 /// arrow opens the menu; anywhere else, or a right drag (the camera's orbit),
 /// does not.
 fn right_click(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     buttons: Res<ButtonInput<MouseButton>>,
     window: Single<&Window, With<PrimaryWindow>>,
     layout: Res<HandleLayout>,
     mut selection: ResMut<Selection>,
     mut menu: ResMut<ArrowMenu>,
 ) {
+    let _meter = meter.start();
     let Some(cursor) = window.cursor_position() else {
         return;
     };
@@ -217,12 +219,14 @@ fn right_click(
 
 /// The structure keys on the selected control arrow.
 fn keys(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     keys: Res<ButtonInput<KeyCode>>,
     patch: PatchRef,
     layout: Res<HandleLayout>,
     mut selection: ResMut<Selection>,
     mut edits: MessageWriter<EditMessage>,
 ) {
+    let _meter = meter.start();
     if layout.active_joined {
         return;
     }
@@ -264,6 +268,7 @@ fn keys(
 /// Draws the right-click menu; a click on an entry sends its edit, a click
 /// elsewhere or Esc closes it.
 fn menu(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     mut contexts: EguiContexts,
     patch: PatchRef,
     handles: Res<HandleLayout>,
@@ -271,6 +276,7 @@ fn menu(
     mut selection: ResMut<Selection>,
     mut edits: MessageWriter<EditMessage>,
 ) -> Result {
+    let _meter = meter.start();
     let Some((cell, at)) = menu.open else {
         return Ok(());
     };

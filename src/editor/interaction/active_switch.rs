@@ -10,11 +10,13 @@ use bevy::prelude::*;
 /// Clears the selection and ends a drag when the placed active patch
 /// changed (not at the first placement).
 pub(super) fn follow_active(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     layout: Res<HandleLayout>,
     mut selection: ResMut<Selection>,
     mut drag: ResMut<Drag>,
     mut shown: Local<Option<Entity>>,
 ) {
+    let _meter = meter.start();
     if !layout.is_changed() || !layout.placed || *shown == layout.active {
         return;
     }

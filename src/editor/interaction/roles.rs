@@ -23,14 +23,15 @@ pub fn role_of(parent: Entity, active: Option<Entity>, hidden: bool) -> PatchRol
 /// the roles that differ are written.
 #[allow(clippy::type_complexity)]
 pub(super) fn mark_roles(
+    (meter, layout): (Res<crate::ecs::meter::CpuMeter>, Res<HandleLayout>),
     mut commands: Commands,
-    layout: Res<HandleLayout>,
     hidden: Query<(), With<PatchHidden>>,
     hid: Query<(), Changed<PatchHidden>>,
     mut shown: RemovedComponents<PatchHidden>,
     fresh: Query<(), Added<Placed>>,
     mut handles: Query<(Entity, &ChildOf, Option<&mut PatchRole>), With<Placed>>,
 ) {
+    let _meter = meter.start();
     let unhidden = shown.read().count() > 0;
     if !layout.is_changed() && !unhidden && hid.is_empty() && fresh.is_empty() {
         return;

@@ -70,6 +70,7 @@ pub fn screen_distance(cursor: Vec2, line: &[Option<Vec2>]) -> f32 {
 
 #[allow(clippy::too_many_arguments)]
 fn right_click(
+    meter: Res<crate::ecs::meter::CpuMeter>,
     buttons: Res<ButtonInput<MouseButton>>,
     window: Single<&Window, With<PrimaryWindow>>,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
@@ -79,6 +80,7 @@ fn right_click(
     mut press: Local<Option<Vec2>>,
     mut request: ResMut<NewPatchRequest>,
 ) {
+    let _meter = meter.start();
     let Some(cursor) = window.cursor_position().filter(|p| !sphere.contains(*p)) else {
         return;
     };
