@@ -189,10 +189,11 @@ fn sync_patch_meshes(
         let (patch, surface, hidden) = (r.0, &r.1, r.4);
         let visible = streamline && !hidden && surface.stack().is_some();
         let fresh = !have.contains_key(&patch);
-        // the moved rows only, written into the mesh in place
+        // the moved rows only, written into the mesh in place (its
+        // triangles are for the grid's shape: the shape was kept)
         let partial = !fresh
             && surface.is_changed()
-            && kernel.is_drawn(patch)
+            && kernel.mesh(patch, surface).is_some()
             && match (
                 surface.rows,
                 surface.stack(),
