@@ -103,14 +103,9 @@ fn right_click(
         if hidden {
             continue;
         }
-        let grid = if kernel.is_drawn(e) {
-            surface.and_then(|s| kernel.mesh(e, s)).map(|(g, _)| g)
-        } else if !joined {
-            Some(&data.points)
-        } else {
-            None
+        let Some((grid, _)) = kernel.shown(e, joined, surface, &data) else {
+            continue;
         };
-        let Some(grid) = grid else { continue };
         for (edge, line) in edges(grid) {
             let on_screen: Vec<Option<Vec2>> = line.iter().map(|&p| project(p)).collect();
             let d = screen_distance(at, &on_screen);

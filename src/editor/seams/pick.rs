@@ -108,15 +108,8 @@ fn pick(
         if hidden {
             continue;
         }
-        let hit = if kernel.is_drawn(e) {
-            (surface.and_then(|s| kernel.mesh(e, s)))
-                .and_then(|(points, triangles)| ray_mesh(origin, dir, points.data(), triangles))
-        } else if !joined {
-            // the first patch, drawn from its incremental surface
-            ray_mesh(origin, dir, data.points.data(), &data.indices)
-        } else {
-            None
-        };
+        let hit = (kernel.shown(e, joined, surface, &data))
+            .and_then(|(points, triangles)| ray_mesh(origin, dir, points.data(), triangles));
         if let Some(t) = hit
             && best.is_none_or(|(b, _)| t < b)
         {

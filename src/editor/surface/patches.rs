@@ -27,6 +27,7 @@ use super::super::interaction::{EditorMode, EditorSet};
 use super::analysis::{AnalysisSettings, SurfaceMode};
 use super::patch_mesh::{Triangles, normals_for, write_rows};
 use super::shaded::{ShadedMaterial, SurfaceEntity, set_visible, to_bevy_mesh};
+use crate::ecs::SurfaceData;
 use crate::ecs::joined::{Joined, PatchHidden, PatchStart, PatchSurface};
 use bevy::prelude::*;
 use bevy_state::prelude::State;
@@ -75,6 +76,24 @@ impl PatchMeshes {
         let t = self.triangles.get(&p)?;
         let g = surface.stack()?.finest_points();
         (t.shape == (g.rows(), g.cols())).then_some((g, t.indices.as_slice()))
+    }
+
+    /// The mesh patch `p` is shown with, for picking and the boundary: its
+    /// stack's ([`Self::mesh`]) when it is drawn from its stack, else, for
+    /// the first patch (not `joined`), its incremental surface `data`'s;
+    /// `None` for a joined patch not built.
+    pub fn shown<'a>(
+        &'a self,
+        p: Entity,
+        joined: bool,
+        surface: Option<&'a PatchSurface>,
+        data: &'a SurfaceData,
+    ) -> Option<(&'a Grid<DVec3>, &'a [u32])> {
+        if self.is_drawn(p) {
+            surface.and_then(|s| self.mesh(p, s))
+        } else {
+            (!joined).then_some((&data.points, data.indices.as_slice()))
+        }
     }
 }
 
