@@ -11,7 +11,7 @@ use std::time::Instant;
 use streamline_kernel::finetune::{Constraint, SurfaceTuning, fine_tune_into};
 use streamline_kernel::levels::incremental::surface_rows;
 use streamline_kernel::streamline::integrate::{place_slice, place_slice_from};
-use streamline_kernel::streamline::surface_mesh::bounds;
+use streamline_kernel::streamline::surface_mesh::slice_bounds;
 use streamline_kernel::{DVec3, Grid};
 
 /// Gives every streamline its function of the scene's fine tuning; only rows
@@ -134,7 +134,7 @@ pub(crate) fn integrate(
             }
         };
         // the row's box, while its points are in the cache
-        surface.row_bounds[line.row] = bounds(surface.points.row(line.row).iter().copied());
+        surface.row_bounds[line.row] = slice_bounds(surface.points.row(line.row));
         // integrated: nothing pending (not an edit of the row, so not marked)
         t.bypass_change_detection().changed_from = usize::MAX;
         n += 1;

@@ -152,3 +152,50 @@ fn kobbelt_surface_of_arcs_stays_circular() {
         }
     }
 }
+
+/// A coordinate: ordinary, huge, tiny, signed zeros, infinities or NaN.
+fn coordinate() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        6 => -1e3f64..1e3,
+        1 => prop::sample::select(vec![
+            0.0,
+            -0.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            1e300,
+            -1e300,
+            f64::MIN_POSITIVE,
+        ]),
+    ]
+}
+
+proptest! {
+    /// The integrate stage's one-pass row box: per coordinate, the fold of
+    /// `f64::min` and `f64::max` (a NaN coordinate passed over; the kernel
+    /// never makes one), and for points without NaN exactly [`bounds`], the
+    /// fold of glam's `min` and `max`; the lengths cover every remainder of
+    /// the two-point chunks, and the empty slice.
+    #[test]
+    fn slice_bounds_is_the_fold_of_min_and_max(
+        points in prop::collection::vec(
+            (coordinate(), coordinate(), coordinate()).prop_map(|(x, y, z)| DVec3::new(x, y, z)),
+            0..=23,
+        ),
+    ) {
+        use streamline_kernel::streamline::surface_mesh::{bounds, slice_bounds};
+        let got = slice_bounds(&points);
+        let mut want = [DVec3::INFINITY, DVec3::NEG_INFINITY];
+        for p in &points {
+            for k in 0..3 {
+                want[0][k] = want[0][k].min(p[k]);
+                want[1][k] = want[1][k].max(p[k]);
+            }
+        }
+        // equal (a zero bound may have either sign)
+        prop_assert!(got == want, "{points:?}: {got:?} vs {want:?}");
+        if points.iter().all(|p| !p.is_nan()) {
+            prop_assert!(got == bounds(points.iter().copied()), "{points:?}");
+        }
+    }
+}
