@@ -81,16 +81,26 @@ impl VertexMirror {
         let width = s.points.cols();
         for r in rows {
             let range = r * width + cols.start()..r * width + cols.end() + 1;
-            write_f32(
-                &mut self.positions[range.clone()],
+            self.stream_row(
+                range.start,
                 &s.points.data()[range.clone()],
+                &s.normals[range],
             );
-            write_f32(&mut self.normals[range.clone()], &s.normals[range]);
         }
+    }
+
+    /// Converts one row's run of `positions` and `normals`, which start at
+    /// point `at`, into the staging pair (the mesh stage's fused path: the
+    /// normals straight from its scratch rows).
+    pub(crate) fn stream_row(&mut self, at: usize, positions: &[DVec3], normals: &[DVec3]) {
+        let range = at..at + positions.len();
+        stream_f32(&mut self.positions[range.clone()], positions);
+        stream_f32(&mut self.normals[range], normals);
     }
 
     /// The staging pair is up to date; the reader's lacks `around` more.
     pub(crate) fn written(&mut self, around: DirtyWindow) {
+        streamed();
         self.staged = Stale::Nothing;
         self.shown = self.shown.and(Some(around));
     }
@@ -149,17 +159,94 @@ impl VertexMirror {
     }
 }
 
-/// `src` as `f32` into `dst`, the conversion of `DVec3::as_vec3` (each
-/// component `as f32`), over the flat components.
-pub fn write_f32(dst: &mut [[f32; 3]], src: &[DVec3]) {
+/// [`write_f32`]'s numbers, stored with streaming (non-temporal) stores
+/// where the target has them: the lines written are not read first. The
+/// staging pair was last touched by the renderer, a whole software-rendered
+/// frame (about 160 ms on llvmpipe) before, so every line of it is cold; a
+/// plain store fetches each line from memory before overwriting it (on the
+/// depth-6 drag, 3.4 MB a frame). Call [`streamed`] after the last one,
+/// before the buffers are handed to another thread.
+pub fn stream_f32(dst: &mut [[f32; 3]], src: &[DVec3]) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_mm_cvtpd_ps, _mm_loadu_pd, _mm_movelh_ps, _mm_stream_ps};
+        let (dst, src) = (dst.as_flattened_mut(), flat(src));
+        let n = dst.len().min(src.len());
+        // up to the first 16-byte boundary, plain stores
+        let head = (dst.as_ptr().align_offset(16)).min(n);
+        for i in 0..head {
+            dst[i] = src[i] as f32;
+        }
+        let mut i = head;
+        while i + 4 <= n {
+            // SAFETY: SSE2 is part of the x86-64 baseline; i + 4 ≤ n, the
+            // length of both slices; `dst + i` is 16-byte aligned (a multiple
+            // of 4 floats past `head`).
+            unsafe {
+                let a = _mm_cvtpd_ps(_mm_loadu_pd(src.as_ptr().add(i)));
+                let b = _mm_cvtpd_ps(_mm_loadu_pd(src.as_ptr().add(i + 2)));
+                _mm_stream_ps(dst.as_mut_ptr().add(i), _mm_movelh_ps(a, b));
+            }
+            i += 4;
+        }
+        for i in i..n {
+            dst[i] = src[i] as f32;
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    write_f32(dst, src);
+}
+
+/// `dst.copy_from_slice(src)` with streaming stores, as [`stream_f32`].
+pub fn stream_f64(dst: &mut [DVec3], src: &[DVec3]) {
+    assert_eq!(dst.len(), src.len());
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_mm_loadu_pd, _mm_stream_pd};
+        let src = flat(src);
+        // SAFETY: as in `flat`, for the mutable borrow of `dst`.
+        let dst: &mut [f64] = unsafe {
+            std::slice::from_raw_parts_mut(dst.as_mut_ptr().cast::<f64>(), dst.len() * 3)
+        };
+        let n = dst.len();
+        let head = (dst.as_ptr().align_offset(16)).min(n);
+        dst[..head].copy_from_slice(&src[..head]);
+        let mut i = head;
+        while i + 2 <= n {
+            // SAFETY: SSE2 is baseline; i + 2 ≤ n; `dst + i` is 16-byte aligned.
+            unsafe { _mm_stream_pd(dst.as_mut_ptr().add(i), _mm_loadu_pd(src.as_ptr().add(i))) };
+            i += 2;
+        }
+        dst[i..].copy_from_slice(&src[i..]);
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    dst.copy_from_slice(src);
+}
+
+/// Orders the streaming stores before whatever follows (another thread
+/// reading the buffers); nothing where there are none.
+pub fn streamed() {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: SSE is part of the x86-64 baseline.
+    unsafe {
+        std::arch::x86_64::_mm_sfence()
+    };
+}
+
+/// The `3n` coordinates of `n` points.
+fn flat(src: &[DVec3]) -> &[f64] {
     const _: () = assert!(size_of::<DVec3>() == 3 * size_of::<f64>());
-    let dst = dst.as_flattened_mut();
     // SAFETY: glam's `DVec3` is `#[repr(C)]` with three `f64` fields and no
     // padding (checked above), so `n` of them are `3n` consecutive `f64`s,
     // borrowed as long as `src` is.
-    let src: &[f64] =
-        unsafe { std::slice::from_raw_parts(src.as_ptr().cast::<f64>(), src.len() * 3) };
-    for (d, s) in dst.iter_mut().zip(src) {
+    unsafe { std::slice::from_raw_parts(src.as_ptr().cast::<f64>(), src.len() * 3) }
+}
+
+/// `src` as `f32` into `dst`, the conversion of `DVec3::as_vec3` (each
+/// component `as f32`), over the flat components.
+pub fn write_f32(dst: &mut [[f32; 3]], src: &[DVec3]) {
+    let dst = dst.as_flattened_mut();
+    for (d, s) in dst.iter_mut().zip(flat(src)) {
         *d = *s as f32;
     }
 }
@@ -181,6 +268,63 @@ mod tests {
                 o.map(f32::to_bits),
                 p.as_vec3().to_array().map(f32::to_bits)
             );
+        }
+    }
+
+    /// Points whose coordinates are ordinary, huge, tiny, signed zeros,
+    /// infinities and NaN.
+    fn nasty_points(n: usize) -> Vec<DVec3> {
+        let odd = [
+            -0.0,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            1e300,
+            -1e-320,
+            f64::from(f32::MAX) * 1.5,
+            0.1,
+        ];
+        (0..n)
+            .map(|i| {
+                let f = |k: usize| {
+                    if (i + k).is_multiple_of(5) {
+                        odd[(i * 3 + k) % odd.len()]
+                    } else {
+                        (i as f64 + 0.37 * k as f64).sin() * 10f64.powi((i % 7) as i32 - 3)
+                    }
+                };
+                DVec3::new(f(0), f(1), f(2))
+            })
+            .collect()
+    }
+
+    #[test]
+    fn streamed_stores_write_the_same_bits_at_every_alignment() {
+        for len in 0..24 {
+            let src = nasty_points(len);
+            // every start in a buffer: the 16-byte boundary falls anywhere
+            // in the run (an `[f32; 3]` is 12 bytes, a `DVec3` 24)
+            for start in 0..6 {
+                let mut want = vec![[7.0f32; 3]; start + len + 2];
+                let mut got = want.clone();
+                write_f32(&mut want[start..start + len], &src);
+                stream_f32(&mut got[start..start + len], &src);
+                streamed();
+                let bits = |v: &[[f32; 3]]| -> Vec<[u32; 3]> {
+                    v.iter().map(|p| p.map(f32::to_bits)).collect()
+                };
+                assert_eq!(bits(&got), bits(&want), "f32, {len} points at {start}");
+
+                let mut want = vec![DVec3::splat(7.0); start + len + 2];
+                let mut got = want.clone();
+                want[start..start + len].copy_from_slice(&src);
+                stream_f64(&mut got[start..start + len], &src);
+                streamed();
+                let bits = |v: &[DVec3]| -> Vec<[u64; 3]> {
+                    v.iter().map(|p| p.to_array().map(f64::to_bits)).collect()
+                };
+                assert_eq!(bits(&got), bits(&want), "f64, {len} points at {start}");
+            }
         }
     }
 
