@@ -126,14 +126,14 @@ pub fn normals_window(
     let region = &mut normals[lo * cols..(hi + 1) * cols];
     let n = hi - lo + 1;
     if n * (cols - c0) < PARALLEL_MIN_POINTS || n < 2 {
-        crate::simd::normals_rows(points, cols, lo, hi, c0, region);
+        normals_rows_into(points, cols, lo, hi, c0, region);
         return;
     }
     let (top, bottom) = region.split_at_mut((n / 2) * cols);
     let mid = lo + n / 2;
     crate::parallel::join(
-        || crate::simd::normals_rows(points, cols, lo, mid - 1, c0, top),
-        || crate::simd::normals_rows(points, cols, mid, hi, c0, bottom),
+        || normals_rows_into(points, cols, lo, mid - 1, c0, top),
+        || normals_rows_into(points, cols, mid, hi, c0, bottom),
     );
 }
 
