@@ -33,18 +33,21 @@ fn scratch(ext: &str) -> PathBuf {
     ))
 }
 
-fn export_row(doc: &Document, built: &BuiltDocument, ext: &str) -> Workload {
-    let (doc, built) = (doc.clone(), built.clone());
-    let path = scratch(ext);
-    Workload {
-        name: format!("export/hood-screen-wing/d{}/{ext}", doc.display_depth),
-        run: Box::new(move || {
+fn export_row(doc: &Document, ext: &'static str) -> Workload {
+    let doc = doc.clone();
+    let name = format!("export/hood-screen-wing/d{}/{ext}", doc.display_depth);
+    Workload::lazy(name, move || {
+        let built: BuiltDocument = doc
+            .build(doc.display_depth)
+            .expect("the shipped scene builds");
+        let path = scratch(ext);
+        Box::new(move || {
             let out = export_document(&doc, &built, &path, &DocumentExportSettings::default())
                 .expect("the shipped scene exports");
             let _ = std::fs::remove_file(&path);
             out.depth as f64 + out.faces.iter().map(|f| f.deviation.max).sum::<f64>()
-        }),
-    }
+        })
+    })
 }
 
 /// The rows (module docs).
@@ -53,23 +56,24 @@ pub fn document_export_rows() -> Vec<Workload> {
         return Vec::new();
     };
     let d = doc.display_depth;
-    let built = doc.build(d).expect("the shipped scene builds");
-    let finer = doc.build(d + 1).expect("the shipped scene builds");
     let fit = {
         let doc = doc.clone();
-        Workload {
-            name: format!("export/hood-screen-wing/d{d}/shell-fit"),
-            run: Box::new(move || {
-                let f = fit_document(&doc, &finer, d, &Default::default(), FaceFit::Shell)
-                    .expect("the shipped scene fits");
-                f.faces.iter().map(|f| f.deviation.max).sum::<f64>()
-            }),
-        }
+        Workload::lazy(
+            format!("export/hood-screen-wing/d{d}/shell-fit"),
+            move || {
+                let finer = doc.build(d + 1).expect("the shipped scene builds");
+                Box::new(move || {
+                    let f = fit_document(&doc, &finer, d, &Default::default(), FaceFit::Shell)
+                        .expect("the shipped scene fits");
+                    f.faces.iter().map(|f| f.deviation.max).sum::<f64>()
+                })
+            },
+        )
     };
     vec![
-        export_row(&doc, &built, "step"),
+        export_row(&doc, "step"),
         fit,
-        export_row(&doc, &built, "iges"),
-        export_row(&doc, &built, "glb"),
+        export_row(&doc, "iges"),
+        export_row(&doc, "glb"),
     ]
 }

@@ -77,24 +77,24 @@ pub fn rows() -> Vec<Workload> {
         ("car-g2x3", 3, Continuity::G2, 2),
     ];
     for (name, n, continuity, patch) in rows {
-        let doc = chained_cars_with(n, depth, continuity);
-        let mut app = ecs::headless_document_app(&doc, None, ModelConfig::default());
-        if patch > 0 {
-            let target = doc.patches[patch].name.clone();
-            ecs::apply(&mut app, Edit::Patch(PatchEdit::SetPatch(target)))
-                .expect("the patch exists");
-        }
-        let mut sign = 1.0;
         let which = if patch == 0 { "first" } else { "last" };
-        out.push(Workload {
-            name: format!("ecs/patches/{name}/d{depth}/edit-{which}"),
-            run: Box::new(move || {
+        let row = format!("ecs/patches/{name}/d{depth}/edit-{which}");
+        out.push(Workload::lazy(row, move || {
+            let doc = chained_cars_with(n, depth, continuity);
+            let mut app = ecs::headless_document_app(&doc, None, ModelConfig::default());
+            if patch > 0 {
+                let target = doc.patches[patch].name.clone();
+                ecs::apply(&mut app, Edit::Patch(PatchEdit::SetPatch(target)))
+                    .expect("the patch exists");
+            }
+            let mut sign = 1.0;
+            Box::new(move || {
                 let edit = super::workloads::wiggle(2, 4, &mut sign);
                 ecs::send(&mut app, edit);
                 app.update();
                 app.world().resource::<SurfaceData>().points.data()[0].x
-            }),
-        });
+            })
+        }));
     }
     out.extend(kernel_rows(depth));
     out
@@ -111,22 +111,24 @@ fn kernel_rows(depth: u32) -> Vec<Workload> {
         designs[0].set_tangent(2, 4, v).expect("a unit tangent");
     };
     let mut out = Vec::new();
-    let (mut state, mut stacks) = {
-        let refs: Vec<&Design> = designs.iter().collect();
-        G2State::build(&refs, depth).expect("the cars are a G2 run")
-    };
     let mut mine = designs.clone();
-    let mut sign = 1.0;
-    out.push(Workload {
-        name: format!("joins/car-g2x3/d{depth}/update"),
-        run: Box::new(move || {
-            sign = -sign;
-            turned(sign, &mut mine);
-            let refs: Vec<&Design> = mine.iter().collect();
-            let u = state.update(&refs, depth, &mut stacks).expect("updated");
-            u.reblended as f64 + stacks[2].finest_points().data()[0].x
-        }),
-    });
+    out.push(Workload::lazy(
+        format!("joins/car-g2x3/d{depth}/update"),
+        move || {
+            let (mut state, mut stacks) = {
+                let refs: Vec<&Design> = mine.iter().collect();
+                G2State::build(&refs, depth).expect("the cars are a G2 run")
+            };
+            let mut sign = 1.0;
+            Box::new(move || {
+                sign = -sign;
+                turned(sign, &mut mine);
+                let refs: Vec<&Design> = mine.iter().collect();
+                let u = state.update(&refs, depth, &mut stacks).expect("updated");
+                u.reblended as f64 + stacks[2].finest_points().data()[0].x
+            })
+        },
+    ));
     let mut mine = designs;
     let mut sign = 1.0;
     out.push(Workload {

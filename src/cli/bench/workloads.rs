@@ -27,6 +27,27 @@ pub struct Workload {
     pub run: Box<dyn FnMut() -> f64>,
 }
 
+/// The work of a row, made by its setup.
+pub type Work = Box<dyn FnMut() -> f64>;
+
+impl Workload {
+    /// A row whose setup (an app built, a mesh read and subdivided) runs on
+    /// its first call, so that `bench --filter` prepares only the rows it
+    /// times (every row's setup took about 1.2 s before). Callers run a row
+    /// once untimed first (`bench`'s warm-up, criterion's).
+    pub fn lazy(name: String, setup: impl FnOnce() -> Work + 'static) -> Workload {
+        let mut setup = Some(setup);
+        let mut work: Option<Work> = None;
+        Workload {
+            name,
+            run: Box::new(move || {
+                let w = work.get_or_insert_with(|| (setup.take().expect("set up once"))());
+                w()
+            }),
+        }
+    }
+}
+
 fn curve_row(scheme: CurveScheme, depth: u32) -> Workload {
     let input = table1_tangents();
     let (mut a, mut b) = (Vec::with_capacity(512), Vec::with_capacity(512));
@@ -157,23 +178,25 @@ pub fn car_drag(depth: u32) -> Vec<Workload> {
     use crate::ecs::{self, SurfaceData, vertex_mirror::VertexMirror};
     use crate::scene::Scene;
     use streamline_kernel::parallel;
-    let mut app = ecs::headless_app(Scene::from_design("car", presets::car1(), depth));
-    app.init_resource::<VertexMirror>();
-    app.update();
-    let mut sign = 1.0;
-    vec![Workload {
-        name: format!("ecs/car/d{depth}/drag"),
-        run: Box::new(move || {
-            let edit = wiggle(2, 4, &mut sign);
-            // one thread, as the editor runs on a machine of fewer than
-            // four cores (`editor::kernel_helper_wanted`)
-            parallel::set_enabled(false);
-            ecs::send(&mut app, edit);
+    vec![Workload::lazy(
+        format!("ecs/car/d{depth}/drag"),
+        move || {
+            let mut app = ecs::headless_app(Scene::from_design("car", presets::car1(), depth));
+            app.init_resource::<VertexMirror>();
             app.update();
-            parallel::set_enabled(true);
-            app.world().resource::<SurfaceData>().points.data()[0].x
-        }),
-    }]
+            let mut sign = 1.0;
+            Box::new(move || {
+                let edit = wiggle(2, 4, &mut sign);
+                // one thread, as the editor runs on a machine of fewer than
+                // four cores (`editor::kernel_helper_wanted`)
+                parallel::set_enabled(false);
+                ecs::send(&mut app, edit);
+                app.update();
+                parallel::set_enabled(true);
+                app.world().resource::<SurfaceData>().points.data()[0].x
+            })
+        },
+    )]
 }
 
 /// Authoring on the car at depth 5 (issue 20, `docs/math.md §9`), each
@@ -189,63 +212,69 @@ pub fn authoring() -> Vec<Workload> {
     use crate::scene::Scene;
     use streamline_kernel::authoring::Axis;
     let depth = 5;
-    let app_of = |mirror: bool| {
+    let app_of = move |mirror: bool| {
         let mut scene = Scene::from_design("car", presets::car1(), depth);
         scene.mirror = mirror;
         ecs::headless_app(scene)
     };
     let point = |app: &bevy::prelude::App| app.world().resource::<SurfaceData>().points.data()[0].x;
     let mut out = Vec::new();
-    let mut app = app_of(false);
-    let mut inserted = false;
-    out.push(Workload {
-        name: format!("ecs/car/d{depth}/insert-row"),
-        run: Box::new(move || {
-            let axis = Axis::Row;
-            inserted = !inserted;
-            let edit = if inserted {
-                AuthorEdit::insert(axis, 3)
-            } else {
-                AuthorEdit::delete(axis, 3)
-            };
-            ecs::send(&mut app, Edit::Author(edit));
-            app.update();
-            point(&app)
-        }),
-    });
-    let mut app = app_of(false);
-    let mut sign = 1.0;
-    out.push(Workload {
-        name: format!("ecs/car/d{depth}/initial-curve"),
-        run: Box::new(move || {
-            sign = -sign;
-            let edit = AuthorEdit::RotateInitial {
-                index: 1,
-                axis: DVec3::X,
-                radians: 0.01 * sign,
-            };
-            ecs::send(&mut app, Edit::Author(edit));
-            app.update();
-            point(&app)
-        }),
-    });
+    out.push(Workload::lazy(
+        format!("ecs/car/d{depth}/insert-row"),
+        move || {
+            let mut app = app_of(false);
+            let mut inserted = false;
+            Box::new(move || {
+                let axis = Axis::Row;
+                inserted = !inserted;
+                let edit = if inserted {
+                    AuthorEdit::insert(axis, 3)
+                } else {
+                    AuthorEdit::delete(axis, 3)
+                };
+                ecs::send(&mut app, Edit::Author(edit));
+                app.update();
+                point(&app)
+            })
+        },
+    ));
+    out.push(Workload::lazy(
+        format!("ecs/car/d{depth}/initial-curve"),
+        move || {
+            let mut app = app_of(false);
+            let mut sign = 1.0;
+            Box::new(move || {
+                sign = -sign;
+                let edit = AuthorEdit::RotateInitial {
+                    index: 1,
+                    axis: DVec3::X,
+                    radians: 0.01 * sign,
+                };
+                ecs::send(&mut app, Edit::Author(edit));
+                app.update();
+                point(&app)
+            })
+        },
+    ));
     let mirrored = presets::car1().mirrored().expect("the car mirrors");
     out.push(surface_row_named(
         mirrored,
         format!("surface/kobbelt/9x6-mirrored/d{depth}/full"),
         depth,
     ));
-    let mut app = app_of(true);
-    let mut sign = 1.0;
-    out.push(Workload {
-        name: format!("ecs/car-mirrored/d{depth}/edit-interior"),
-        run: Box::new(move || {
-            let edit = wiggle(2, 4, &mut sign);
-            ecs::send(&mut app, edit);
-            app.update();
-            point(&app)
-        }),
-    });
+    out.push(Workload::lazy(
+        format!("ecs/car-mirrored/d{depth}/edit-interior"),
+        move || {
+            let mut app = app_of(true);
+            let mut sign = 1.0;
+            Box::new(move || {
+                let edit = wiggle(2, 4, &mut sign);
+                ecs::send(&mut app, edit);
+                app.update();
+                point(&app)
+            })
+        },
+    ));
     out
 }
 
@@ -273,15 +302,14 @@ pub fn fit_rows() -> Vec<Workload> {
     ]
     .into_iter()
     .map(|(label, design, depth)| {
-        let data = Samples::build(&design, depth).expect("valid");
-        let check = Samples::build(&design, depth + 1).expect("valid");
-        Workload {
-            name: format!("fit/{label}/d{depth}"),
-            run: Box::new(move || {
+        Workload::lazy(format!("fit/{label}/d{depth}"), move || {
+            let data = Samples::build(&design, depth).expect("valid");
+            let check = Samples::build(&design, depth + 1).expect("valid");
+            Box::new(move || {
                 let f = fit(&data, &check, &FitOptions::DEFAULT).expect("fits");
                 f.report.deviation.max + f.report.poles.0 as f64
-            }),
-        }
+            })
+        })
     })
     .chain(export_fit_rows())
     .collect()
@@ -331,13 +359,20 @@ fn export_fit_rows() -> Vec<Workload> {
         .collect()
 }
 
-/// The test meshes, where the checkout keeps them (rows that need one are
-/// left out when it is missing, e.g. for an installed binary).
-fn test_mesh(name: &str) -> Option<streamline_kernel::loop_subdiv::trimesh::TriMesh> {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+/// Where the checkout keeps test mesh `name` (rows that need one are left
+/// out when it is missing, e.g. for an installed binary).
+fn test_mesh_path(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/data/meshes")
-        .join(format!("{name}.obj"));
-    crate::scene::obj::read(&path).ok().map(|(m, _)| m)
+        .join(format!("{name}.obj"))
+}
+
+/// Test mesh `name`, read when a row is set up (rows whose mesh the
+/// checkout lacks are left out, decided before).
+fn read_test_mesh(name: &str) -> streamline_kernel::loop_subdiv::trimesh::TriMesh {
+    crate::scene::obj::read(&test_mesh_path(name))
+        .expect("the checkout's test mesh reads")
+        .0
 }
 
 /// Loop subdivision (the topology from the face list, then 1–3 levels, each
@@ -355,44 +390,48 @@ pub fn loop_rows() -> Vec<Workload> {
     use streamline_kernel::loop_subdiv::trimesh::TriMesh;
     let mut out = Vec::new();
     for name in ["knight", "spot", "camelhead"] {
-        let Some(mesh) = test_mesh(name) else {
+        if !test_mesh_path(name).exists() {
             continue;
-        };
+        }
         for depth in 1..=3 {
-            let mesh = mesh.clone();
-            out.push(Workload {
-                name: format!("loop/subdivide/{name}/d{depth}"),
-                run: Box::new(move || {
-                    let t = mesh.topology().expect("valid test mesh");
-                    let m = subdivide_levels(&mesh, &t, BoundaryRule::Paper, depth)
-                        .expect("within the cap");
-                    m.positions[m.positions.len() / 2].x
-                }),
-            });
+            out.push(Workload::lazy(
+                format!("loop/subdivide/{name}/d{depth}"),
+                move || {
+                    let mesh = read_test_mesh(name);
+                    Box::new(move || {
+                        let t = mesh.topology().expect("valid test mesh");
+                        let m = subdivide_levels(&mesh, &t, BoundaryRule::Paper, depth)
+                            .expect("within the cap");
+                        m.positions[m.positions.len() / 2].x
+                    })
+                },
+            ));
         }
     }
     out.extend(loop_20k_rows());
-    if let Some(mut m) = test_mesh("fertility") {
-        for _ in 0..4 {
-            let t = m.topology().expect("valid test mesh");
-            m = subdivide(&m, &t, BoundaryRule::Paper).expect("within the cap");
-        }
-        rough_up(&mut m, 4.0);
+    if test_mesh_path("fertility").exists() {
         for method in [Method::Plain, Method::Fast] {
-            let m: TriMesh = m.clone();
-            out.push(Workload {
-                name: format!("pi/1m/{}", method.name()),
-                run: Box::new(move || {
-                    let t = m.topology().expect("valid mesh");
-                    let opts = Options {
-                        method,
-                        ..Options::DEFAULT
-                    };
-                    let (ctrl, rep) = interpolate(&m, &t, &opts);
-                    assert!(rep.converged, "{rep:?}");
-                    ctrl[0].x + rep.max_error
-                }),
-            });
+            out.push(Workload::lazy(
+                format!("pi/1m/{}", method.name()),
+                move || {
+                    let mut m: TriMesh = read_test_mesh("fertility");
+                    for _ in 0..4 {
+                        let t = m.topology().expect("valid test mesh");
+                        m = subdivide(&m, &t, BoundaryRule::Paper).expect("within the cap");
+                    }
+                    rough_up(&mut m, 4.0);
+                    Box::new(move || {
+                        let t = m.topology().expect("valid mesh");
+                        let opts = Options {
+                            method,
+                            ..Options::DEFAULT
+                        };
+                        let (ctrl, rep) = interpolate(&m, &t, &opts);
+                        assert!(rep.converged, "{rep:?}");
+                        ctrl[0].x + rep.max_error
+                    })
+                },
+            ));
         }
     }
     out
@@ -405,20 +444,21 @@ pub fn loop_rows() -> Vec<Workload> {
 pub fn loop_20k_rows() -> Vec<Workload> {
     use streamline_kernel::loop_subdiv::subdivide::{BoundaryRule, subdivide, subdivide_levels};
     let mut out = Vec::new();
-    if let Some(base) = test_mesh("fairing-cross") {
-        let t = base.topology().expect("valid test mesh");
-        let mesh = subdivide(&base, &t, BoundaryRule::EdgeAndCorner).expect("within the cap");
+    if test_mesh_path("fairing-cross").exists() {
         for rule in BoundaryRule::ALL {
             for depth in 1..=3 {
-                let mesh = mesh.clone();
-                out.push(Workload {
-                    name: format!("loop/20k/{}/d{depth}", rule.name()),
-                    run: Box::new(move || {
+                let name = format!("loop/20k/{}/d{depth}", rule.name());
+                out.push(Workload::lazy(name, move || {
+                    let base = read_test_mesh("fairing-cross");
+                    let t = base.topology().expect("valid test mesh");
+                    let mesh =
+                        subdivide(&base, &t, BoundaryRule::EdgeAndCorner).expect("within the cap");
+                    Box::new(move || {
                         let t = mesh.topology().expect("valid mesh");
                         let m = subdivide_levels(&mesh, &t, rule, depth).expect("within the cap");
                         m.positions[m.positions.len() / 2].x
-                    }),
-                });
+                    })
+                }));
             }
         }
     }
@@ -456,16 +496,15 @@ pub fn fine_tuning() -> Vec<Workload> {
     ]
     .into_iter()
     .map(|(what, constraint)| {
-        let mut scene = Scene::from_design("car", presets::car1(), 3);
-        scene.tuning = Some(SurfaceTuning {
-            constraint,
-            ..SurfaceTuning::identity()
-        });
-        let mut app = ecs::headless_app(scene);
-        let mut flip = false;
-        Workload {
-            name: format!("tune/car/d3/{what}"),
-            run: Box::new(move || {
+        Workload::lazy(format!("tune/car/d3/{what}"), move || {
+            let mut scene = Scene::from_design("car", presets::car1(), 3);
+            scene.tuning = Some(SurfaceTuning {
+                constraint,
+                ..SurfaceTuning::identity()
+            });
+            let mut app = ecs::headless_app(scene);
+            let mut flip = false;
+            Box::new(move || {
                 flip = !flip;
                 let value = if flip { 1.3 } else { 0.8 };
                 ecs::send(
@@ -478,8 +517,8 @@ pub fn fine_tuning() -> Vec<Workload> {
                 );
                 app.update();
                 app.world().resource::<SurfaceData>().points.data()[0].x
-            }),
-        }
+            })
+        })
     })
     .collect()
 }
@@ -514,36 +553,38 @@ pub fn incremental() -> Vec<Workload> {
                 ("full", None),
             ];
             for (what, cell) in cases {
-                let scene = Scene::from_design(net, design.clone(), depth);
-                let mut app = ecs::headless_app(scene);
-                let mut sign = 1.0;
-                let order = design.order();
-                out.push(Workload {
-                    name: format!("ecs/{net}/d{depth}/{what}"),
-                    run: Box::new(move || {
-                        let edit = match cell {
-                            Some((row, col)) => {
-                                sign = -sign;
-                                Edit::Rotate {
-                                    row,
-                                    col,
-                                    axis: DVec3::Y,
-                                    radians: 0.01 * sign,
+                let design = design.clone();
+                out.push(Workload::lazy(
+                    format!("ecs/{net}/d{depth}/{what}"),
+                    move || {
+                        let order = design.order();
+                        let mut app = ecs::headless_app(Scene::from_design(net, design, depth));
+                        let mut sign = 1.0;
+                        Box::new(move || {
+                            let edit = match cell {
+                                Some((row, col)) => {
+                                    sign = -sign;
+                                    Edit::Rotate {
+                                        row,
+                                        col,
+                                        axis: DVec3::Y,
+                                        radians: 0.01 * sign,
+                                    }
                                 }
+                                None => Edit::SetBlendOrder(order),
+                            };
+                            ecs::send(&mut app, edit);
+                            if cell.is_none() {
+                                // the order it has changes no component, so asks
+                                // for no build (issue 26): mark the patch's
+                                // structure changed, as a structural edit does
+                                force_full_build(&mut app);
                             }
-                            None => Edit::SetBlendOrder(order),
-                        };
-                        ecs::send(&mut app, edit);
-                        if cell.is_none() {
-                            // the order it has changes no component, so asks
-                            // for no build (issue 26): mark the patch's
-                            // structure changed, as a structural edit does
-                            force_full_build(&mut app);
-                        }
-                        app.update();
-                        app.world().resource::<SurfaceData>().points.data()[0].x
-                    }),
-                });
+                            app.update();
+                            app.world().resource::<SurfaceData>().points.data()[0].x
+                        })
+                    },
+                ));
             }
         }
     }
