@@ -17,6 +17,7 @@ use super::resources::SurfaceData;
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
 use streamline_kernel::levels::dirty_window::DirtyWindow;
+use streamline_kernel::streamline::surface_mesh::coordinates;
 
 /// Which points of a pair differ from [`SurfaceData`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -170,7 +171,7 @@ pub fn stream_f32(dst: &mut [[f32; 3]], src: &[DVec3]) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_mm_cvtpd_ps, _mm_loadu_pd, _mm_movelh_ps, _mm_stream_ps};
-        let (dst, src) = (dst.as_flattened_mut(), flat(src));
+        let (dst, src) = (dst.as_flattened_mut(), coordinates(src));
         let n = dst.len().min(src.len());
         // up to the first 16-byte boundary, plain stores
         let head = (dst.as_ptr().align_offset(16)).min(n);
@@ -203,11 +204,10 @@ pub fn stream_f64(dst: &mut [DVec3], src: &[DVec3]) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_mm_loadu_pd, _mm_stream_pd};
-        let src = flat(src);
-        // SAFETY: as in `flat`, for the mutable borrow of `dst`.
-        let dst: &mut [f64] = unsafe {
-            std::slice::from_raw_parts_mut(dst.as_mut_ptr().cast::<f64>(), dst.len() * 3)
-        };
+        let (dst, src) = (
+            streamline_kernel::streamline::surface_mesh::coordinates_mut(dst),
+            coordinates(src),
+        );
         let n = dst.len();
         let head = (dst.as_ptr().align_offset(16)).min(n);
         dst[..head].copy_from_slice(&src[..head]);
@@ -233,20 +233,11 @@ pub fn streamed() {
     };
 }
 
-/// The `3n` coordinates of `n` points.
-fn flat(src: &[DVec3]) -> &[f64] {
-    const _: () = assert!(size_of::<DVec3>() == 3 * size_of::<f64>());
-    // SAFETY: glam's `DVec3` is `#[repr(C)]` with three `f64` fields and no
-    // padding (checked above), so `n` of them are `3n` consecutive `f64`s,
-    // borrowed as long as `src` is.
-    unsafe { std::slice::from_raw_parts(src.as_ptr().cast::<f64>(), src.len() * 3) }
-}
-
 /// `src` as `f32` into `dst`, the conversion of `DVec3::as_vec3` (each
 /// component `as f32`), over the flat components.
 pub fn write_f32(dst: &mut [[f32; 3]], src: &[DVec3]) {
     let dst = dst.as_flattened_mut();
-    for (d, s) in dst.iter_mut().zip(flat(src)) {
+    for (d, s) in dst.iter_mut().zip(coordinates(src)) {
         *d = *s as f32;
     }
 }

@@ -62,6 +62,22 @@ pub fn bounds(points: impl IntoIterator<Item = DVec3>) -> [DVec3; 2] {
     )
 }
 
+const _: () = assert!(size_of::<DVec3>() == 3 * size_of::<f64>());
+
+/// The `3n` coordinates (x, y, z of each in turn) of `n` points, borrowed.
+pub fn coordinates(points: &[DVec3]) -> &[f64] {
+    // SAFETY: glam's `DVec3` is `#[repr(C)]` with three `f64` fields and no
+    // padding (checked above), so `n` of them are `3n` consecutive `f64`s,
+    // borrowed as long as `points` is.
+    unsafe { std::slice::from_raw_parts(points.as_ptr().cast::<f64>(), points.len() * 3) }
+}
+
+/// [`coordinates`], borrowed mutably.
+pub fn coordinates_mut(points: &mut [DVec3]) -> &mut [f64] {
+    // SAFETY: as in `coordinates`, for the mutable borrow of `points`.
+    unsafe { std::slice::from_raw_parts_mut(points.as_mut_ptr().cast::<f64>(), points.len() * 3) }
+}
+
 /// [`bounds`] of a slice, the same box, in one pass that compiles to vector
 /// compares: two points' six coordinates at a time (few enough to stay in
 /// registers on every x86-64), each kept when it is
@@ -69,12 +85,7 @@ pub fn bounds(points: impl IntoIterator<Item = DVec3>) -> [DVec3; 2] {
 /// `f64::min` passes it (the integrate stage's row boxes, 4 % of a depth-6
 /// drag's frame before).
 pub fn slice_bounds(points: &[DVec3]) -> [DVec3; 2] {
-    const _: () = assert!(size_of::<DVec3>() == 3 * size_of::<f64>());
-    // SAFETY: glam's `DVec3` is `#[repr(C)]` with three `f64` fields and no
-    // padding (checked above): `n` of them are `3n` consecutive `f64`s,
-    // borrowed as long as `points` is.
-    let flat: &[f64] =
-        unsafe { std::slice::from_raw_parts(points.as_ptr().cast::<f64>(), points.len() * 3) };
+    let flat = coordinates(points);
     let mut lo = [f64::INFINITY; 6];
     let mut hi = [f64::NEG_INFINITY; 6];
     let chunks = flat.chunks_exact(6);
