@@ -10,7 +10,7 @@ use bevy::prelude::*;
 use std::time::Instant;
 use streamline_kernel::finetune::{Constraint, SurfaceTuning, fine_tune_into};
 use streamline_kernel::levels::incremental::surface_rows;
-use streamline_kernel::streamline::integrate::{place_slice, place_slice_from};
+use streamline_kernel::streamline::integrate::{SliceJob, place_slice, place_slices_from};
 use streamline_kernel::streamline::surface_mesh::slice_bounds;
 use streamline_kernel::{DVec3, Grid};
 
@@ -111,6 +111,9 @@ pub(crate) fn integrate(
         surface.reshaped = true;
     }
     let mut n = 0;
+    // the rows only summed again from a point (every row of a drag's
+    // frame): all together below, four at a time
+    let mut summed = Vec::new();
     for (line, mut t, alpha, mut p) in &mut lines {
         if line.row >= rows {
             continue;
@@ -121,7 +124,8 @@ pub(crate) fn integrate(
             // only the tangents from `changed_from` on moved: the running
             // sum (Eq. 65) goes on from the point there
             None if !alpha.is_changed() && !reshaped => {
-                place_slice_from(tangents, s, t.sigma, t.origin, t.changed_from, out)
+                summed.push((line.row, t, p));
+                continue;
             }
             None => {
                 place_slice(tangents, s, t.sigma, t.origin, out);
@@ -138,6 +142,39 @@ pub(crate) fn integrate(
         // integrated: nothing pending (not an edit of the row, so not marked)
         t.bypass_change_detection().changed_from = usize::MAX;
         n += 1;
+    }
+    if !summed.is_empty() {
+        let SurfaceData {
+            points, row_bounds, ..
+        } = surface;
+        let mut outs: Vec<Option<&mut [DVec3]>> =
+            points.data_mut().chunks_mut(cols + 1).map(Some).collect();
+        // (one streamline per row: a row is not taken twice)
+        let (index, mut jobs): (Vec<usize>, Vec<SliceJob>) = summed
+            .iter()
+            .enumerate()
+            .filter_map(|(k, (row, t, _))| {
+                let (tangents, s) = level.row(*row);
+                let job = SliceJob {
+                    tangents,
+                    s,
+                    sigma: t.sigma,
+                    origin: t.origin,
+                    from: t.changed_from,
+                    out: outs[*row].take()?,
+                    moved_from: 0,
+                };
+                Some((k, job))
+            })
+            .unzip();
+        place_slices_from(&mut jobs);
+        for (job, k) in jobs.iter().zip(index) {
+            let (row, t, p) = &mut summed[k];
+            row_bounds[*row] = slice_bounds(job.out);
+            p.moved_from = job.moved_from;
+            t.bypass_change_detection().changed_from = usize::MAX;
+            n += 1;
+        }
     }
     if n > 0 {
         stats.last.streamlines_reintegrated += n;

@@ -1,9 +1,11 @@
 //! The mesh stage: the normals around the points that moved (the integrate
 //! stage wrote the points themselves into the surface's rows), announced to
-//! the surface's readers as a [`SurfaceChanged`] message.
+//! the surface's readers as a [`SurfaceChanged`] message. While the editor
+//! defers them ([`DeferNormals`]) a steady drag's `f64` normals are left
+//! behind and made when it ends.
 
 use super::components::*;
-use super::resources::{Stats, SurfaceChanged, SurfaceData};
+use super::resources::{DeferNormals, Stats, SurfaceChanged, SurfaceData};
 use super::vertex_mirror::{VertexMirror, stream_f64};
 use bevy::prelude::*;
 use std::time::Instant;
@@ -19,7 +21,9 @@ pub(crate) fn patch_mesh(
     mut surface: ResMut<SurfaceData>,
     mut stats: ResMut<Stats>,
     mut changes: MessageWriter<SurfaceChanged>,
-    mut mirror: Option<ResMut<VertexMirror>>,
+    // the renderer's staging pair, if one is wanted, and whether the
+    // surface's own normals may wait ([`DeferNormals`])
+    (mut mirror, defer): (Option<ResMut<VertexMirror>>, Res<DeferNormals>),
     mut scratch: Local<Vec<DVec3>>,
 ) {
     let _meter = meter.start();
@@ -36,12 +40,17 @@ pub(crate) fn patch_mesh(
         }
     }
     let Some(span) = span else {
+        // a frame with nothing to do makes what a drag left behind
+        if !defer.0 && s.normals_behind.is_some() {
+            catch_up(s);
+        }
         stats.collecting = false;
         return;
     };
     let window = if s.reshaped || s.normals.len() != rows * cols {
         normals_and_indices(&s.points, &mut s.normals, &mut s.indices);
         s.reshaped = false;
+        s.normals_behind = None;
         if let Some(m) = mirror.as_deref_mut() {
             m.write_all(s);
         }
@@ -59,15 +68,18 @@ pub(crate) fn patch_mesh(
             },
         };
         match mirror.as_deref_mut() {
-            None => normals_window(
-                s.points.data(),
-                cols,
-                around.rows.lo,
-                around.rows.hi,
-                around.cols.lo,
-                &mut s.normals,
-            ),
-            Some(m) => normals_and_mirror(s, around, m, &mut scratch),
+            None => {
+                catch_up(s);
+                normals_window(
+                    s.points.data(),
+                    cols,
+                    around.rows.lo,
+                    around.rows.hi,
+                    around.cols.lo,
+                    &mut s.normals,
+                )
+            }
+            Some(m) => normals_and_mirror(s, around, m, &mut scratch, defer.0),
         }
         Some(around)
     };
@@ -92,15 +104,31 @@ const MIRROR_CHUNK_POINTS: usize = 4096;
 /// with streaming stores ([`super::vertex_mirror::stream_f32`]): after a
 /// software-rendered frame none of those lines is in the cache, and a plain
 /// store would read each one from memory first (on the car at depth 6,
-/// 6.8 MB of the frame's reads).
+/// 6.8 MB of the frame's reads). There, when `defer` ([`DeferNormals`]),
+/// the surface's `f64` normals are left behind in `around`, provided what
+/// was left behind before lies in it (the normal just before the window,
+/// which a degenerate point takes, is then exact); not deferred, that path
+/// makes them all, those left behind included. Every other path first makes
+/// what was left behind.
 fn normals_and_mirror(
     s: &mut SurfaceData,
     around: DirtyWindow,
     m: &mut VertexMirror,
     scratch: &mut Vec<DVec3>,
+    defer: bool,
 ) {
     let cols = s.points.cols();
-    let Some(write) = m.to_write(around, s.points.data().len()) else {
+    let write = m.to_write(around, s.points.data().len());
+    // the streamed path rewrites all of `around`: what was left behind
+    // inside it is made there (the frame a drag ends with an edit costs no
+    // more than before), or left behind again when `defer`
+    let streamed =
+        write == Some(around) && s.normals_behind.is_none_or(|b| around.union(b) == around);
+    if !streamed {
+        catch_up(s);
+    }
+    let leave = defer && streamed;
+    let Some(write) = write else {
         normals_window(
             s.points.data(),
             cols,
@@ -114,7 +142,7 @@ fn normals_and_mirror(
     };
     let step = (MIRROR_CHUNK_POINTS / cols.max(1)).max(1);
     if write == around {
-        streamed_window(s, around, m, scratch, step);
+        streamed_window(s, around, m, scratch, step, leave);
         return;
     }
     let mut lo = write.rows.lo;
@@ -132,13 +160,15 @@ fn normals_and_mirror(
 
 /// [`normals_and_mirror`]'s fused path: `step` rows at a time, the normals
 /// of `around` into `scratch` (their row's normal before the window first,
-/// which a degenerate point there takes), then stored.
+/// which a degenerate point there takes), then stored: into the staging
+/// pair, and into the surface unless `leave` (then `around` is left behind).
 fn streamed_window(
     s: &mut SurfaceData,
     around: DirtyWindow,
     m: &mut VertexMirror,
     scratch: &mut Vec<DVec3>,
     step: usize,
+    leave: bool,
 ) {
     let cols = s.points.cols();
     let c0 = around.cols.lo;
@@ -157,12 +187,37 @@ fn streamed_window(
                 r * cols + c0,
                 &scratch[(r - lo) * cols + c0..(r - lo + 1) * cols],
             );
-            stream_f64(&mut s.normals[at..(r + 1) * cols], made);
+            if !leave {
+                stream_f64(&mut s.normals[at..(r + 1) * cols], made);
+            }
             m.stream_row(at, &s.points.data()[at..(r + 1) * cols], made);
         }
         lo = hi + 1;
     }
+    s.normals_behind = leave.then_some(around);
     m.written(around);
+}
+
+/// Makes the normals the mesh stage left behind ([`DeferNormals`]), the
+/// same numbers as if made then (a normal reads only the points around it,
+/// and a degenerate point the normal before it in its row, made first). A
+/// surface given a new shape since is made whole by the mesh stage.
+fn catch_up(s: &mut SurfaceData) {
+    let Some(w) = s.normals_behind.take() else {
+        return;
+    };
+    let cols = s.points.cols();
+    if s.reshaped || s.normals.len() != s.points.data().len() || w.rows.hi >= s.points.rows() {
+        return;
+    }
+    normals_window(
+        s.points.data(),
+        cols,
+        w.rows.lo,
+        w.rows.hi,
+        w.cols.lo,
+        &mut s.normals,
+    );
 }
 
 #[cfg(test)]
@@ -258,7 +313,7 @@ mod tests {
 
         let mut scratch = vec![DVec3::splat(f64::NAN); 7];
         assert_eq!(m.to_write(around, rows * cols), Some(around));
-        normals_and_mirror(&mut s, around, &mut m, &mut scratch);
+        normals_and_mirror(&mut s, around, &mut m, &mut scratch, false);
         assert_eq!(first_difference(&s.normals, &plain.normals, bits64), None);
 
         let (mut positions, mut normals) =
@@ -272,6 +327,172 @@ mod tests {
         );
         assert_eq!(
             first_difference(&normals, &f32s(&plain.normals), bits32),
+            None
+        );
+    }
+
+    /// The normals of every point of `points`, made whole (not windowed).
+    fn whole(points: &Grid<DVec3>) -> Vec<DVec3> {
+        let (mut normals, mut indices) = (Vec::new(), Vec::new());
+        normals_and_indices(points, &mut normals, &mut indices);
+        normals
+    }
+
+    /// Deferred ([`DeferNormals`]): two steady frames of a drag leave the
+    /// surface's `f64` normals behind in their window (control: they are the
+    /// old ones there), while the staging pair gets the exact ones as `f32`,
+    /// a degenerate point on the window's first column included; the copy
+    /// for export makes them; catching up gives the numbers of the whole
+    /// surface made afresh, bit for bit. A window that does not hold what
+    /// was left behind catches up first.
+    #[test]
+    fn normals_left_behind_in_a_drag_are_made_exactly_when_it_ends() {
+        let (rows, cols) = (40, 300);
+        let mut s = SurfaceData {
+            points: sheet(rows, cols, 0.0),
+            ..default()
+        };
+        normals_and_indices(&s.points, &mut s.normals, &mut s.indices);
+        let mut m = VertexMirror::default();
+        m.write_all(&s);
+        m.shown_rebuilt();
+        let around = DirtyWindow {
+            rows: Span { lo: 3, hi: 33 },
+            cols: Span {
+                lo: 120,
+                hi: cols - 1,
+            },
+        };
+        let f32s =
+            |v: &[DVec3]| -> Vec<[f32; 3]> { v.iter().map(|p| p.as_vec3().to_array()).collect() };
+        // the reader's pair: the surface as shown
+        let (mut positions, mut normals) = (f32s(s.points.data()), f32s(&s.normals));
+        let mut scratch = Vec::new();
+        let before = s.normals.clone();
+        for (frame, t) in [0.8, 1.3].into_iter().enumerate() {
+            // the points that moved: `around` less the ring whose normals
+            // read them (as the mesh stage widens the moved rows)
+            let new = sheet(rows, cols, t);
+            for r in around.rows.lo + 1..around.rows.hi {
+                for c in around.cols.lo + 1..cols {
+                    s.points.set(r, c, new.get(r, c));
+                }
+            }
+            let p = s.points.get(10, 119);
+            s.points.set(10, 121, p);
+            normals_and_mirror(&mut s, around, &mut m, &mut scratch, true);
+            assert_eq!(s.normals_behind, Some(around), "frame {frame}");
+            assert_eq!(
+                first_difference(&s.normals, &before, bits64),
+                None,
+                "frame {frame}: the f64 normals were left as they were"
+            );
+            let want = whole(&s.points);
+            assert_ne!(first_difference(&want, &before, bits64), None, "control");
+            assert_eq!(
+                first_difference(&s.mesh().normals, &want, bits64),
+                None,
+                "frame {frame}: the export's copy"
+            );
+            assert!(m.swap(&mut positions, &mut normals, rows * cols));
+            assert_eq!(
+                first_difference(&normals, &f32s(&want), bits32),
+                None,
+                "frame {frame}: the drawn normals"
+            );
+        }
+        catch_up(&mut s);
+        assert_eq!(s.normals_behind, None);
+        assert_eq!(
+            first_difference(&s.normals, &whole(&s.points), bits64),
+            None
+        );
+
+        // left behind, then the frame the drag ends with an edit of the same
+        // window: made there, with the edit's
+        normals_and_mirror(&mut s, around, &mut m, &mut scratch, true);
+        assert!(m.swap(&mut positions, &mut normals, rows * cols));
+        let new = sheet(rows, cols, 1.7);
+        for r in around.rows.lo + 1..around.rows.hi {
+            for c in around.cols.lo + 1..cols {
+                s.points.set(r, c, new.get(r, c));
+            }
+        }
+        normals_and_mirror(&mut s, around, &mut m, &mut scratch, false);
+        assert_eq!(s.normals_behind, None);
+        assert_eq!(
+            first_difference(&s.normals, &whole(&s.points), bits64),
+            None
+        );
+        assert!(m.swap(&mut positions, &mut normals, rows * cols));
+
+        // left behind again, then a window that does not hold what was left
+        // (it starts later): the mesh stage makes what it left first
+        normals_and_mirror(&mut s, around, &mut m, &mut scratch, true);
+        assert!(m.swap(&mut positions, &mut normals, rows * cols));
+        assert_eq!(s.normals_behind, Some(around));
+        let later = DirtyWindow {
+            rows: Span { lo: 5, hi: 15 },
+            cols: Span {
+                lo: 200,
+                hi: cols - 1,
+            },
+        };
+        let new = sheet(rows, cols, 2.1);
+        for r in later.rows.lo + 1..later.rows.hi {
+            for c in later.cols.lo + 1..cols {
+                s.points.set(r, c, new.get(r, c));
+            }
+        }
+        normals_and_mirror(&mut s, later, &mut m, &mut scratch, true);
+        assert_eq!(s.normals_behind, None);
+        let want = whole(&s.points);
+        assert_eq!(first_difference(&s.normals, &want, bits64), None);
+        assert!(m.swap(&mut positions, &mut normals, rows * cols));
+        assert_eq!(first_difference(&normals, &f32s(&want), bits32), None);
+    }
+
+    /// Through the pipeline: a drag on the car with [`DeferNormals`] on
+    /// leaves the normals behind; the first frame after it (deferral off,
+    /// no edit) makes them, equal bit for bit to the whole surface's normals
+    /// made afresh. Control: before that frame they differ.
+    #[test]
+    fn the_frame_after_a_deferred_drag_makes_the_normals() {
+        use crate::ecs::{self, Edit};
+        use crate::scene::Scene;
+        let mut app = ecs::headless_app(Scene::from_design(
+            "car",
+            streamline_kernel::levels::presets::car1(),
+            4,
+        ));
+        app.init_resource::<VertexMirror>();
+        app.insert_resource(DeferNormals(true));
+        app.update();
+        for radians in [0.05, -0.02, 0.04] {
+            ecs::send(
+                &mut app,
+                Edit::Rotate {
+                    row: 2,
+                    col: 4,
+                    axis: DVec3::Y,
+                    radians,
+                },
+            );
+            app.update();
+        }
+        let s = app.world().resource::<SurfaceData>();
+        assert!(s.normals_behind().is_some());
+        assert_ne!(
+            first_difference(&s.normals, &whole(&s.points), bits64),
+            None,
+            "control"
+        );
+        app.insert_resource(DeferNormals(false));
+        app.update();
+        let s = app.world().resource::<SurfaceData>();
+        assert_eq!(s.normals_behind(), None);
+        assert_eq!(
+            first_difference(&s.normals, &whole(&s.points), bits64),
             None
         );
     }

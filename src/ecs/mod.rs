@@ -82,6 +82,7 @@ impl Plugin for ModelPlugin {
             .init_resource::<meter::CpuMeter>()
             .init_resource::<EditLog>()
             .init_resource::<SurfaceData>()
+            .init_resource::<DeferNormals>()
             .init_resource::<warnings::BuildWarnings>()
             .init_resource::<exchange::ExportSettings>()
             .init_resource::<exchange::LastExport>()

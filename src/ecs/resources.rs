@@ -5,7 +5,7 @@ use bevy::prelude::*;
 use std::collections::VecDeque;
 use std::path::PathBuf;
 use streamline_kernel::levels::dirty_window::DirtyWindow;
-use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
+use streamline_kernel::streamline::surface_mesh::{SurfaceMesh, normals_window};
 use streamline_kernel::{DVec3, Grid};
 
 /// The document: the file it was loaded from or saved to, and whether it
@@ -178,7 +178,9 @@ pub struct EditLog {
 pub struct SurfaceData {
     /// Streamline points, one row per streamline: the mesh's vertices, row-major.
     pub points: Grid<DVec3>,
-    /// Unit vertex normals, one per point.
+    /// Unit vertex normals, one per point: every one exact, except in
+    /// [`SurfaceData::normals_behind`] while the editor defers them
+    /// ([`DeferNormals`]).
     pub normals: Vec<DVec3>,
     /// Triangles, three indices into the points each.
     pub indices: Vec<u32>,
@@ -187,7 +189,22 @@ pub struct SurfaceData {
     /// Set by the integrate stage when it gave the points a new shape (the
     /// mesh stage then makes the normals and triangles afresh).
     pub(crate) reshaped: bool,
+    /// The points whose `normals` the mesh stage left unwritten while
+    /// [`DeferNormals`] was on (the renderer's `f32` staging pair has them);
+    /// written as soon as it is off.
+    pub(crate) normals_behind: Option<DirtyWindow>,
 }
+
+/// Whether the mesh stage may leave the surface's `f64` normals
+/// ([`SurfaceData::normals`]) unwritten, in the window of a drag's steady
+/// frames, writing only the renderer's `f32` staging pair
+/// ([`super::vertex_mirror::VertexMirror`]) that it makes them for. The
+/// editor turns it on while a handle is dragged and nothing reads those
+/// normals (no zebra stripes, no joined patches); off (the default, and
+/// always headless), the mesh stage first writes whatever it left behind.
+/// On the car at depth 6 that is 4 MB of stores less in a drag's frame.
+#[derive(Resource, Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct DeferNormals(pub bool);
 
 impl Default for SurfaceData {
     fn default() -> Self {
@@ -197,18 +214,37 @@ impl Default for SurfaceData {
             indices: Vec::new(),
             row_bounds: Vec::new(),
             reshaped: false,
+            normals_behind: None,
         }
     }
 }
 
 impl SurfaceData {
-    /// The mesh as the kernel's type (a copy, for export).
+    /// The mesh as the kernel's type (a copy, for export), its normals all
+    /// exact (those left behind, [`DeferNormals`], made for the copy).
     pub fn mesh(&self) -> SurfaceMesh {
+        let mut normals = self.normals.clone();
+        if let Some(w) = self.normals_behind {
+            normals_window(
+                self.points.data(),
+                self.points.cols(),
+                w.rows.lo,
+                w.rows.hi,
+                w.cols.lo,
+                &mut normals,
+            );
+        }
         SurfaceMesh {
             positions: self.points.data().to_vec(),
-            normals: self.normals.clone(),
+            normals,
             indices: self.indices.clone(),
         }
+    }
+
+    /// The points whose [`Self::normals`] are not written yet (`None`: every
+    /// normal is exact); see [`DeferNormals`].
+    pub fn normals_behind(&self) -> Option<DirtyWindow> {
+        self.normals_behind
     }
 
     /// Number of triangles.

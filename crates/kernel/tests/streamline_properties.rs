@@ -199,3 +199,102 @@ proptest! {
         }
     }
 }
+
+/// One row for `place_slices_from`: tangents before and after an edit from
+/// `from` on, `s`, σ and the origin.
+#[derive(Debug, Clone)]
+struct EditedRow {
+    old: Vec<DVec3>,
+    new: Vec<DVec3>,
+    s: Vec<f64>,
+    sigma: f64,
+    origin: DVec3,
+    from: usize,
+}
+
+/// Rows of two lengths, edited from one of a few columns (so that rows
+/// share a start and a length, in fours and not), `s` at three scales, the
+/// anchor σ mostly near the start (only an anchor before the edit lets a
+/// row be summed on from a point) and now and then anywhere.
+fn edited_rows() -> impl Strategy<Value = Vec<EditedRow>> {
+    let row = (
+        prop::sample::select(vec![3usize, 17]),
+        prop::sample::select(vec![0usize, 1, 2, 5, 9, 30]),
+        prop::sample::select(vec![1e-6, 1.0, 1e6]),
+        prop_oneof![
+            3 => prop::sample::select(vec![-0.2, 0.0, 0.01, 0.04]),
+            1 => -0.2f64..1.2,
+        ],
+        unit(),
+        prop::collection::vec((unit(), unit()), 18),
+        intervals(17..=17),
+    )
+        .prop_map(|(n, from, scale, at, origin, tangents, s)| {
+            let s: Vec<f64> = s[..=n].iter().map(|x| x * scale).collect();
+            let old: Vec<DVec3> = tangents[..=n].iter().map(|t| t.0).collect();
+            let new: Vec<DVec3> = (0..=n)
+                .map(|i| if i >= from { tangents[i].1 } else { old[i] })
+                .collect();
+            let sigma = s[0] + at * (s[n] - s[0]);
+            EditedRow {
+                old,
+                new,
+                s,
+                sigma,
+                origin: origin * scale,
+                from,
+            }
+        });
+    prop::collection::vec(row, 1..=21)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    /// Rows placed together (`place_slices_from`, four at a time where they
+    /// share a start and a length) are each what `place_slice_from` makes
+    /// of the row alone, bit for bit, and say the same first moved point.
+    #[test]
+    fn rows_placed_together_are_each_row_placed_alone(rows in edited_rows()) {
+        use streamline_kernel::streamline::integrate::{
+            SliceJob, place_slice, place_slice_from, place_slices_from,
+        };
+        let before: Vec<Vec<DVec3>> = rows
+            .iter()
+            .map(|r| {
+                let mut out = vec![DVec3::ZERO; r.old.len() + 1];
+                place_slice(&r.old, &r.s, r.sigma, r.origin, &mut out);
+                out
+            })
+            .collect();
+        let mut alone = before.clone();
+        let moved: Vec<usize> = rows
+            .iter()
+            .zip(&mut alone)
+            .map(|(r, out)| place_slice_from(&r.new, &r.s, r.sigma, r.origin, r.from, out))
+            .collect();
+        let mut together = before.clone();
+        let mut jobs: Vec<SliceJob> = rows
+            .iter()
+            .zip(&mut together)
+            .map(|(r, out)| SliceJob {
+                tangents: &r.new,
+                s: &r.s,
+                sigma: r.sigma,
+                origin: r.origin,
+                from: r.from,
+                out,
+                moved_from: usize::MAX,
+            })
+            .collect();
+        place_slices_from(&mut jobs);
+        let got: Vec<usize> = jobs.iter().map(|j| j.moved_from).collect();
+        prop_assert_eq!(got, moved);
+        let bits = |v: &[DVec3]| -> Vec<[u64; 3]> {
+            v.iter().map(|p| p.to_array().map(f64::to_bits)).collect()
+        };
+        for (k, (a, b)) in together.iter().zip(&alone).enumerate() {
+            prop_assert_eq!(bits(a), bits(b), "row {}", k);
+        }
+    }
+}

@@ -173,30 +173,53 @@ pub(super) fn wiggle(row: usize, col: usize, sign: &mut f64) -> crate::ecs::Edit
 /// tangent (2, 4) turned back and forth, with the mesh stage's `f32` staging
 /// pair ([`crate::ecs::vertex_mirror::VertexMirror`]) that the editor's
 /// renderer swaps in (`ecs/car/d6/drag`; issue 26 item 7's frame, less the
-/// panels and the renderer).
+/// panels and the renderer); the same with the surface's `f64` normals left
+/// behind as the editor leaves them while a handle is dragged
+/// (`…/drag-deferred`, [`crate::ecs::DeferNormals`]); and the frame after
+/// the drag, which makes them (`…/release`: the window of a drag's frame).
 pub fn car_drag(depth: u32) -> Vec<Workload> {
-    use crate::ecs::{self, SurfaceData, vertex_mirror::VertexMirror};
+    use crate::ecs::{self, DeferNormals, SurfaceData, vertex_mirror::VertexMirror};
     use crate::scene::Scene;
     use streamline_kernel::parallel;
-    vec![Workload::lazy(
-        format!("ecs/car/d{depth}/drag"),
-        move || {
-            let mut app = ecs::headless_app(Scene::from_design("car", presets::car1(), depth));
-            app.init_resource::<VertexMirror>();
-            app.update();
+    let app = move |defer: bool| {
+        let mut app = ecs::headless_app(Scene::from_design("car", presets::car1(), depth));
+        app.init_resource::<VertexMirror>();
+        app.insert_resource(DeferNormals(defer));
+        app.update();
+        app
+    };
+    // one thread, as the editor runs on a machine of fewer than four cores
+    // (`editor::kernel_helper_wanted`)
+    let frame = |app: &mut bevy::app::App, edit: Option<ecs::Edit>| {
+        parallel::set_enabled(false);
+        if let Some(edit) = edit {
+            ecs::send(app, edit);
+        }
+        app.update();
+        parallel::set_enabled(true);
+        app.world().resource::<SurfaceData>().points.data()[0].x
+    };
+    let drag = move |name: &str, defer: bool| {
+        Workload::lazy(format!("ecs/car/d{depth}/{name}"), move || {
+            let mut app = app(defer);
             let mut sign = 1.0;
-            Box::new(move || {
-                let edit = wiggle(2, 4, &mut sign);
-                // one thread, as the editor runs on a machine of fewer than
-                // four cores (`editor::kernel_helper_wanted`)
-                parallel::set_enabled(false);
-                ecs::send(&mut app, edit);
-                app.update();
-                parallel::set_enabled(true);
-                app.world().resource::<SurfaceData>().points.data()[0].x
-            })
-        },
-    )]
+            Box::new(move || frame(&mut app, Some(wiggle(2, 4, &mut sign))))
+        })
+    };
+    let release = Workload::lazy(format!("ecs/car/d{depth}/release"), move || {
+        let mut app = app(true);
+        let mut sign = 1.0;
+        frame(&mut app, Some(wiggle(2, 4, &mut sign)));
+        frame(&mut app, Some(wiggle(2, 4, &mut sign)));
+        let behind = app.world().resource::<SurfaceData>().normals_behind();
+        assert!(behind.is_some(), "a drag's frame leaves its normals behind");
+        app.insert_resource(DeferNormals(false));
+        Box::new(move || {
+            app.world_mut().resource_mut::<SurfaceData>().normals_behind = behind;
+            frame(&mut app, None)
+        })
+    });
+    vec![drag("drag", false), drag("drag-deferred", true), release]
 }
 
 /// Authoring on the car at depth 5 (issue 20, `docs/math.md §9`), each

@@ -165,6 +165,7 @@ impl FirstPipeline<'_, '_> {
         if p.rows() != finest.tangents.rows()
             || p.cols() != finest.tangents.cols() + 1
             || self.surface.normals.len() != p.data().len()
+            || self.surface.normals_behind().is_some()
             || levels[0].0.tangents.data() != net.data()
         {
             self.pending.synced = None;

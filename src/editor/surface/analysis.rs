@@ -6,14 +6,14 @@
 //! stay crisp inside large triangles.
 
 use super::super::coords::to_view;
-use super::super::interaction::{EditorSet, MainCamera, OrbitCamera, SceneBounds};
+use super::super::interaction::{Drag, EditorSet, MainCamera, OrbitCamera, SceneBounds};
 use super::deviation::{BANDS, DeviationField, band_u};
 use super::shaded::{ShadedMaterial, SurfaceEntity};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::exchange::ExportSettings;
 use crate::ecs::joined::{PatchHidden, PatchSurface};
 use crate::ecs::patch::Joined;
-use crate::ecs::{SurfaceChanges, SurfaceData};
+use crate::ecs::{DeferNormals, ModelSet, SurfaceChanges, SurfaceData};
 use bevy::asset::RenderAssetUsages;
 use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
 use bevy::prelude::*;
@@ -134,7 +134,11 @@ impl Plugin for AnalysisPlugin {
             .init_resource::<CurvatureField>()
             .init_resource::<DeviationField>()
             .add_systems(Startup, setup)
-            .add_systems(Update, (apply_mode, draw_combs).in_set(EditorSet::Present));
+            .add_systems(Update, (apply_mode, draw_combs).in_set(EditorSet::Present))
+            .add_systems(
+                Update,
+                defer_normals.after(EditorSet::Drag).before(ModelSet::Edit),
+            );
     }
 }
 
@@ -216,6 +220,25 @@ fn setup(
         zebra: materials.add(material(images.add(stripes))),
         bands: materials.add(material(images.add(bands))),
     });
+}
+
+/// Lets the mesh stage leave the surface's `f64` normals behind
+/// ([`DeferNormals`]) while a handle is dragged and nothing shown reads
+/// them: the zebra stripes do, and so do the joined patches (their meshes
+/// and maps start from the first patch's). The drawn surface has its own
+/// `f32` normals all along; the `f64` ones are made in the frame the drag
+/// ends, or the frame the stripes are turned on.
+fn defer_normals(
+    meter: Res<crate::ecs::meter::CpuMeter>,
+    drag: Res<Drag>,
+    settings: Res<AnalysisSettings>,
+    joined: Query<(), With<Joined>>,
+    mut defer: ResMut<DeferNormals>,
+) {
+    let _meter = meter.start();
+    defer.set_if_neq(DeferNormals(
+        drag.0.is_some() && settings.mode != SurfaceMode::Zebra && joined.is_empty(),
+    ));
 }
 
 /// Sets the first patch's material and map coordinates for the mode
