@@ -8,9 +8,8 @@
 use super::components::{LevelData, LevelWindow, SubdivisionLevel};
 use super::patch::PatchRef;
 use bevy::prelude::*;
-use streamline_kernel::sphere::antipodal::{
-    AntipodalPair, antipodal_legs, antipodal_pairs, antipodal_pairs_from,
-};
+use streamline_kernel::levels::antipodal::{AntipodalPair, antipodal_pairs, antipodal_pairs_from};
+use streamline_kernel::sphere::antipodal::antipodal_legs;
 
 /// The most pairs named one by one; more are counted in one last line.
 pub const MAX_LISTED: usize = 8;

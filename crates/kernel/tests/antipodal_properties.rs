@@ -5,7 +5,8 @@ mod common;
 
 use common::authoring::design;
 use proptest::prelude::*;
-use streamline_kernel::sphere::antipodal::{AntipodalPair, antipodal_pairs, is_antipodal};
+use streamline_kernel::levels::antipodal::{AntipodalPair, antipodal_pairs};
+use streamline_kernel::sphere::antipodal::is_antipodal;
 use streamline_kernel::sphere::blend::blend;
 
 /// The pairs of every level of `d` up to `depth` but the finest (the ones a
@@ -87,7 +88,7 @@ proptest! {
     ) {
         use streamline_kernel::Grid;
         use streamline_kernel::DVec3;
-        use streamline_kernel::sphere::antipodal::antipodal_pairs_from;
+        use streamline_kernel::levels::antipodal::antipodal_pairs_from;
         let mut x = seed | 1;
         let mut next = || {
             x ^= x << 13;

@@ -17,6 +17,7 @@
 //! - `oracle` (unit tests only): the plain computations the fast paths are
 //!   tested against.
 
+pub mod antipodal;
 pub mod builder;
 pub mod design;
 pub mod dirty_window;

@@ -368,9 +368,33 @@ unsafe fn normals_rows<L: Lanes>(
     }
 }
 
+/// The vector part of [`super::dots_at_least`]: over the first entries of
+/// `a` and `b` (`n`, their common length, rounded down to `N`), whether a
+/// dot product `a[k] · b[k]` (glam's order) is below `th` (a NaN one is not);
+/// returns the entries done and that answer.
+#[inline(always)]
+unsafe fn dots_below<L: Lanes>(a: &[DVec3], b: &[DVec3], th: f64) -> (usize, bool) {
+    let n = a.len().min(b.len());
+    // SAFETY: the caller runs with L's target feature.
+    let t = unsafe { L::splat(th) };
+    let mut k = 0;
+    while k + L::N <= n {
+        // SAFETY: k + N ≤ n, the length of both slices.
+        let below = unsafe {
+            let d = L::load3(a.as_ptr().add(k)).dot(L::load3(b.as_ptr().add(k)));
+            L::bits(d.lt(t)) != 0
+        };
+        if below {
+            return (k, true);
+        }
+        k += L::N;
+    }
+    (k, false)
+}
+
 /// The entry points: each kernel compiled with AVX2 and with AVX-512F.
 macro_rules! entry_points {
-    ($feature:literal, $lanes:ty, $across:ident, $along:ident, $normals:ident) => {
+    ($feature:literal, $lanes:ty, $across:ident, $along:ident, $normals:ident, $dots:ident) => {
         /// # Safety
         /// The CPU must have the target feature; slices as in the generic kernel.
         #[target_feature(enable = $feature)]
@@ -413,14 +437,30 @@ macro_rules! entry_points {
             // SAFETY: the feature is enabled here; the caller checked the sizes.
             unsafe { normals_rows::<$lanes>(points, cols, lo, hi, c0, out, ring) }
         }
+
+        /// # Safety
+        /// The CPU must have the target feature.
+        #[target_feature(enable = $feature)]
+        pub(super) unsafe fn $dots(a: &[DVec3], b: &[DVec3], th: f64) -> (usize, bool) {
+            // SAFETY: the feature is enabled here; the kernel stays in bounds.
+            unsafe { dots_below::<$lanes>(a, b, th) }
+        }
     };
 }
 
-entry_points!("avx2", __m256d, across_avx2, along_avx2, normals_avx2);
+entry_points!(
+    "avx2",
+    __m256d,
+    across_avx2,
+    along_avx2,
+    normals_avx2,
+    dots_avx2
+);
 entry_points!(
     "avx512f",
     __m512d,
     across_avx512,
     along_avx512,
-    normals_avx512
+    normals_avx512,
+    dots_avx512
 );

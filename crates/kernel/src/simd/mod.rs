@@ -132,6 +132,35 @@ fn across_with(width: Width, rule: Rule4<'_>, [a, b, c, d]: [&[DVec3]; 4], out: 
     }
 }
 
+/// Whether `a[k] · b[k] ≥ th` for every `k` below both lengths, a NaN dot
+/// product passed over (as `f64::min` passes it over): the test that rules
+/// a row out of the antipodal scan (`crate::levels::antipodal`), on
+/// [`active`]'s path.
+pub(crate) fn dots_at_least(a: &[DVec3], b: &[DVec3], th: f64) -> bool {
+    dots_at_least_with(active(), a, b, th)
+}
+
+/// [`dots_at_least`] on the path `width` (at most [`cpu_width`]).
+fn dots_at_least_with(width: Width, a: &[DVec3], b: &[DVec3], th: f64) -> bool {
+    assert!(width <= cpu_width());
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    // SAFETY: the CPU has the feature of `width` (asserted); the kernels read
+    // entries below the slices' common length only.
+    #[cfg(target_arch = "x86_64")]
+    let (done, below) = unsafe {
+        match width {
+            Width::Avx512 => kernels::dots_avx512(a, b, th),
+            Width::Avx2 => kernels::dots_avx2(a, b, th),
+            Width::Scalar => (0, false),
+        }
+    };
+    #[cfg(not(target_arch = "x86_64"))]
+    let (done, below) = (0, false);
+    // NaN passes (it is not below), as it does past `f64::min`
+    !below && (done..n).all(|k| a[k].dot(b[k]).partial_cmp(&th) != Some(std::cmp::Ordering::Less))
+}
+
 /// `out[2i] = t[i]` and `out[2i + 1] = rule.interior(t[i−1], t[i], t[i+1],
 /// t[i+2])` for `i` in `lo ..= hi` (the row pass of the 4-point scheme: the
 /// copies and inserts along one row). Needs `1 ≤ lo`, `hi + 2 < t.len()` and
@@ -298,6 +327,59 @@ mod tests {
                 DVec3::new(a.cos(), a.sin(), (0.7 * a + seed).sin() * 0.5).normalize()
             })
             .collect()
+    }
+
+    /// The antipodal scan's row test on every path equals the fold of
+    /// `f64::min` over the dot products (NaN passed over, `+∞` when empty)
+    /// compared with the threshold: pairs 120° and 90° apart, antipodal,
+    /// NaN, infinite and zero vectors, at every position of a run of up to
+    /// 41 (both tails of the vector part).
+    #[test]
+    fn the_scan_test_is_the_fold_of_min_on_every_path() {
+        let odd = [
+            DVec3::new(-0.5, 3f64.sqrt() / 2.0, 0.0), // 120° from x: dot −0.5
+            DVec3::Y,
+            -DVec3::X,
+            DVec3::new(f64::NAN, 0.0, 0.0),
+            DVec3::new(f64::INFINITY, 0.0, 0.0),
+            DVec3::new(f64::NEG_INFINITY, 1.0, 0.0),
+            DVec3::ZERO,
+            DVec3::new(-0.5000001, 0.8660254, 0.0),
+        ];
+        for n in [0, 1, 3, 4, 7, 8, 9, 15, 16, 17, 41] {
+            let a: Vec<DVec3> = (0..n)
+                .map(|i| DVec3::new(1.0, 0.0, 1e-3 * i as f64).normalize())
+                .collect();
+            for at in 0..n.max(1) {
+                for (k, v) in odd.iter().enumerate() {
+                    let mut b = a.clone();
+                    if n > 0 {
+                        b[at] = *v;
+                    }
+                    // a second odd entry further on, now and then
+                    if n > 2 && k % 3 == 0 {
+                        b[(at + n / 2) % n] = odd[(k + 3) % odd.len()];
+                    }
+                    for th in [-0.5, 0.0, -1.0, 1.0] {
+                        let min = (a.iter().zip(&b))
+                            .map(|(x, y)| x.dot(*y))
+                            .fold(f64::INFINITY, f64::min);
+                        let want = min >= th;
+                        for width in widths() {
+                            assert_eq!(
+                                dots_at_least_with(width, &a, &b, th),
+                                want,
+                                "{width:?}: n {n}, entry {at} = {v:?}, threshold {th}"
+                            );
+                            // a longer second slice: the common length counts
+                            let mut longer = b.clone();
+                            longer.push(-DVec3::X);
+                            assert_eq!(dots_at_least_with(width, &a, &longer, th), want);
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]
