@@ -70,14 +70,7 @@ pub(crate) fn patch_mesh(
         match mirror.as_deref_mut() {
             None => {
                 catch_up(s);
-                normals_window(
-                    s.points.data(),
-                    cols,
-                    around.rows.lo,
-                    around.rows.hi,
-                    around.cols.lo,
-                    &mut s.normals,
-                )
+                normals_in(s, around)
             }
             Some(m) => normals_and_mirror(s, around, m, &mut scratch, defer.0),
         }
@@ -129,14 +122,7 @@ fn normals_and_mirror(
     }
     let leave = defer && streamed;
     let Some(write) = write else {
-        normals_window(
-            s.points.data(),
-            cols,
-            around.rows.lo,
-            around.rows.hi,
-            around.cols.lo,
-            &mut s.normals,
-        );
+        normals_in(s, around);
         m.write_all(s);
         return;
     };
@@ -206,10 +192,15 @@ fn catch_up(s: &mut SurfaceData) {
     let Some(w) = s.normals_behind.take() else {
         return;
     };
-    let cols = s.points.cols();
     if s.reshaped || s.normals.len() != s.points.data().len() || w.rows.hi >= s.points.rows() {
         return;
     }
+    normals_in(s, w);
+}
+
+/// The surface's normals of the points in `w` (to the end of their rows).
+fn normals_in(s: &mut SurfaceData, w: DirtyWindow) {
+    let cols = s.points.cols();
     normals_window(
         s.points.data(),
         cols,
@@ -257,6 +248,46 @@ mod tests {
         p.map(f32::to_bits)
     }
 
+    fn f32s(v: &[DVec3]) -> Vec<[f32; 3]> {
+        v.iter().map(|p| p.as_vec3().to_array()).collect()
+    }
+
+    /// Moves the points of `w` less its first and last row and first column
+    /// (whose normals read the moved points, as the mesh stage widens the
+    /// moved rows) to the sheet at `t`.
+    fn move_points(s: &mut SurfaceData, w: DirtyWindow, t: f64) {
+        let (rows, cols) = (s.points.rows(), s.points.cols());
+        let new = sheet(rows, cols, t);
+        for r in w.rows.lo + 1..w.rows.hi {
+            for c in w.cols.lo + 1..cols {
+                s.points.set(r, c, new.get(r, c));
+            }
+        }
+    }
+
+    /// A 40 × 300 sheet with its normals and triangles, as shown (the
+    /// staging pair up to date and nothing lacking), and the window of an
+    /// edit of rows 3 ..= 33 from column 120 on.
+    fn shown_sheet() -> (SurfaceData, VertexMirror, DirtyWindow) {
+        let (rows, cols) = (40, 300);
+        let mut s = SurfaceData {
+            points: sheet(rows, cols, 0.0),
+            ..default()
+        };
+        normals_and_indices(&s.points, &mut s.normals, &mut s.indices);
+        let mut m = VertexMirror::default();
+        m.write_all(&s);
+        m.shown_rebuilt();
+        let around = DirtyWindow {
+            rows: Span { lo: 3, hi: 33 },
+            cols: Span {
+                lo: 120,
+                hi: cols - 1,
+            },
+        };
+        (s, m, around)
+    }
+
     /// The fused path (the staging pair lacks exactly the window: every frame
     /// of a drag after its first) writes the normals of the plain path, bit
     /// for bit, into the surface and, as `f32`, into the staging pair; a
@@ -265,26 +296,11 @@ mod tests {
     /// from the old ones in the window, so the comparison can fail.
     #[test]
     fn the_streamed_window_is_the_plain_path_bit_for_bit() {
-        let (rows, cols) = (40, 300);
-        let old = sheet(rows, cols, 0.0);
-        let mut s = SurfaceData {
-            points: old.clone(),
-            ..default()
-        };
-        normals_and_indices(&s.points, &mut s.normals, &mut s.indices);
-        let mut m = VertexMirror::default();
-        m.write_all(&s);
-        m.shown_rebuilt();
+        let (mut s, mut m, around) = shown_sheet();
+        let (rows, cols) = (s.points.rows(), s.points.cols());
         // an edit moved rows 3 ..= 33 from column 120 on; on row 10 the
         // first column of the window is degenerate (its neighbours along
         // the row coincide)
-        let around = DirtyWindow {
-            rows: Span { lo: 3, hi: 33 },
-            cols: Span {
-                lo: 120,
-                hi: cols - 1,
-            },
-        };
         let new = sheet(rows, cols, 0.8);
         for r in around.rows.lo..=around.rows.hi {
             for c in around.cols.lo..cols {
@@ -319,8 +335,6 @@ mod tests {
         let (mut positions, mut normals) =
             (vec![[0.0; 3]; rows * cols], vec![[0.0; 3]; rows * cols]);
         assert!(m.swap(&mut positions, &mut normals, rows * cols));
-        let f32s =
-            |v: &[DVec3]| -> Vec<[f32; 3]> { v.iter().map(|p| p.as_vec3().to_array()).collect() };
         assert_eq!(
             first_difference(&positions, &f32s(plain.points.data()), bits32),
             None
@@ -347,37 +361,14 @@ mod tests {
     /// was left behind catches up first.
     #[test]
     fn normals_left_behind_in_a_drag_are_made_exactly_when_it_ends() {
-        let (rows, cols) = (40, 300);
-        let mut s = SurfaceData {
-            points: sheet(rows, cols, 0.0),
-            ..default()
-        };
-        normals_and_indices(&s.points, &mut s.normals, &mut s.indices);
-        let mut m = VertexMirror::default();
-        m.write_all(&s);
-        m.shown_rebuilt();
-        let around = DirtyWindow {
-            rows: Span { lo: 3, hi: 33 },
-            cols: Span {
-                lo: 120,
-                hi: cols - 1,
-            },
-        };
-        let f32s =
-            |v: &[DVec3]| -> Vec<[f32; 3]> { v.iter().map(|p| p.as_vec3().to_array()).collect() };
+        let (mut s, mut m, around) = shown_sheet();
+        let (rows, cols) = (s.points.rows(), s.points.cols());
         // the reader's pair: the surface as shown
         let (mut positions, mut normals) = (f32s(s.points.data()), f32s(&s.normals));
         let mut scratch = Vec::new();
         let before = s.normals.clone();
         for (frame, t) in [0.8, 1.3].into_iter().enumerate() {
-            // the points that moved: `around` less the ring whose normals
-            // read them (as the mesh stage widens the moved rows)
-            let new = sheet(rows, cols, t);
-            for r in around.rows.lo + 1..around.rows.hi {
-                for c in around.cols.lo + 1..cols {
-                    s.points.set(r, c, new.get(r, c));
-                }
-            }
+            move_points(&mut s, around, t);
             let p = s.points.get(10, 119);
             s.points.set(10, 121, p);
             normals_and_mirror(&mut s, around, &mut m, &mut scratch, true);
@@ -412,12 +403,7 @@ mod tests {
         // window: made there, with the edit's
         normals_and_mirror(&mut s, around, &mut m, &mut scratch, true);
         assert!(m.swap(&mut positions, &mut normals, rows * cols));
-        let new = sheet(rows, cols, 1.7);
-        for r in around.rows.lo + 1..around.rows.hi {
-            for c in around.cols.lo + 1..cols {
-                s.points.set(r, c, new.get(r, c));
-            }
-        }
+        move_points(&mut s, around, 1.7);
         normals_and_mirror(&mut s, around, &mut m, &mut scratch, false);
         assert_eq!(s.normals_behind, None);
         assert_eq!(
@@ -438,12 +424,7 @@ mod tests {
                 hi: cols - 1,
             },
         };
-        let new = sheet(rows, cols, 2.1);
-        for r in later.rows.lo + 1..later.rows.hi {
-            for c in later.cols.lo + 1..cols {
-                s.points.set(r, c, new.get(r, c));
-            }
-        }
+        move_points(&mut s, later, 2.1);
         normals_and_mirror(&mut s, later, &mut m, &mut scratch, true);
         assert_eq!(s.normals_behind, None);
         let want = whole(&s.points);
