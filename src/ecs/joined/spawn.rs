@@ -5,11 +5,12 @@
 //! [`PatchStart`] and a [`JoinedDesign`] that [`super::build`] builds from.
 
 use super::components::*;
-use crate::ecs::patch::{ArcParam, Direction, Patch, PatchIndex, PatchName, SurfaceHandle};
+use crate::ecs::patch::scene_io::spawn_net_handles;
+use crate::ecs::patch::{Patch, PatchIndex, PatchName};
 use crate::scene::document::Document;
 use bevy::prelude::*;
 use std::collections::BTreeMap;
-use streamline_kernel::{Design, Grid};
+use streamline_kernel::Design;
 
 /// Adds the patches of `doc` after its first to a world whose patch
 /// `first` is the document's first patch (spawned from
@@ -95,22 +96,7 @@ pub fn spawn_joined_with(
             SeamState::default(),
         ))
         .id();
-    let (net, s) = (design.net(), &design.params().s);
-    let mut surface = Grid::filled(net.rows(), net.cols(), Entity::PLACEHOLDER);
-    for row in 0..net.rows() {
-        for col in 0..net.cols() {
-            let h = commands
-                .spawn((
-                    SurfaceHandle { row, col },
-                    Direction(net.get(row, col)),
-                    ArcParam(s.get(row, col)),
-                    JoinedHandle,
-                    ChildOf(e),
-                ))
-                .id();
-            surface.set(row, col, h);
-        }
-    }
+    let surface = spawn_net_handles(commands, e, &design, JoinedHandle);
     commands.entity(e).insert((
         JoinedDesign(design),
         PatchIndex {

@@ -75,8 +75,15 @@ pub fn spawn_patch(world: &mut World, scene: &Scene) -> Entity {
     patch
 }
 
-fn spawn_net(commands: &mut Commands, patch: Entity, scene: &Scene) -> Grid<Entity> {
-    let (net, s) = (scene.design.net(), &scene.design.params().s);
+/// One entity per control tangent of `design`'s net, children of `patch`
+/// (its cell, direction and `s`), each with `marker` too; their grid.
+pub(crate) fn spawn_net_handles(
+    commands: &mut Commands,
+    patch: Entity,
+    design: &Design,
+    marker: impl Bundle + Clone,
+) -> Grid<Entity> {
+    let (net, s) = (design.net(), &design.params().s);
     let mut ids = Grid::filled(net.rows(), net.cols(), Entity::PLACEHOLDER);
     for row in 0..net.rows() {
         for col in 0..net.cols() {
@@ -85,6 +92,7 @@ fn spawn_net(commands: &mut Commands, patch: Entity, scene: &Scene) -> Grid<Enti
                     SurfaceHandle { row, col },
                     Direction(net.get(row, col)),
                     ArcParam(s.get(row, col)),
+                    marker.clone(),
                     ChildOf(patch),
                 ))
                 .id();
@@ -92,6 +100,10 @@ fn spawn_net(commands: &mut Commands, patch: Entity, scene: &Scene) -> Grid<Enti
         }
     }
     ids
+}
+
+fn spawn_net(commands: &mut Commands, patch: Entity, scene: &Scene) -> Grid<Entity> {
+    spawn_net_handles(commands, patch, &scene.design, ())
 }
 
 fn spawn_initial(commands: &mut Commands, patch: Entity, spec: &InitialSpec) -> Vec<Entity> {
