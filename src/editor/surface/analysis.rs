@@ -507,3 +507,55 @@ fn draw_combs(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::editor::interaction::{ActiveDrag, DragKind, HandleId};
+    use bevy::math::DQuat;
+
+    /// The mesh stage may leave the `f64` normals behind only while a handle
+    /// is dragged, the surface is not striped and no patch is joined.
+    #[test]
+    fn normals_wait_only_for_a_drag_that_nothing_reads_them_in() {
+        let mut app = App::new();
+        app.init_resource::<crate::ecs::meter::CpuMeter>()
+            .init_resource::<Drag>()
+            .init_resource::<AnalysisSettings>()
+            .init_resource::<DeferNormals>()
+            .add_systems(Update, defer_normals);
+        let deferred = |app: &mut App| {
+            app.update();
+            app.world().resource::<DeferNormals>().0
+        };
+        assert!(!deferred(&mut app), "no drag");
+        app.world_mut().resource_mut::<Drag>().0 = Some(ActiveDrag {
+            handle: HandleId::tangent(0, 2, 4),
+            group: 1,
+            start_dir: DVec3::X,
+            last: DVec3::X,
+            sent: true,
+            kind: DragKind::Sphere,
+            turned: DQuat::IDENTITY,
+        });
+        assert!(deferred(&mut app), "a drag, shaded");
+        for mode in [
+            SurfaceMode::Gaussian,
+            SurfaceMode::Mean,
+            SurfaceMode::Deviation,
+        ] {
+            app.world_mut().resource_mut::<AnalysisSettings>().mode = mode;
+            assert!(deferred(&mut app), "{mode:?} reads no normals");
+        }
+        app.world_mut().resource_mut::<AnalysisSettings>().mode = SurfaceMode::Zebra;
+        assert!(!deferred(&mut app), "the stripes read them");
+        app.world_mut().resource_mut::<AnalysisSettings>().mode = SurfaceMode::Shaded;
+        assert!(deferred(&mut app));
+        let joined = app.world_mut().spawn(Joined).id();
+        assert!(!deferred(&mut app), "a joined patch reads them");
+        app.world_mut().despawn(joined);
+        assert!(deferred(&mut app));
+        app.world_mut().resource_mut::<Drag>().0 = None;
+        assert!(!deferred(&mut app), "the drag is over");
+    }
+}
