@@ -1,7 +1,9 @@
 //! `bench`: a quick built-in benchmark for users who want their machine's figures.
 //! For careful numbers use `cargo bench` (criterion), which runs the same workloads.
 
+pub mod ecs_rows;
 pub mod export_rows;
+pub mod loop_rows;
 pub mod patches;
 pub mod workloads;
 

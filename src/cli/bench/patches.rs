@@ -89,7 +89,7 @@ pub fn rows() -> Vec<Workload> {
             }
             let mut sign = 1.0;
             Box::new(move || {
-                let edit = super::workloads::wiggle(2, 4, &mut sign);
+                let edit = super::ecs_rows::wiggle(2, 4, &mut sign);
                 ecs::send(&mut app, edit);
                 app.update();
                 app.world().resource::<SurfaceData>().points.data()[0].x
