@@ -13,7 +13,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::time::Duration;
-use streamline_studio::cli::bench::{export_rows, workloads};
+use streamline_studio::cli::bench::{ecs_rows, export_rows, loop_rows, workloads};
 
 fn table1(c: &mut Criterion) {
     let mut g = c.benchmark_group("table1");
@@ -45,9 +45,9 @@ fn incremental(c: &mut Criterion) {
     g.warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(3))
         .sample_size(10);
-    for mut w in workloads::incremental()
+    for mut w in ecs_rows::incremental()
         .into_iter()
-        .chain(workloads::fine_tuning())
+        .chain(ecs_rows::fine_tuning())
     {
         g.bench_function(&w.name, |b| b.iter(|| black_box((w.run)())));
     }
@@ -60,7 +60,7 @@ fn loop_subdivision(c: &mut Criterion) {
     g.warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(3))
         .sample_size(10);
-    for mut w in workloads::loop_20k_rows() {
+    for mut w in loop_rows::loop_20k_rows() {
         g.bench_function(&w.name, |b| b.iter(|| black_box((w.run)())));
     }
     g.finish();
@@ -97,7 +97,7 @@ fn authoring(c: &mut Criterion) {
     g.warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(3))
         .sample_size(10);
-    for mut w in workloads::authoring() {
+    for mut w in ecs_rows::authoring() {
         g.bench_function(&w.name, |b| b.iter(|| black_box((w.run)())));
     }
     g.finish();

@@ -5,11 +5,6 @@ use streamline_kernel::curve::qi::QiCurve;
 use streamline_kernel::curve::scheme::{CurveScheme, subdivide_into};
 use streamline_kernel::{Builder, DVec3, Design, levels::presets};
 
-// the rows of the ECS pipeline and of Loop subdivision live beside this file;
-// `cargo bench` (`benches/table1.rs`) reads them all from here
-pub use super::ecs_rows::{authoring, car_drag, fine_tuning, incremental};
-pub use super::loop_rows::{loop_20k_rows, loop_rows, rough_up};
-
 /// The five control tangents of the Table 1 rows (a wavy curve on the sphere).
 pub fn table1_tangents() -> Vec<DVec3> {
     [
@@ -143,20 +138,6 @@ pub fn car_builder(depth: u32) -> Vec<Workload> {
         }
     })
     .collect()
-}
-
-/// Every row `streamline-studio bench` reports.
-pub fn all() -> Vec<Workload> {
-    let mut rows = table1();
-    rows.extend(car_drag(6));
-    rows.extend(car_surface([3, 5]));
-    rows.extend(car_builder(5));
-    rows.extend(incremental());
-    rows.extend(fine_tuning());
-    rows.extend(loop_rows());
-    rows.extend(authoring());
-    rows.extend(fit_rows());
-    rows
 }
 
 /// A full build of `design` at `depth`, as the row `name`.
