@@ -35,6 +35,24 @@ fn cox(k: &[f64], i: usize, p: usize, u: f64) -> f64 {
     v
 }
 
+/// Whether each of the `n` degree-`p` basis functions of knots `k` can be
+/// given a parameter of its own, in order, where it is at least `delta`
+/// (Schoenberg–Whitney with a margin; `delta → 0` is the plain condition).
+/// Each function's parameters at or above `delta` are a run of `params`
+/// (sorted; the function rises, then falls), and the runs move right with
+/// the function, so taking the first one free from the left finds such a
+/// matching whenever there is one.
+fn observed(k: &[f64], p: usize, n: usize, params: &[f64], delta: f64) -> bool {
+    let mut next = 0;
+    for i in 0..n {
+        match (next..params.len()).find(|&j| cox(k, i, p, params[j]) >= delta) {
+            Some(j) => next = j + 1,
+            None => return false,
+        }
+    }
+    true
+}
+
 /// The surface evaluated from the definition, over every pole.
 #[allow(clippy::needless_range_loop)]
 fn eval_ref(s: &BSplineSurface, u: f64, v: f64) -> DVec3 {
@@ -197,10 +215,20 @@ proptest! {
         let data = sample(&src, &us, &vs);
         // Schoenberg–Whitney can fail for random knots against random
         // parameters: then the fit must refuse, not return garbage
+        // A pole is pinned down only as well as the data's own rounding
+        // allows, amplified by the condition number of the collocation
+        // matrix, which grows as a basis function is seen only where it is
+        // small: one seen only at 2.6e-6 moves by 4e-10 from the rounding
+        // of exact samples alone. The poles are compared where every function
+        // has a parameter of its own at 1e-3 or more; the samples themselves
+        // come back everywhere.
+        let posed = observed(ku.knots(), p, nu, &us, 1e-3) && observed(kv.knots(), q, nv, &vs, 1e-3);
         match fit_knots(&data, &ku, &kv) {
             Ok(got) => {
-                for (a, b) in got.poles.data().iter().zip(src.poles.data()) {
-                    prop_assert!((*a - *b).length() < 1e-9, "pole {} vs {}", a, b);
+                if posed {
+                    for (a, b) in got.poles.data().iter().zip(src.poles.data()) {
+                        prop_assert!((*a - *b).length() < 1e-9, "pole {} vs {}", a, b);
+                    }
                 }
                 prop_assert!(deviation(&got, &data).max < 1e-11);
             }

@@ -41,9 +41,12 @@ impl Banded {
     }
 
     /// Cholesky in place; a pivot below `1e-13` of its diagonal entry (or not
-    /// finite) is refused.
-    pub fn factor(&mut self) -> Result<(), Singular> {
+    /// finite) is refused. Returns the spread of the pivots, the largest
+    /// over the smallest: each lies between the matrix's least and largest
+    /// eigenvalue, so the spread is a lower bound of its condition number.
+    pub fn factor(&mut self) -> Result<f64, Singular> {
         let b = self.width - 1;
+        let (mut least, mut most) = (f64::INFINITY, 0.0f64);
         for i in 0..self.n {
             let lo = i.saturating_sub(b);
             for j in lo..=i {
@@ -59,13 +62,15 @@ impl Banded {
                     {
                         return Err(Singular { row: i });
                     }
+                    least = least.min(sum);
+                    most = most.max(sum);
                     self.band[idx] = sum.sqrt();
                 } else {
                     self.band[idx] = sum / self.at(j, j);
                 }
             }
         }
-        Ok(())
+        Ok(if self.n == 0 { 1.0 } else { most / least })
     }
 
     /// Solves `L Lᵀ x = r` in place for one vector of points.
