@@ -204,6 +204,7 @@ fn cli_bench_json_rows() {
         "surface/kobbelt/9x6/d5/full",
         "fit/car/d5",
         "export/hood-screen-wing/d4/step",
+        "ecs/car/d6/drag-cold",
     ] {
         assert!(
             names.iter().any(|n| n == want),

@@ -26,7 +26,10 @@ pub(super) fn wiggle(row: usize, col: usize, sign: &mut f64) -> crate::ecs::Edit
 /// panels and the renderer); the same with the surface's `f64` normals left
 /// behind as the editor leaves them while a handle is dragged
 /// (`…/drag-deferred`, [`crate::ecs::DeferNormals`]); and the frame after
-/// the drag, which makes them (`…/release`: the window of a drag's frame).
+/// the drag, which makes them (`…/release`: the window of a drag's frame);
+/// and `…/drag-deferred`'s frame with cold caches (`…/drag-cold`,
+/// [`Workload::cold`]), as the editor runs it after a software-rendered
+/// frame: the figure that tracks the editor's drag report headless.
 pub fn car_drag(depth: u32) -> Vec<Workload> {
     use crate::ecs::{self, DeferNormals, SurfaceData, vertex_mirror::VertexMirror};
     use crate::scene::Scene;
@@ -69,7 +72,15 @@ pub fn car_drag(depth: u32) -> Vec<Workload> {
             frame(&mut app, None)
         })
     });
-    vec![drag("drag", false), drag("drag-deferred", true), release]
+    // the editor's frame after a software-rendered one (`bench` only)
+    let mut cold = drag("drag-cold", true);
+    cold.cold = true;
+    vec![
+        drag("drag", false),
+        drag("drag-deferred", true),
+        cold,
+        release,
+    ]
 }
 
 /// Authoring on the car at depth 5 (issue 20, `docs/math.md §9`), each

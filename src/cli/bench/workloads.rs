@@ -25,6 +25,11 @@ pub struct Workload {
     pub name: String,
     /// Runs the work once and returns a value that depends on all of it.
     pub run: Box<dyn FnMut() -> f64>,
+    /// Timed one run at a time, each after other work has left the caches
+    /// cold ([`super::evict_caches`]), as the software renderer's frame
+    /// leaves them between two of the editor's (`bench` only; criterion
+    /// times the run warm).
+    pub cold: bool,
 }
 
 /// The work of a row, made by its setup.
@@ -40,6 +45,7 @@ impl Workload {
         let mut work: Option<Work> = None;
         Workload {
             name,
+            cold: false,
             run: Box::new(move || {
                 let w = work.get_or_insert_with(|| (setup.take().expect("set up once"))());
                 w()
@@ -57,6 +63,7 @@ fn curve_row(scheme: CurveScheme, depth: u32) -> Workload {
     };
     Workload {
         name,
+        cold: false,
         run: Box::new(move || {
             a.clear();
             a.extend_from_slice(&input);
@@ -71,6 +78,7 @@ fn qi_row(order: usize, samples: usize) -> Workload {
     let mut out = Vec::with_capacity(samples);
     Workload {
         name: format!("curve/qi-k{order}/{samples}"),
+        cold: false,
         run: Box::new(move || {
             out.clear();
             let m = (samples - 1) as f64;
@@ -127,6 +135,7 @@ pub fn car_builder(depth: u32) -> Vec<Workload> {
         let mut b = Builder::new();
         Workload {
             name: format!("surface/kobbelt/9x6/d{depth}/builder-{label}"),
+            cold: false,
             run: Box::new(move || {
                 parallel::set_enabled(false);
                 set_limit(width);
@@ -144,6 +153,7 @@ pub fn car_builder(depth: u32) -> Vec<Workload> {
 pub(super) fn surface_row_named(design: Design, name: String, depth: u32) -> Workload {
     Workload {
         name,
+        cold: false,
         run: Box::new(move || {
             let b = design.build(depth).expect("valid");
             b.mesh.positions[b.mesh.positions.len() / 2].x
@@ -213,6 +223,7 @@ fn export_fit_rows() -> Vec<Workload> {
             let scene = Scene::from_design("car", design, 3);
             Workload {
                 name: format!("export-fit/{label}"),
+                cold: false,
                 run: Box::new(move || {
                     let f = cad::fit_scene(&scene, 3, &Default::default()).expect("fits");
                     f.depth as f64 + f.fit.report.deviation.max
