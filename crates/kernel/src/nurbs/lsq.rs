@@ -116,18 +116,13 @@ impl EndFixedFit {
     /// The correction step of [`Self::fit_columns`]: `Nᵀ (R − N x)`,
     /// solved, added to the interior poles `x` (`count − 2` rows of `cols`).
     fn correct_columns(&self, data: &[DVec3], cols: usize, x: &mut [DVec3]) {
-        let (m, n) = (self.basis.len(), self.count);
+        let m = self.basis.len();
         let mut r = vec![DVec3::ZERO; cols];
         let mut dx = vec![DVec3::ZERO; x.len()];
         for k in 1..m - 1 {
             self.end_free_row(data, cols, k, &mut r);
-            let (f, b) = &self.basis[k];
-            for (a, &w) in b[..=self.degree].iter().enumerate() {
-                let i = f + a;
-                if i == 0 || i + 1 >= n {
-                    continue;
-                }
-                for (o, xi) in r.iter_mut().zip(&x[(i - 1) * cols..i * cols]) {
+            for (row, w) in self.interior_at(k) {
+                for (o, xi) in r.iter_mut().zip(&x[row * cols..(row + 1) * cols]) {
                     *o -= *xi * w;
                 }
             }
@@ -156,17 +151,23 @@ impl EndFixedFit {
     /// Adds `N_i(ū_k) r` to row `i − 1` of `rhs` (`cols` wide) for every
     /// interior function `i` that is non-zero at `ū_k`.
     fn add_transposed(&self, k: usize, r: &[DVec3], cols: usize, rhs: &mut [DVec3]) {
-        let n = self.count;
-        let (f, b) = &self.basis[k];
-        for (a, &w) in b[..=self.degree].iter().enumerate() {
-            let i = f + a;
-            if i == 0 || i + 1 >= n {
-                continue;
-            }
-            for (o, x) in rhs[(i - 1) * cols..i * cols].iter_mut().zip(r) {
+        for (row, w) in self.interior_at(k) {
+            for (o, x) in rhs[row * cols..(row + 1) * cols].iter_mut().zip(r) {
                 *o += *x * w;
             }
         }
+    }
+
+    /// The interior functions non-zero at `ū_k`: each as its unknown's
+    /// index (`i − 1`) and its value `N_i(ū_k)`.
+    fn interior_at(&self, k: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
+        let (f, b) = &self.basis[k];
+        b[..=self.degree]
+            .iter()
+            .enumerate()
+            .map(move |(a, &w)| (f + a, w))
+            .filter(|&(i, _)| i != 0 && i + 1 < self.count)
+            .map(|(i, w)| (i - 1, w))
     }
 
     /// Fits one data row `q` (`params.len()` points) into `poles` (`count`).
