@@ -10,9 +10,8 @@ use bevy::prelude::*;
 use std::time::Instant;
 use streamline_kernel::finetune::{Constraint, SurfaceTuning, fine_tune_into};
 use streamline_kernel::levels::incremental::surface_rows;
-use streamline_kernel::parallel;
 use streamline_kernel::streamline::integrate::{SliceJob, place_slice, place_slices_from};
-use streamline_kernel::streamline::surface_mesh::{PARALLEL_MIN_POINTS, slice_bounds};
+use streamline_kernel::streamline::surface_mesh::slice_bounds;
 use streamline_kernel::{DVec3, Grid};
 
 /// Gives every streamline its function of the scene's fine tuning; only rows
@@ -164,31 +163,15 @@ pub(crate) fn integrate(
                     from: t.changed_from,
                     out: outs[*row].take()?,
                     moved_from: 0,
+                    bounds: [DVec3::ZERO; 2],
                 };
                 Some((k, job))
             })
             .unzip();
-        // the rows and their boxes, in two halves on the kernel's helper
-        // thread when there are many (the same numbers either way)
-        let mut boxes = vec![[DVec3::ZERO; 2]; jobs.len()];
-        let run = |jobs: &mut [SliceJob], boxes: &mut [[DVec3; 2]]| {
-            place_slices_from(jobs);
-            for (job, b) in jobs.iter().zip(boxes) {
-                *b = slice_bounds(job.out);
-            }
-        };
-        let points: usize = jobs.iter().map(|j| j.out.len()).sum();
-        if points >= PARALLEL_MIN_POINTS && jobs.len() >= 8 {
-            let half = jobs.len() / 2;
-            let (ja, jb) = jobs.split_at_mut(half);
-            let (ba, bb) = boxes.split_at_mut(ja.len());
-            parallel::join(|| run(ja, ba), || run(jb, bb));
-        } else {
-            run(&mut jobs, &mut boxes);
-        }
-        for ((job, k), b) in jobs.iter().zip(index).zip(boxes) {
+        place_slices_from(&mut jobs);
+        for (job, k) in jobs.iter().zip(index) {
             let (row, t, p) = &mut summed[k];
-            row_bounds[*row] = b;
+            row_bounds[*row] = job.bounds;
             p.moved_from = job.moved_from;
             t.bypass_change_detection().changed_from = usize::MAX;
             n += 1;

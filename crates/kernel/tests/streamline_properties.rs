@@ -285,6 +285,7 @@ proptest! {
                 from: r.from,
                 out,
                 moved_from: usize::MAX,
+                bounds: [DVec3::ZERO; 2],
             })
             .collect();
         place_slices_from(&mut jobs);

@@ -12,6 +12,7 @@
 
 use crate::error::{KernelError, Place};
 use crate::sphere::tangent::normalize_all;
+use crate::streamline::surface_mesh::{PARALLEL_MIN_POINTS, slice_bounds};
 use glam::DVec3;
 
 /// Eq. 65 from `p₀ = 0`, appending `n+2` points to `out` (cleared first).
@@ -119,13 +120,30 @@ pub struct SliceJob<'a> {
     pub out: &'a mut [DVec3],
     /// Written by the call: the first point rewritten (`0`: all of them).
     pub moved_from: usize,
+    /// Written by the call: the box `[min, max]` of the row's points
+    /// ([`slice_bounds`]), made while they are at hand.
+    pub bounds: [DVec3; 2],
 }
 
 /// [`place_slice_from`] for every job, with the same bits: the rows that
 /// are only summed again from a point (the anchor before the change) go
 /// four at a time when they share that point and their length
 /// ([`integrate_from_x4`]); on the car at depth 6 a drag's every row does.
+/// Each job's box is made too. Many rows (from [`PARALLEL_MIN_POINTS`]
+/// points and 8 rows on) go in two halves, one on the helper thread
+/// ([`crate::parallel::join`]), with the same numbers.
 pub fn place_slices_from(jobs: &mut [SliceJob<'_>]) {
+    let points: usize = jobs.iter().map(|j| j.out.len()).sum();
+    if points >= PARALLEL_MIN_POINTS && jobs.len() >= 8 {
+        let (a, b) = jobs.split_at_mut(jobs.len() / 2);
+        crate::parallel::join(|| place_slices_here(a), || place_slices_here(b));
+    } else {
+        place_slices_here(jobs);
+    }
+}
+
+/// [`place_slices_from`] on the calling thread.
+fn place_slices_here(jobs: &mut [SliceJob<'_>]) {
     let mut summed: Vec<usize> = Vec::with_capacity(jobs.len());
     for (i, j) in jobs.iter_mut().enumerate() {
         let n = j.tangents.len() - 1;
@@ -158,6 +176,9 @@ pub fn place_slices_from(jobs: &mut [SliceJob<'_>]) {
             integrate_from(j.tangents, j.s, j.from, j.out);
             rest = &rest[1..];
         }
+    }
+    for j in jobs {
+        j.bounds = slice_bounds(j.out);
     }
 }
 

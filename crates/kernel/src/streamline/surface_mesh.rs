@@ -107,7 +107,7 @@ pub fn slice_bounds(points: &[DVec3]) -> [DVec3; 2] {
 }
 
 /// Mesh updates of at least this many points run on two threads.
-pub const PARALLEL_MIN_POINTS: usize = 16_384;
+pub(crate) const PARALLEL_MIN_POINTS: usize = 16_384;
 
 /// The normals of rows `lo ..= hi` of the row-major point grid `points`
 /// (`cols` wide) into the same entries of `normals`; large ranges on two threads.
