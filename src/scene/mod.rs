@@ -8,6 +8,7 @@ pub mod cad_text;
 pub mod document;
 pub mod document_build;
 pub mod document_check;
+pub mod document_deviation;
 pub mod document_export;
 pub mod document_fit;
 pub mod document_io;

@@ -370,14 +370,21 @@ type JoinedReadRow = (
 );
 
 impl JoinedRead<'_, '_> {
-    /// The document's state with `first` as its first patch's scene.
-    pub fn state(&self, first: crate::scene::Scene) -> DocState {
+    /// The patch entities in the document's order: the first patch, then
+    /// the joined ones by their slot (the order of [`Self::document`]'s
+    /// patches).
+    pub fn ids(&self) -> Vec<Entity> {
         let mut v: Vec<(usize, Entity)> = self.joined.iter().map(|r| (r.1.index, r.0)).collect();
         v.sort();
-        let head = self.first.iter().next();
-        let ids: Vec<Entity> = (head.map(|r| r.0).into_iter())
+        (self.first.iter().next().map(|r| r.0).into_iter())
             .chain(v.into_iter().map(|(_, e)| e))
-            .collect();
+            .collect()
+    }
+
+    /// The document's state with `first` as its first patch's scene.
+    pub fn state(&self, first: crate::scene::Scene) -> DocState {
+        let head = self.first.iter().next();
+        let ids = self.ids();
         assemble(
             first,
             head.and_then(|r| r.1.map(|s| s.name.clone())),

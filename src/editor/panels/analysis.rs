@@ -149,20 +149,60 @@ fn short(v: f64) -> String {
     }
 }
 
+/// The faces of a design of several patches (one STEP shell, seams held):
+/// each patch's tolerance (a share of its own size), largest and mean
+/// deviation one depth finer, and poles; and, when the shell had to be
+/// sampled deeper than shown, why no patch is coloured.
+fn faces_table(ui: &mut egui::Ui, d: &DeviationField) {
+    ui.label("faces of the STEP shell (checked one depth finer):")
+        .on_hover_text("Each patch against its own face of the one shell the STEP export writes, its seams shared with its neighbours' faces; a face's tolerance is that share of its own size");
+    egui::Grid::new("deviation_faces")
+        .striped(true)
+        .show(ui, |ui| {
+            for h in ["patch", "tolerance", "largest", "mean", "poles"] {
+                ui.label(egui::RichText::new(h).strong());
+            }
+            ui.end_row();
+            for f in &d.faces {
+                ui.label(&f.name);
+                ui.label(short(f.tolerance));
+                ui.label(short(f.max));
+                ui.label(short(f.mean));
+                ui.label(format!("{} × {}", f.poles.0, f.poles.1));
+                ui.end_row();
+            }
+        });
+    if let Some(depth) = d.deeper {
+        ui.colored_label(
+            egui::Color32::from_rgb(200, 150, 40),
+            format!(
+                "the tolerance needs the points of depth {depth}: set the display depth to {depth} to see the map"
+            ),
+        );
+    }
+}
+
 /// The deviation map's bands and its fit's figures.
 fn deviation_legend(ui: &mut egui::Ui, d: &DeviationField) {
     if let Some(e) = &d.error {
         ui.colored_label(egui::Color32::from_rgb(210, 60, 50), format!("no fit: {e}"));
         return;
     }
-    for (c, text) in [
-        (
-            BANDS[0],
+    // several faces: each patch against its own face's tolerance
+    let bands = if d.faces.is_empty() {
+        [
             format!("≤ {} (the tolerance)", short(d.tolerance)),
-        ),
-        (BANDS[1], format!("≤ {}", short(2.0 * d.tolerance))),
-        (BANDS[2], format!("> {}", short(2.0 * d.tolerance))),
-    ] {
+            format!("≤ {}", short(2.0 * d.tolerance)),
+            format!("> {}", short(2.0 * d.tolerance)),
+        ]
+    } else {
+        [
+            "≤ its face's tolerance".to_string(),
+            "≤ twice it".to_string(),
+            "beyond".to_string(),
+        ]
+    };
+    for (c, text) in BANDS.into_iter().zip(bands) {
         ui.horizontal(|ui| {
             let (rect, _) = ui.allocate_exact_size(egui::vec2(14.0, 14.0), egui::Sense::hover());
             ui.painter()
@@ -170,15 +210,19 @@ fn deviation_legend(ui: &mut egui::Ui, d: &DeviationField) {
             ui.label(text);
         });
     }
-    ui.label(format!(
-        "largest {}, mean {} (checked one depth finer)",
-        short(d.max),
-        short(d.mean)
-    ));
-    ui.label(format!(
-        "poles {} × {}, degree from File > CAD export",
-        d.poles.0, d.poles.1
-    ));
+    if d.faces.is_empty() {
+        ui.label(format!(
+            "largest {}, mean {} (checked one depth finer)",
+            short(d.max),
+            short(d.mean)
+        ));
+        ui.label(format!(
+            "poles {} × {}, degree from File > CAD export",
+            d.poles.0, d.poles.1
+        ));
+    } else {
+        faces_table(ui, d);
+    }
     let when = if d.live() {
         format!(
             "refits on each edit ({:.1} ms, within the {:.1} ms frame)",

@@ -259,6 +259,11 @@ pub(super) fn apply_mode(
         ResMut<ExportSettings>,
         Res<ButtonInput<MouseButton>>,
     ),
+    (joined, rebuilt, mut removed): (
+        crate::ecs::joined::JoinedRead,
+        Query<(), Changed<PatchSurface>>,
+        RemovedComponents<PatchSurface>,
+    ),
     mut meshes: ResMut<Assets<Mesh>>,
     surface: Single<(&Mesh3d, &mut MeshMaterial3d<StandardMaterial>), With<SurfaceEntity>>,
     camera: Query<&OrbitCamera, With<MainCamera>>,
@@ -270,11 +275,21 @@ pub(super) fn apply_mode(
         field.stale = true;
         deviation.stale = true;
     }
+    // another patch rebuilt, added or removed: its face, and the shell's
+    // seams, change with it
+    if !rebuilt.is_empty() || removed.read().count() > 0 {
+        deviation.stale = true;
+    }
     let (mesh, mut material) = surface.into_inner();
     let want = match settings.mode {
         SurfaceMode::Shaded => &shaded.0,
         SurfaceMode::Gaussian | SurfaceMode::Mean => &mats.colormap,
         SurfaceMode::Zebra => &mats.zebra,
+        // a fit that measured nothing here (refused, or sampled deeper
+        // than shown) leaves the surface shaded, not last fit's colours
+        SurfaceMode::Deviation if deviation.values.is_none() && deviation.generation > 0 => {
+            &shaded.0
+        }
         SurfaceMode::Deviation => &mats.bands,
     };
     if material.0 != *want {
@@ -330,15 +345,31 @@ pub(super) fn apply_mode(
         }
         SurfaceMode::Zebra => zebra_uv(data.points.data(), &data.normals, settings.stripes, eye),
         SurfaceMode::Deviation => {
-            if deviation.stale || (deviation.values.is_none() && deviation.error.is_none()) {
+            if deviation.stale || deviation.generation == 0 {
                 match model.scene() {
+                    // several patches: the faces of the STEP shell
+                    Ok(scene) if joined.several() => {
+                        let depth = scene.display_depth;
+                        let doc = joined.document(scene);
+                        deviation.refit_document(&doc, &joined.ids(), depth, &export.fit);
+                    }
                     Ok(scene) => deviation.refit(&scene, &export.fit),
-                    Err(e) => deviation.error = Some(e),
+                    Err(e) => {
+                        deviation.generation += 1;
+                        deviation.stale = false;
+                        deviation.error = Some(e);
+                    }
                 }
             }
             let Some(v) = deviation.values.as_ref() else {
+                if material.0 != shaded.0 {
+                    material.0 = shaded.0.clone();
+                }
                 return;
             };
+            if material.0 != mats.bands {
+                material.0 = mats.bands.clone();
+            }
             v.iter()
                 .map(|&d| [band_u(d, deviation.tolerance), 0.5])
                 .collect()

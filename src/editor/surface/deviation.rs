@@ -1,6 +1,10 @@
 //! The deviation map (docs/cad.md): the shown surface coloured by its
 //! distance to the B-spline surface the CAD export fits (docs/math.md §10),
-//! green within the tolerance, yellow up to twice it, red beyond.
+//! green within the tolerance, yellow up to twice it, red beyond. A design
+//! of several patches is measured against the faces of the one STEP shell
+//! it exports (seams held, docs/math.md §11): every patch gets its map
+//! ([`DeviationField::refit_document`], drawn on the other patches by
+//! `super::patch_maps`).
 //!
 //! The fit is redone at the display depth after each edit when the last one
 //! took less than [`FRAME_BUDGET_S`]; a slower fit waits until no mouse
@@ -8,7 +12,10 @@
 
 use crate::scene::Scene;
 use crate::scene::cad;
+use crate::scene::document::Document;
+use crate::scene::document_deviation::document_deviation;
 use bevy::prelude::*;
+use std::collections::HashMap;
 use streamline_kernel::nurbs::{FitOptions, deviation_field};
 
 /// A frame at 60 Hz, seconds: a fit within it is redone on every edit.
@@ -32,6 +39,29 @@ pub struct DeviationField {
     pub error: Option<String>,
     /// The surface changed since the map was computed.
     pub stale: bool,
+    /// With several patches, the map of each patch after the first (its
+    /// entity's distances, as its mesh's points, and its face's tolerance).
+    pub joined: HashMap<Entity, (Vec<f64>, f64)>,
+    /// With several patches, each face's figures, in the document's order
+    /// (empty for one patch: the figures above are its face's).
+    pub faces: Vec<FaceFigures>,
+    /// With several patches: the shell had to be sampled at this depth,
+    /// deeper than the one shown, to meet the tolerance; no patch has a map
+    /// then (its faces' parameters are the deeper points').
+    pub deeper: Option<u32>,
+    /// Counts the fits (what the other patches' maps were made from).
+    pub generation: u64,
+}
+
+/// One face of a shell: the patch's name, its tolerance, largest and mean
+/// deviation (checked one depth finer) and poles.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FaceFigures {
+    pub name: String,
+    pub tolerance: f64,
+    pub max: f64,
+    pub mean: f64,
+    pub poles: (usize, usize),
 }
 
 impl DeviationField {
@@ -40,8 +70,64 @@ impl DeviationField {
         self.seconds <= FRAME_BUDGET_S
     }
 
+    /// Refits `doc`, whose patches are the entities `ids` (in its order),
+    /// as the STEP export fits its shell, sampled at `depth`, and measures
+    /// every patch's points there: the first patch's distances go to
+    /// [`Self::values`], the others' to [`Self::joined`].
+    pub fn refit_document(
+        &mut self,
+        doc: &Document,
+        ids: &[Entity],
+        depth: u32,
+        opts: &FitOptions,
+    ) {
+        self.stale = false;
+        self.generation += 1;
+        self.joined.clear();
+        self.faces.clear();
+        self.values = None;
+        match document_deviation(doc, depth, opts) {
+            Ok(d) => {
+                self.seconds = d.seconds;
+                self.deeper = (d.depth != depth).then_some(d.depth);
+                self.error = None;
+                for (i, (p, e)) in d.patches.into_iter().zip(ids).enumerate() {
+                    if i == 0 {
+                        self.tolerance = p.tolerance;
+                        self.poles = p.poles;
+                    }
+                    self.faces.push(FaceFigures {
+                        name: p.name,
+                        tolerance: p.tolerance,
+                        max: p.deviation.max,
+                        mean: p.deviation.mean,
+                        poles: p.poles,
+                    });
+                    let Some(field) = p.field else { continue };
+                    if i == 0 {
+                        self.values = Some(field.into_data());
+                    } else {
+                        self.joined.insert(*e, (field.into_data(), p.tolerance));
+                    }
+                }
+                self.max = self.faces.iter().map(|f| f.max).fold(0.0, f64::max);
+                let n = self.faces.len().max(1) as f64;
+                self.mean = self.faces.iter().map(|f| f.mean).sum::<f64>() / n;
+            }
+            Err(e) => {
+                self.seconds = 0.0;
+                self.deeper = None;
+                self.error = Some(e.to_string());
+            }
+        }
+    }
+
     /// Refits `scene` at its display depth with `opts`.
     pub fn refit(&mut self, scene: &Scene, opts: &FitOptions) {
+        self.generation += 1;
+        self.joined.clear();
+        self.faces.clear();
+        self.deeper = None;
         let t0 = std::time::Instant::now();
         let depth = scene.display_depth;
         let result = cad::fit_scene(scene, depth, opts).and_then(|f| {

@@ -12,14 +12,16 @@
 //! curves more saturates). A patch's coordinates are made again only when
 //! its surface was rebuilt, its mesh was made afresh, or the mode, the
 //! limit, the stripes or (for zebra) the eye moved, and only while it is
-//! shown (a hidden patch gets its map when shown again). The deviation map is
-//! the first patch's (the fit is per patch, docs/cad.md): the others stay
-//! shaded under it.
+//! shown (a hidden patch gets its map when shown again). The deviation map
+//! colours each patch by its distance to its own face of the STEP shell,
+//! within that face's tolerance ([`DeviationField::joined`]); a patch the
+//! fit could not measure at the shown depth stays shaded.
 
 use super::analysis::{
     AnalysisMaterials, AnalysisSettings, CurvatureField, SurfaceMode, apply_mode, colormap_uv,
     eye_point, zebra_uv,
 };
+use super::deviation::{DeviationField, band_u};
 use super::patches::PatchSurfaceMesh;
 use super::shaded::ShadedMaterial;
 use crate::ecs::joined::PatchSurface;
@@ -50,11 +52,17 @@ struct MapKey {
     stripes: f64,
     /// The eye, for zebra stripes (they move with it).
     eye: Option<DVec3>,
+    /// The deviation fit the map was made from ([`DeviationField::generation`]).
+    fit: u64,
 }
 
 /// A patch mesh's map coordinates, or `None` when the mode shows no map
-/// on the other patches (shaded, deviation).
-fn patch_uv(key: &MapKey, surface: &PatchSurface) -> Option<Vec<[f32; 2]>> {
+/// on it (shaded; deviation without this patch's distances).
+fn patch_uv(
+    key: &MapKey,
+    surface: &PatchSurface,
+    deviation: Option<&(Vec<f64>, f64)>,
+) -> Option<Vec<[f32; 2]>> {
     let points = surface.stack()?.finest_points();
     match key.mode {
         SurfaceMode::Gaussian | SurfaceMode::Mean => {
@@ -78,7 +86,11 @@ fn patch_uv(key: &MapKey, surface: &PatchSurface) -> Option<Vec<[f32; 2]>> {
             key.stripes,
             key.eye.unwrap_or(DVec3::ZERO),
         )),
-        SurfaceMode::Shaded | SurfaceMode::Deviation => None,
+        SurfaceMode::Deviation => {
+            let (d, tolerance) = deviation?;
+            Some(d.iter().map(|&d| [band_u(d, *tolerance), 0.5]).collect())
+        }
+        SurfaceMode::Shaded => None,
     }
 }
 
@@ -88,7 +100,7 @@ fn patch_uv(key: &MapKey, surface: &PatchSurface) -> Option<Vec<[f32; 2]>> {
 fn color_patch_maps(
     meter: Res<crate::ecs::meter::CpuMeter>,
     settings: Res<AnalysisSettings>,
-    field: Res<CurvatureField>,
+    (field, deviation): (Res<CurvatureField>, Res<DeviationField>),
     (shaded, mats): (Res<ShadedMaterial>, Res<AnalysisMaterials>),
     patches: Query<Ref<PatchSurface>>,
     mut drawn: Query<(
@@ -107,13 +119,19 @@ fn color_patch_maps(
     let want = match mode {
         SurfaceMode::Gaussian | SurfaceMode::Mean => &mats.colormap,
         SurfaceMode::Zebra => &mats.zebra,
-        SurfaceMode::Shaded | SurfaceMode::Deviation => &shaded.0,
+        SurfaceMode::Deviation => &mats.bands,
+        SurfaceMode::Shaded => &shaded.0,
     };
     let key = MapKey {
         mode,
         limit: field.limit,
         stripes: settings.stripes,
         eye: (mode == SurfaceMode::Zebra).then(|| eye_point(&camera)),
+        fit: if mode == SurfaceMode::Deviation {
+            deviation.generation
+        } else {
+            0
+        },
     };
     made.retain(|e, _| drawn.contains(*e));
     for (e, of, mesh, mut material, visibility) in &mut drawn {
@@ -125,9 +143,11 @@ fn color_patch_maps(
             made.remove(&e);
             continue;
         }
-        if !shows_map(mode) {
-            if material.0 != *want {
-                material.0 = want.clone();
+        let distances = deviation.joined.get(&of.0);
+        if !shows_map(mode) || (mode == SurfaceMode::Deviation && distances.is_none()) {
+            // no map here: shaded (a patch the fit did not measure too)
+            if material.0 != shaded.0 {
+                material.0 = shaded.0.clone();
             }
             made.remove(&e);
             continue;
@@ -140,7 +160,7 @@ fn color_patch_maps(
         if made.get(&e) == Some(&key) && has_uv && !surface.is_changed() {
             continue;
         }
-        let Some(uv) = patch_uv(&key, &surface) else {
+        let Some(uv) = patch_uv(&key, &surface, distances) else {
             continue; // not built: nothing drawn
         };
         let Some(mut m) = meshes.get_mut(&mesh.0) else {
@@ -161,7 +181,7 @@ fn color_patch_maps(
 fn shows_map(mode: SurfaceMode) -> bool {
     matches!(
         mode,
-        SurfaceMode::Gaussian | SurfaceMode::Mean | SurfaceMode::Zebra
+        SurfaceMode::Gaussian | SurfaceMode::Mean | SurfaceMode::Zebra | SurfaceMode::Deviation
     )
 }
 
@@ -172,6 +192,7 @@ mod tests {
     use crate::ecs::{ModelConfig, ModelSet};
     use crate::editor::interaction::EditorMode;
     use crate::scene::document_io::load;
+    use bevy::ecs::system::RunSystemOnce;
     use bevy::mesh::VertexAttributeValues;
     use bevy_state::app::{AppExtStates, StatesPlugin};
     use std::path::Path;
@@ -188,6 +209,7 @@ mod tests {
             .init_resource::<Assets<StandardMaterial>>()
             .insert_resource(AnalysisSettings { mode, ..default() })
             .init_resource::<CurvatureField>()
+            .init_resource::<DeviationField>()
             .init_resource::<PatchMeshes>()
             .configure_sets(
                 Update,
@@ -286,13 +308,86 @@ mod tests {
                     .map(|r| r.1.as_ref().unwrap().len())
                     .sum::<usize>()
         );
-        // shaded, and the deviation map (the first patch's alone): shaded
+        // shaded, and the deviation map before any fit measured them: shaded
         for mode in [SurfaceMode::Shaded, SurfaceMode::Deviation] {
             app.world_mut().resource_mut::<AnalysisSettings>().mode = mode;
             app.update();
             for (_, _, mat) in drawn(&mut app) {
                 assert_eq!(mat, shaded, "{mode:?}");
             }
+        }
+    }
+
+    /// The deviation map on the other patches: each gets the bands of its
+    /// own face of the STEP shell (its distances, within its face's
+    /// tolerance), made again after each fit; a fit that could not measure
+    /// them at the shown depth leaves them shaded.
+    #[test]
+    fn each_patch_shows_its_distance_to_its_shell_face() {
+        use crate::scene::document_deviation::document_deviation;
+        let mut app = app(SurfaceMode::Deviation, 0.8);
+        let (bands, shaded) = (
+            app.world().resource::<AnalysisMaterials>().bands.clone(),
+            app.world().resource::<ShadedMaterial>().0.clone(),
+        );
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron");
+        let doc = load(&path).unwrap();
+        let depth = doc.display_depth;
+        // the patch entities in the document's order, as the editor reads them
+        let ids = app
+            .world_mut()
+            .run_system_once(|j: crate::ecs::joined::JoinedRead| j.ids())
+            .unwrap();
+        assert_eq!(ids.len(), 3);
+        let opts = streamline_kernel::nurbs::FitOptions::default();
+        app.world_mut()
+            .resource_mut::<DeviationField>()
+            .refit_document(&doc, &ids, depth, &opts);
+        app.update();
+        // independently: the shell fitted here, each patch's field from it
+        let want = document_deviation(&doc, depth, &opts).unwrap();
+        let w = app.world_mut();
+        let mut q = w.query::<(
+            &PatchSurfaceMesh,
+            &Mesh3d,
+            &MeshMaterial3d<StandardMaterial>,
+        )>();
+        let rows: Vec<_> = q
+            .iter(w)
+            .map(|(of, m, mat)| (of.0, m.0.clone(), mat.0.clone()))
+            .collect();
+        assert_eq!(rows.len(), 2);
+        let mut coloured = 0;
+        for (e, mesh, mat) in rows {
+            assert_eq!(mat, bands);
+            let i = ids
+                .iter()
+                .position(|&x| x == e)
+                .expect("a patch of the document");
+            let p = &want.patches[i];
+            let field = p.field.as_ref().expect("measured at the shown depth");
+            let Some(VertexAttributeValues::Float32x2(uv)) = w
+                .resource::<Assets<Mesh>>()
+                .get(&mesh)
+                .unwrap()
+                .attribute(Mesh::ATTRIBUTE_UV_0)
+            else {
+                panic!("no coordinates on {}", p.name);
+            };
+            assert_eq!(uv.len(), field.data().len());
+            for (t, d) in uv.iter().zip(field.data()) {
+                assert_eq!(t[0].to_bits(), band_u(*d, p.tolerance).to_bits());
+            }
+            coloured += uv.iter().filter(|t| t[0] > 0.0).count();
+        }
+        assert!(coloured > 0, "every distance is zero: nothing was measured");
+        // a fit that measured no patch at the shown depth: shaded again
+        let mut d = app.world_mut().resource_mut::<DeviationField>();
+        d.joined.clear();
+        d.generation += 1;
+        app.update();
+        for (_, _, mat) in drawn(&mut app) {
+            assert_eq!(mat, shaded);
         }
     }
 
