@@ -86,9 +86,12 @@ impl DeviationField {
         self.joined.clear();
         self.faces.clear();
         self.values = None;
-        match document_deviation(doc, depth, opts) {
+        let t0 = std::time::Instant::now();
+        let result = document_deviation(doc, depth, opts);
+        // a refusal is timed too: a slow one waits for the drag to end
+        self.seconds = t0.elapsed().as_secs_f64();
+        match result {
             Ok(d) => {
-                self.seconds = d.seconds;
                 self.deeper = (d.depth != depth).then_some(d.depth);
                 self.error = None;
                 for (i, (p, e)) in d.patches.into_iter().zip(ids).enumerate() {
@@ -115,7 +118,6 @@ impl DeviationField {
                 self.mean = self.faces.iter().map(|f| f.mean).sum::<f64>() / n;
             }
             Err(e) => {
-                self.seconds = 0.0;
                 self.deeper = None;
                 self.error = Some(e.to_string());
             }
@@ -163,3 +165,63 @@ pub fn band_u(d: f64, tolerance: f64) -> f32 {
 
 /// The three colours of the map.
 pub const BANDS: [[u8; 3]; 3] = [[40, 170, 70], [235, 200, 40], [210, 45, 40]];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::document_io::load;
+    use std::path::Path;
+    use streamline_kernel::nurbs::Tolerance;
+
+    fn hood_screen_wing() -> Document {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron");
+        load(&path).unwrap()
+    }
+
+    /// The fields go to their patches' entities, each face's figures in the
+    /// document's order; a shell sampled deeper than shown colours nothing
+    /// and says how deep; a refusal says why, timed like a fit.
+    #[test]
+    fn a_document_fit_fills_each_patch_or_says_why_not() {
+        let doc = hood_screen_wing();
+        let ids = [
+            Entity::from_bits(7),
+            Entity::from_bits(8),
+            Entity::from_bits(9),
+        ];
+        let mut d = DeviationField::default();
+        d.refit_document(&doc, &ids, doc.display_depth, &FitOptions::default());
+        assert_eq!(d.generation, 1);
+        assert!(d.error.is_none() && d.deeper.is_none());
+        let names: Vec<&str> = d.faces.iter().map(|f| f.name.as_str()).collect();
+        assert_eq!(names, ["hood", "screen", "wing"]);
+        assert!(d.values.is_some(), "the first patch's distances");
+        assert_eq!(d.joined.len(), 2);
+        for (e, f) in ids[1..].iter().zip(&d.faces[1..]) {
+            let (values, tolerance) = &d.joined[e];
+            assert_eq!(*tolerance, f.tolerance);
+            assert!(values.iter().all(|v| v.is_finite() && *v >= 0.0));
+        }
+        assert_eq!(d.tolerance, d.faces[0].tolerance);
+        assert_eq!(d.max, d.faces.iter().map(|f| f.max).fold(0.0, f64::max));
+        assert!(!d.stale && d.seconds > 0.0);
+
+        // depth 0's points cannot carry the tolerance: sampled at depth 3
+        d.refit_document(&doc, &ids, 0, &FitOptions::default());
+        assert_eq!(d.deeper, Some(3));
+        assert!(d.values.is_none() && d.joined.is_empty());
+        assert_eq!(d.faces.len(), 3);
+
+        // a tolerance no depth meets: refused, with the reason
+        let tight = FitOptions {
+            tolerance: Tolerance::Absolute(1e-12),
+            ..FitOptions::default()
+        };
+        d.refit_document(&doc, &ids, 1, &tight);
+        assert_eq!(d.generation, 3);
+        let e = d.error.as_deref().expect("refused");
+        assert!(e.contains("loosen the tolerance"), "{e}");
+        assert!(d.values.is_none() && d.joined.is_empty() && d.faces.is_empty());
+        assert!(d.seconds > 0.0, "a refusal is timed");
+    }
+}

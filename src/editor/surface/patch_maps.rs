@@ -244,6 +244,11 @@ mod tests {
     type Drawn = (PatchSurface, Option<Vec<f32>>, Handle<StandardMaterial>);
 
     fn drawn(app: &mut App) -> Vec<Drawn> {
+        drawn_of(app).into_iter().map(|(_, d)| d).collect()
+    }
+
+    /// [`drawn`], each with its patch's entity.
+    fn drawn_of(app: &mut App) -> Vec<(Entity, Drawn)> {
         let w = app.world_mut();
         let mut q = w.query::<(
             &PatchSurfaceMesh,
@@ -267,7 +272,7 @@ mod tests {
                     }
                     _ => None,
                 };
-                (surface, uv, mat)
+                (p, (surface, uv, mat))
             })
             .collect()
     }
@@ -346,19 +351,10 @@ mod tests {
         app.update();
         // independently: the shell fitted here, each patch's field from it
         let want = document_deviation(&doc, depth, &opts).unwrap();
-        let w = app.world_mut();
-        let mut q = w.query::<(
-            &PatchSurfaceMesh,
-            &Mesh3d,
-            &MeshMaterial3d<StandardMaterial>,
-        )>();
-        let rows: Vec<_> = q
-            .iter(w)
-            .map(|(of, m, mat)| (of.0, m.0.clone(), mat.0.clone()))
-            .collect();
+        let rows = drawn_of(&mut app);
         assert_eq!(rows.len(), 2);
         let mut coloured = 0;
-        for (e, mesh, mat) in rows {
+        for (e, (_, uv, mat)) in rows {
             assert_eq!(mat, bands);
             let i = ids
                 .iter()
@@ -366,19 +362,12 @@ mod tests {
                 .expect("a patch of the document");
             let p = &want.patches[i];
             let field = p.field.as_ref().expect("measured at the shown depth");
-            let Some(VertexAttributeValues::Float32x2(uv)) = w
-                .resource::<Assets<Mesh>>()
-                .get(&mesh)
-                .unwrap()
-                .attribute(Mesh::ATTRIBUTE_UV_0)
-            else {
-                panic!("no coordinates on {}", p.name);
-            };
+            let uv = uv.unwrap_or_else(|| panic!("no coordinates on {}", p.name));
             assert_eq!(uv.len(), field.data().len());
-            for (t, d) in uv.iter().zip(field.data()) {
-                assert_eq!(t[0].to_bits(), band_u(*d, p.tolerance).to_bits());
+            for (u, d) in uv.iter().zip(field.data()) {
+                assert_eq!(u.to_bits(), band_u(*d, p.tolerance).to_bits());
             }
-            coloured += uv.iter().filter(|t| t[0] > 0.0).count();
+            coloured += uv.iter().filter(|&&u| u > 0.0).count();
         }
         assert!(coloured > 0, "every distance is zero: nothing was measured");
         // a fit that measured no patch at the shown depth: shaded again
