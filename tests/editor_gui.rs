@@ -64,6 +64,21 @@ fn screenshots_show_the_surface_panels_and_curvature() {
         green > 0.05 && red < 0.001,
         "green {green:.3}, red {red:.4}"
     );
+    // several patches: each against its face of the STEP shell, so the
+    // screen and the wing (the right of the view) are green too, where they
+    // stayed shaded when the map was the first patch's alone (0.007 there)
+    let hsw = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/hood-screen-wing.ron");
+    let (w, h, px) = shot(&dir, "deviation-patches", &[hsw, "--analysis", "deviation"]);
+    let (mut n, mut hit) = (0usize, 0usize);
+    for y in (h * 38 / 100)..(h * 62 / 100) {
+        for x in (w * 72 / 100)..(w * 95 / 100) {
+            let [r, g, b] = px[(y * w + x) as usize];
+            n += 1;
+            hit += usize::from(g as i32 > r as i32 + 60 && g as i32 > b as i32 + 50);
+        }
+    }
+    let green = hit as f64 / n as f64;
+    assert!(green > 0.02, "the joined patches' green {green:.4}");
     // fine tuning: the panel's sliders and labels, and the plot of α in yellow
     // (the panel is 300 px wide: count only inside it; 680 px high, so that
     // the plot fits under the menu bar, the toolbar and the sliders)
