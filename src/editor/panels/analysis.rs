@@ -172,6 +172,17 @@ fn faces_table(ui: &mut egui::Ui, d: &DeviationField) {
                 ui.end_row();
             }
         });
+    if let Some(f) = &d.first_alone {
+        ui.label(format!(
+            "{} is shown over both halves (mirrored): coloured against its one-patch fit, tolerance {}, largest {}, {} × {} poles",
+            f.name,
+            short(f.tolerance),
+            short(f.max),
+            f.poles.0,
+            f.poles.1
+        ))
+        .on_hover_text("A mirrored design shows its first patch as one surface over both halves, which is what the one-patch export fits; the shell has a face for each half");
+    }
     if let Some(depth) = d.deeper {
         ui.colored_label(
             egui::Color32::from_rgb(200, 150, 40),

@@ -349,9 +349,10 @@ pub(super) fn apply_mode(
                 match model.scene() {
                     // several patches: the faces of the STEP shell
                     Ok(scene) if joined.several() => {
-                        let depth = scene.display_depth;
-                        let doc = joined.document(scene);
-                        deviation.refit_document(&doc, &joined.ids(), depth, &export.fit);
+                        let doc = joined.document(scene.clone());
+                        let ids = joined.ids();
+                        let n = data.points.data().len();
+                        deviation.refit_document(&scene, &doc, &ids, n, &export.fit);
                     }
                     Ok(scene) => deviation.refit(&scene, &export.fit),
                     Err(e) => {

@@ -16,7 +16,8 @@ use crate::scene::document::Document;
 use crate::scene::document_deviation::document_deviation;
 use bevy::prelude::*;
 use std::collections::HashMap;
-use streamline_kernel::nurbs::{FitOptions, deviation_field};
+use streamline_kernel::Grid;
+use streamline_kernel::nurbs::{FitError, FitOptions, deviation_field};
 
 /// A frame at 60 Hz, seconds: a fit within it is redone on every edit.
 pub const FRAME_BUDGET_S: f64 = 1.0 / 60.0;
@@ -51,6 +52,10 @@ pub struct DeviationField {
     pub deeper: Option<u32>,
     /// Counts the fits (what the other patches' maps were made from).
     pub generation: u64,
+    /// With several patches, when the first patch is shown over both halves
+    /// of a mirrored document: its one-patch fit's figures, which its
+    /// colours are measured against.
+    pub first_alone: Option<FaceFigures>,
 }
 
 /// One face of a shell: the patch's name, its tolerance, largest and mean
@@ -70,30 +75,36 @@ impl DeviationField {
         self.seconds <= FRAME_BUDGET_S
     }
 
-    /// Refits `doc`, whose patches are the entities `ids` (in its order),
-    /// as the STEP export fits its shell, sampled at `depth`, and measures
-    /// every patch's points there: the first patch's distances go to
-    /// [`Self::values`], the others' to [`Self::joined`].
+    /// Refits `doc`, whose patches are the entities `ids` (in its order)
+    /// and whose first patch's scene is `first`, as the STEP export fits its
+    /// shell, sampled at the display depth, and measures every patch's
+    /// points there: the first patch's distances go to [`Self::values`], the
+    /// others' to [`Self::joined`]. A first patch shown with `first_points`
+    /// points other than its face's (a mirrored document shows it over both
+    /// halves, one surface) is measured against its one-patch fit instead,
+    /// which is that surface's ([`Self::first_alone`]).
     pub fn refit_document(
         &mut self,
+        first: &Scene,
         doc: &Document,
         ids: &[Entity],
-        depth: u32,
+        first_points: usize,
         opts: &FitOptions,
     ) {
+        let depth = first.display_depth;
         self.stale = false;
         self.generation += 1;
         self.joined.clear();
         self.faces.clear();
         self.values = None;
+        self.first_alone = None;
         let t0 = std::time::Instant::now();
         let result = document_deviation(doc, depth, opts);
-        // a refusal is timed too: a slow one waits for the drag to end
-        self.seconds = t0.elapsed().as_secs_f64();
         match result {
             Ok(d) => {
                 self.deeper = (d.depth != depth).then_some(d.depth);
                 self.error = None;
+                let mut alone = false;
                 for (i, (p, e)) in d.patches.into_iter().zip(ids).enumerate() {
                     if i == 0 {
                         self.tolerance = p.tolerance;
@@ -107,21 +118,39 @@ impl DeviationField {
                         poles: p.poles,
                     });
                     let Some(field) = p.field else { continue };
-                    if i == 0 {
-                        self.values = Some(field.into_data());
-                    } else {
-                        self.joined.insert(*e, (field.into_data(), p.tolerance));
+                    match i {
+                        0 if field.data().len() == first_points => {
+                            self.values = Some(field.into_data());
+                        }
+                        0 => alone = true,
+                        _ => {
+                            self.joined.insert(*e, (field.into_data(), p.tolerance));
+                        }
                     }
                 }
                 self.max = self.faces.iter().map(|f| f.max).fold(0.0, f64::max);
                 let n = self.faces.len().max(1) as f64;
                 self.mean = self.faces.iter().map(|f| f.mean).sum::<f64>() / n;
+                if alone && let Ok((f, field)) = fit_one(first, opts) {
+                    let r = &f.fit.report;
+                    self.tolerance = r.tolerance;
+                    self.values = Some(field.into_data());
+                    self.first_alone = Some(FaceFigures {
+                        name: self.faces[0].name.clone(),
+                        tolerance: r.tolerance,
+                        max: r.deviation.max,
+                        mean: r.deviation.mean,
+                        poles: r.poles,
+                    });
+                }
             }
             Err(e) => {
                 self.deeper = None;
                 self.error = Some(e.to_string());
             }
         }
+        // a refusal is timed too: a slow one waits for the drag to end
+        self.seconds = t0.elapsed().as_secs_f64();
     }
 
     /// Refits `scene` at its display depth with `opts`.
@@ -130,13 +159,9 @@ impl DeviationField {
         self.joined.clear();
         self.faces.clear();
         self.deeper = None;
+        self.first_alone = None;
         let t0 = std::time::Instant::now();
-        let depth = scene.display_depth;
-        let result = cad::fit_scene(scene, depth, opts).and_then(|f| {
-            let shown = cad::samples(scene, depth)?;
-            let field = deviation_field(&f.fit.surface, &shown);
-            Ok((f, field))
-        });
+        let result = fit_one(scene, opts);
         self.stale = false;
         self.seconds = t0.elapsed().as_secs_f64();
         match result {
@@ -155,6 +180,16 @@ impl DeviationField {
             }
         }
     }
+}
+
+/// `scene`'s one-patch fit at its display depth (`cad::fit_scene`, the face
+/// a one-patch export writes) and the distance of each shown point to it.
+fn fit_one(scene: &Scene, opts: &FitOptions) -> Result<(cad::SceneFit, Grid<f64>), FitError> {
+    let depth = scene.display_depth;
+    let f = cad::fit_scene(scene, depth, opts)?;
+    let shown = cad::samples(scene, depth)?;
+    let field = deviation_field(&f.fit.surface, &shown);
+    Ok((f, field))
 }
 
 /// The map's `u` coordinate: a third of the ramp per tolerance, so the
@@ -178,24 +213,39 @@ mod tests {
         load(&path).unwrap()
     }
 
+    /// The points of the first patch as shown (what the editor's surface has).
+    fn shown_points(scene: &Scene) -> usize {
+        cad::samples(scene, scene.display_depth)
+            .unwrap()
+            .points
+            .data()
+            .len()
+    }
+
     /// The fields go to their patches' entities, each face's figures in the
     /// document's order; a shell sampled deeper than shown colours nothing
     /// and says how deep; a refusal says why, timed like a fit.
     #[test]
     fn a_document_fit_fills_each_patch_or_says_why_not() {
-        let doc = hood_screen_wing();
+        let mut doc = hood_screen_wing();
         let ids = [
             Entity::from_bits(7),
             Entity::from_bits(8),
             Entity::from_bits(9),
         ];
+        let first = doc.patch_scene(0);
+        let n = shown_points(&first);
         let mut d = DeviationField::default();
-        d.refit_document(&doc, &ids, doc.display_depth, &FitOptions::default());
+        d.refit_document(&first, &doc, &ids, n, &FitOptions::default());
         assert_eq!(d.generation, 1);
-        assert!(d.error.is_none() && d.deeper.is_none());
+        assert!(d.error.is_none() && d.deeper.is_none() && d.first_alone.is_none());
         let names: Vec<&str> = d.faces.iter().map(|f| f.name.as_str()).collect();
         assert_eq!(names, ["hood", "screen", "wing"]);
-        assert!(d.values.is_some(), "the first patch's distances");
+        assert_eq!(
+            d.values.as_ref().map(Vec::len),
+            Some(n),
+            "the first patch's distances"
+        );
         assert_eq!(d.joined.len(), 2);
         for (e, f) in ids[1..].iter().zip(&d.faces[1..]) {
             let (values, tolerance) = &d.joined[e];
@@ -207,7 +257,15 @@ mod tests {
         assert!(!d.stale && d.seconds > 0.0);
 
         // depth 0's points cannot carry the tolerance: sampled at depth 3
-        d.refit_document(&doc, &ids, 0, &FitOptions::default());
+        let mut shallow = first.clone();
+        shallow.display_depth = 0;
+        d.refit_document(
+            &shallow,
+            &doc,
+            &ids,
+            shown_points(&shallow),
+            &FitOptions::default(),
+        );
         assert_eq!(d.deeper, Some(3));
         assert!(d.values.is_none() && d.joined.is_empty());
         assert_eq!(d.faces.len(), 3);
@@ -217,11 +275,27 @@ mod tests {
             tolerance: Tolerance::Absolute(1e-12),
             ..FitOptions::default()
         };
-        d.refit_document(&doc, &ids, 1, &tight);
+        d.refit_document(&first, &doc, &ids, n, &tight);
         assert_eq!(d.generation, 3);
         let e = d.error.as_deref().expect("refused");
         assert!(e.contains("loosen the tolerance"), "{e}");
         assert!(d.values.is_none() && d.joined.is_empty() && d.faces.is_empty());
         assert!(d.seconds > 0.0, "a refusal is timed");
+
+        // mirrored: the first patch is shown over both halves, one surface,
+        // so its colours come from its one-patch fit, as one patch's do
+        doc.mirror = true;
+        let first = doc.patch_scene(0);
+        let n = shown_points(&first);
+        d.refit_document(&first, &doc, &ids, n, &FitOptions::default());
+        let alone = d.first_alone.clone().expect("measured over both halves");
+        let mut one = DeviationField::default();
+        one.refit(&first, &FitOptions::default());
+        assert_eq!(d.values, one.values);
+        assert_eq!(d.values.as_ref().map(Vec::len), Some(n));
+        assert_eq!((alone.tolerance, alone.max), (one.tolerance, one.max));
+        assert_eq!(d.tolerance, one.tolerance);
+        assert_eq!(d.joined.len(), 2, "the other patches against their faces");
+        assert_eq!(d.faces.len(), 3);
     }
 }

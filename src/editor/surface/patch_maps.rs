@@ -337,7 +337,13 @@ mod tests {
         );
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron");
         let doc = load(&path).unwrap();
-        let depth = doc.display_depth;
+        let (depth, first) = (doc.display_depth, doc.patch_scene(0));
+        let first_points = app
+            .world()
+            .resource::<crate::ecs::SurfaceData>()
+            .points
+            .data()
+            .len();
         // the patch entities in the document's order, as the editor reads them
         let ids = app
             .world_mut()
@@ -347,7 +353,7 @@ mod tests {
         let opts = streamline_kernel::nurbs::FitOptions::default();
         app.world_mut()
             .resource_mut::<DeviationField>()
-            .refit_document(&doc, &ids, depth, &opts);
+            .refit_document(&first, &doc, &ids, first_points, &opts);
         app.update();
         // independently: the shell fitted here, each patch's field from it
         let want = document_deviation(&doc, depth, &opts).unwrap();
