@@ -1,15 +1,19 @@
 //! The deviation map of a design of several patches (docs/cad.md): each
 //! patch's points at the display depth against its face of the STEP shell
 //! that the export writes (`FaceFit::Shell`, seams held, docs/math.md §10,
-//! §11), each point compared with its face at the parameters the face was
-//! fitted with (`nurbs::deviation_field`). A one-patch design keeps its own
-//! map (`super::cad::fit_scene`, the one face it exports).
+//! §11), each point compared with its face at its parameters on that face
+//! (`nurbs::face_rows`: a joined patch's rows are placed on its parent's
+//! edge, as the shell's own), with `nurbs::deviation_field`. A one-patch
+//! design keeps its own map (`super::cad::fit_scene`, the one face it
+//! exports).
 
 use super::document::Document;
 use super::document_fit::{DocumentFitError, FaceFit, fit_document};
 use std::time::Instant;
 use streamline_kernel::grid::Grid;
-use streamline_kernel::nurbs::{Deviation, FitOptions, Samples, deviation_field};
+use streamline_kernel::nurbs::{
+    Deviation, FitOptions, Samples, ShellError, deviation_field, face_rows,
+};
 
 /// One patch's face and the distance of each of its shown points to it.
 #[derive(Debug, Clone, PartialEq)]
@@ -17,10 +21,8 @@ pub struct PatchDeviation {
     /// The patch's name.
     pub name: String,
     /// The distance at every point of the patch at the display depth
-    /// (rows × points, as its mesh), or `None` when the shell had to be
-    /// sampled deeper than that ([`DocumentDeviation::depth`]): the face's
-    /// parameters are then those of the deeper points.
-    pub field: Option<Grid<f64>>,
+    /// (rows × points, as its mesh).
+    pub field: Grid<f64>,
     /// The face's largest and mean deviation, checked one depth finer than
     /// it was sampled at (as the export reports it).
     pub deviation: Deviation,
@@ -34,7 +36,8 @@ pub struct PatchDeviation {
 #[derive(Debug, Clone, PartialEq)]
 pub struct DocumentDeviation {
     /// The depth the shell was sampled at: the display depth, or deeper when
-    /// the tolerance needed more points (then no patch has a field).
+    /// the tolerance needed more points (the map still measures the points
+    /// shown, as the one-patch map does).
     pub depth: u32,
     /// One per patch, in the document's order.
     pub patches: Vec<PatchDeviation>,
@@ -54,21 +57,26 @@ pub fn document_deviation(
     // the fit checks one depth finer: build that far once
     let built = doc.build(depth + 1).map_err(DocumentFitError::Build)?;
     let fit = fit_document(doc, &built, depth, opts, FaceFit::Shell)?;
-    let patches = (fit.faces.iter().zip(&fit.grids))
-        .map(|(face, grid)| {
-            // the face's own parameters: a joined patch's rows are its parent's
-            let shown = Samples {
-                points: grid.data.points.clone(),
-                u: grid.data.u.clone(),
-                v: face.v.0.clone(),
-            };
-            PatchDeviation {
-                name: face.name.clone(),
-                field: (fit.depth == depth).then(|| deviation_field(&face.surface, &shown)),
-                deviation: face.deviation,
-                tolerance: face.tolerance,
-                poles: face.surface.pole_counts(),
-            }
+    // every patch's points as shown, each with its own parameters first
+    let shown = (built.patches.iter().zip(&doc.patches))
+        .map(|(stack, p)| {
+            let d = depth as usize;
+            Samples::from_level(&stack.levels[d], stack.points[d].clone()).map_err(|error| {
+                DocumentFitError::Shell(ShellError::Fit {
+                    patch: p.name.clone(),
+                    error,
+                })
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let rows = face_rows(&shown, &fit.seams);
+    let patches = (fit.faces.iter().zip(shown).zip(rows))
+        .map(|((face, s), v)| PatchDeviation {
+            name: face.name.clone(),
+            field: deviation_field(&face.surface, &Samples { v, ..s }),
+            deviation: face.deviation,
+            tolerance: face.tolerance,
+            poles: face.surface.pole_counts(),
         })
         .collect();
     Ok(DocumentDeviation {
@@ -91,7 +99,9 @@ mod tests {
     }
 
     /// Every patch gets a field shaped like its points at the display depth;
-    /// each distance is the one between the point and its face at the
+    /// at the depth the shell was fitted at, the rows it measures at are the
+    /// faces' own (`face_rows` places them as `fit_shell` did, bit for bit),
+    /// and each distance is the one between the point and its face at the
     /// point's parameters, evaluated here point by point (not through the
     /// field's table of basis functions).
     #[test]
@@ -110,17 +120,25 @@ mod tests {
             FaceFit::Shell,
         )
         .unwrap();
-        for ((p, stack), face) in d.patches.iter().zip(&built.patches).zip(&fit.faces) {
-            let field = p.field.as_ref().expect("sampled at the display depth");
+        let grids: Vec<Samples> = fit.grids.iter().map(|g| g.data.clone()).collect();
+        let rows = face_rows(&grids, &fit.seams);
+        for (i, ((p, stack), face)) in d
+            .patches
+            .iter()
+            .zip(&built.patches)
+            .zip(&fit.faces)
+            .enumerate()
+        {
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&rows[i]), bits(&face.v.0), "{}", p.name);
+            let field = &p.field;
             let points = &stack.points[depth as usize];
             assert_eq!((field.rows(), field.cols()), (points.rows(), points.cols()));
-            let u = &fit.grids[d.patches.iter().position(|q| q.name == p.name).unwrap()]
-                .data
-                .u;
+            let u = &fit.grids[i].data.u;
             for (j, &v) in face.v.0.iter().enumerate() {
-                for (i, &ui) in u.iter().enumerate() {
-                    let want = (face.surface.eval(ui, v) - points.row(j)[i]).length();
-                    let got = field.row(j)[i];
+                for (k, &uk) in u.iter().enumerate() {
+                    let want = (face.surface.eval(uk, v) - points.row(j)[k]).length();
+                    let got = field.row(j)[k];
                     assert!((got - want).abs() <= 1e-12 * (1.0 + want), "{got} {want}");
                 }
             }
@@ -147,16 +165,28 @@ mod tests {
     }
 
     /// A depth whose points cannot carry the tolerance is sampled deeper
-    /// (hood-screen-wing at depth 0 needs depth 3): the figures are the
-    /// deeper fit's and no patch has a field (its parameters are the deeper
-    /// points').
+    /// (hood-screen-wing at depth 1 needs depth 3); the map still measures
+    /// the points shown, each patch's rows placed on its face at that depth.
     #[test]
-    fn a_deeper_sampling_leaves_the_fields_out() {
+    fn a_deeper_sampling_still_measures_the_points_shown() {
         let doc = hood_screen_wing();
-        let d = document_deviation(&doc, 0, &FitOptions::default()).unwrap();
+        let shown = doc.build(1).unwrap();
+        let d = document_deviation(&doc, 1, &FitOptions::default()).unwrap();
         assert_eq!(d.depth, 3);
         assert_eq!(d.patches.len(), 3);
-        assert!(d.patches.iter().all(|p| p.field.is_none()));
-        assert!(d.patches.iter().all(|p| p.deviation.max <= p.tolerance));
+        for (p, stack) in d.patches.iter().zip(&shown.patches) {
+            let points = &stack.points[1];
+            assert_eq!(
+                (p.field.rows(), p.field.cols()),
+                (points.rows(), points.cols())
+            );
+            assert!(p.field.data().iter().all(|d| d.is_finite() && *d >= 0.0));
+            // the faces meet the tolerance at depth 4's points; depth 1's
+            // coarse streamlines lie well off them (1.6e-3 to 2.6e-3, about
+            // ten tolerances), which is what the map is for
+            let largest = p.field.data().iter().copied().fold(0.0, f64::max);
+            assert!(p.deviation.max <= p.tolerance);
+            assert!(largest > 2.0 * p.tolerance, "{} {largest}", p.name);
+        }
     }
 }

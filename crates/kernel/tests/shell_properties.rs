@@ -17,7 +17,8 @@ use streamline_kernel::KernelError;
 use streamline_kernel::joins::edge_curve::EdgeCurve;
 use streamline_kernel::joins::{Continuity, Edge, Join, JoinError, Stack, join};
 use streamline_kernel::nurbs::{
-    BSplineSurface, FitOptions, PatchGrid, SeamSpec, ShellError, Tolerance, deviation, fit_shell,
+    BSplineSurface, FitOptions, PatchGrid, SeamSpec, ShellError, Tolerance, deviation, face_rows,
+    fit_shell,
 };
 use streamline_kernel::nurbs::{FitError, Samples};
 
@@ -75,6 +76,19 @@ fn shell_or_skip(
 }
 
 fn check_faces(shell: &streamline_kernel::nurbs::ShellFit, patches: &[PatchGrid]) {
+    // `face_rows` places the rows of any grids as the fit placed its data's
+    // and its check grid's (what the deviation map measures at), bit for bit
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let data: Vec<Samples> = patches.iter().map(|p| p.data.clone()).collect();
+    let check: Vec<Samples> = patches.iter().map(|p| p.check.clone()).collect();
+    let (rd, rc) = (
+        face_rows(&data, &shell.seams),
+        face_rows(&check, &shell.seams),
+    );
+    for (f, (d, c)) in shell.faces.iter().zip(rd.iter().zip(&rc)) {
+        assert_eq!(bits(d), bits(&f.v.0), "{}: data rows", f.name);
+        assert_eq!(bits(c), bits(&f.v.1), "{}: check rows", f.name);
+    }
     for (f, p) in shell.faces.iter().zip(patches) {
         let check = Samples {
             points: p.check.points.clone(),

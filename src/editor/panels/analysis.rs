@@ -152,7 +152,7 @@ fn short(v: f64) -> String {
 /// The faces of a design of several patches (one STEP shell, seams held):
 /// each patch's tolerance (a share of its own size), largest and mean
 /// deviation one depth finer, and poles; and, when the shell had to be
-/// sampled deeper than shown, why no patch is coloured.
+/// sampled deeper than shown, that depth.
 fn faces_table(ui: &mut egui::Ui, d: &DeviationField) {
     ui.label("faces of the STEP shell (checked one depth finer):")
         .on_hover_text("Each patch against its own face of the one shell the STEP export writes, its seams shared with its neighbours' faces; a face's tolerance is that share of its own size");
@@ -187,7 +187,7 @@ fn faces_table(ui: &mut egui::Ui, d: &DeviationField) {
         ui.colored_label(
             egui::Color32::from_rgb(200, 150, 40),
             format!(
-                "the tolerance needs the points of depth {depth}: set the display depth to {depth} to see the map"
+                "sampled at depth {depth}, which the tolerance needs: the map measures the points shown against it"
             ),
         );
     }

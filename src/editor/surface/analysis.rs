@@ -285,8 +285,8 @@ pub(super) fn apply_mode(
         SurfaceMode::Shaded => &shaded.0,
         SurfaceMode::Gaussian | SurfaceMode::Mean => &mats.colormap,
         SurfaceMode::Zebra => &mats.zebra,
-        // a fit that measured nothing here (refused, or sampled deeper
-        // than shown) leaves the surface shaded, not last fit's colours
+        // a fit that measured nothing here (refused) leaves the surface
+        // shaded, not the last fit's colours
         SurfaceMode::Deviation if deviation.values.is_none() && deviation.generation > 0 => {
             &shaded.0
         }

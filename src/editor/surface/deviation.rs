@@ -47,8 +47,8 @@ pub struct DeviationField {
     /// (empty for one patch: the figures above are its face's).
     pub faces: Vec<FaceFigures>,
     /// With several patches: the shell had to be sampled at this depth,
-    /// deeper than the one shown, to meet the tolerance; no patch has a map
-    /// then (its faces' parameters are the deeper points').
+    /// deeper than the one shown, to meet the tolerance (the map measures
+    /// the points shown against it, as the one-patch map does).
     pub deeper: Option<u32>,
     /// Counts the fits (what the other patches' maps were made from).
     pub generation: u64,
@@ -117,7 +117,7 @@ impl DeviationField {
                         mean: p.deviation.mean,
                         poles: p.poles,
                     });
-                    let Some(field) = p.field else { continue };
+                    let field = p.field;
                     match i {
                         0 if field.data().len() == first_points => {
                             self.values = Some(field.into_data());
@@ -223,8 +223,9 @@ mod tests {
     }
 
     /// The fields go to their patches' entities, each face's figures in the
-    /// document's order; a shell sampled deeper than shown colours nothing
-    /// and says how deep; a refusal says why, timed like a fit.
+    /// document's order; a shell sampled deeper than shown still colours
+    /// the points shown and says how deep; a refusal says why, timed like a
+    /// fit.
     #[test]
     fn a_document_fit_fills_each_patch_or_says_why_not() {
         let mut doc = hood_screen_wing();
@@ -267,7 +268,11 @@ mod tests {
             &FitOptions::default(),
         );
         assert_eq!(d.deeper, Some(3));
-        assert!(d.values.is_none() && d.joined.is_empty());
+        assert_eq!(
+            d.values.as_ref().map(Vec::len),
+            Some(shown_points(&shallow))
+        );
+        assert_eq!(d.joined.len(), 2);
         assert_eq!(d.faces.len(), 3);
 
         // a tolerance no depth meets: refused, with the reason

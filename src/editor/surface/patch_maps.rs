@@ -14,8 +14,8 @@
 //! limit, the stripes or (for zebra) the eye moved, and only while it is
 //! shown (a hidden patch gets its map when shown again). The deviation map
 //! colours each patch by its distance to its own face of the STEP shell,
-//! within that face's tolerance ([`DeviationField::joined`]); a patch the
-//! fit could not measure at the shown depth stays shaded.
+//! within that face's tolerance ([`DeviationField::joined`]); a patch
+//! without distances (the fit was refused) stays shaded.
 
 use super::analysis::{
     AnalysisMaterials, AnalysisSettings, CurvatureField, SurfaceMode, apply_mode, colormap_uv,
@@ -325,8 +325,8 @@ mod tests {
 
     /// The deviation map on the other patches: each gets the bands of its
     /// own face of the STEP shell (its distances, within its face's
-    /// tolerance), made again after each fit; a fit that could not measure
-    /// them at the shown depth leaves them shaded.
+    /// tolerance), made again after each fit; a fit without their distances
+    /// (refused) leaves them shaded.
     #[test]
     fn each_patch_shows_its_distance_to_its_shell_face() {
         use crate::scene::document_deviation::document_deviation;
@@ -367,7 +367,7 @@ mod tests {
                 .position(|&x| x == e)
                 .expect("a patch of the document");
             let p = &want.patches[i];
-            let field = p.field.as_ref().expect("measured at the shown depth");
+            let field = &p.field;
             let uv = uv.unwrap_or_else(|| panic!("no coordinates on {}", p.name));
             assert_eq!(uv.len(), field.data().len());
             for (u, d) in uv.iter().zip(field.data()) {
@@ -376,7 +376,7 @@ mod tests {
             coloured += uv.iter().filter(|&&u| u > 0.0).count();
         }
         assert!(coloured > 0, "every distance is zero: nothing was measured");
-        // a fit that measured no patch at the shown depth: shaded again
+        // a fit without their distances (refused): shaded again
         let mut d = app.world_mut().resource_mut::<DeviationField>();
         d.joined.clear();
         d.generation += 1;

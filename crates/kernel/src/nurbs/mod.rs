@@ -21,6 +21,7 @@ pub use fit::{Fit, FitOptions, FitReport, Tolerance, fit, fit_design, fit_knots}
 pub use knots::KnotVector;
 pub use samples::Samples;
 pub use shell::{
-    PatchGrid, SeamSpec, ShellError, ShellFace, ShellFit, ShellSeam, fit_alone, fit_shell,
+    PatchGrid, SeamSpec, ShellError, ShellFace, ShellFit, ShellSeam, face_rows, fit_alone,
+    fit_shell,
 };
 pub use surface::BSplineSurface;

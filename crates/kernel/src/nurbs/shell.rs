@@ -503,6 +503,37 @@ pub fn fit_shell(
     Ok(ShellFit { faces, seams })
 }
 
+/// Each patch's row parameters on its face for samples of any depth
+/// (`grids`, one per patch in the shell's order, each with its own `u` and
+/// `v`), given the shell's seams as fitted: a chain's rows are its first
+/// patch's; a side-joined patch's are its start points placed on its
+/// parent's edge row of the same depth, normalised by the seam's range, as
+/// [`fit_shell`] places its check grids. At the depth the shell was fitted
+/// at these are the faces' own (`ShellFace::v`); at another they let a
+/// face be measured at that depth's points (the deviation map). A chain
+/// whose patches' rows differ at that depth keeps the later patch's own.
+pub fn face_rows(grids: &[Samples], seams: &[ShellSeam]) -> Vec<Vec<f64>> {
+    let mut v: Vec<Vec<f64>> = grids.iter().map(|g| g.v.clone()).collect();
+    let mut by_later: Vec<&ShellSeam> = seams
+        .iter()
+        .filter(|s| s.spec.a < s.spec.b && s.spec.b < grids.len())
+        .collect();
+    // parents first: a chain takes its first patch's rows as placed
+    by_later.sort_by_key(|s| s.spec.b);
+    for s in by_later {
+        let (a, b) = (s.spec.a, s.spec.b);
+        if s.spec.join.edge == Edge::End {
+            if v[a].len() == grids[b].points.rows() {
+                v[b] = v[a].clone();
+            }
+        } else {
+            let (u0, u1) = s.range;
+            v[b] = check_params(&grids[a], &grids[b], s.spec.join.edge, u0, u1);
+        }
+    }
+    v
+}
+
 /// Each face fitted alone, as one face of its own (today's export per
 /// patch; no shared edge): the negative control of the shell's tests.
 pub fn fit_alone(patches: &[PatchGrid], opts: &FitOptions) -> Result<Vec<ShellFace>, ShellError> {
