@@ -92,12 +92,7 @@ impl DeviationField {
         opts: &FitOptions,
     ) {
         let depth = first.display_depth;
-        self.stale = false;
-        self.generation += 1;
-        self.joined.clear();
-        self.faces.clear();
-        self.values = None;
-        self.first_alone = None;
+        self.begin();
         let t0 = std::time::Instant::now();
         let result = document_deviation(doc, depth, opts);
         match result {
@@ -144,10 +139,7 @@ impl DeviationField {
                     });
                 }
             }
-            Err(e) => {
-                self.deeper = None;
-                self.error = Some(e.to_string());
-            }
+            Err(e) => self.error = Some(e.to_string()),
         }
         // a refusal is timed too: a slow one waits for the drag to end
         self.seconds = t0.elapsed().as_secs_f64();
@@ -155,14 +147,9 @@ impl DeviationField {
 
     /// Refits `scene` at its display depth with `opts`.
     pub fn refit(&mut self, scene: &Scene, opts: &FitOptions) {
-        self.generation += 1;
-        self.joined.clear();
-        self.faces.clear();
-        self.deeper = None;
-        self.first_alone = None;
+        self.begin();
         let t0 = std::time::Instant::now();
         let result = fit_one(scene, opts);
-        self.stale = false;
         self.seconds = t0.elapsed().as_secs_f64();
         match result {
             Ok((f, field)) => {
@@ -174,11 +161,19 @@ impl DeviationField {
                 self.values = Some(field.into_data());
                 self.error = None;
             }
-            Err(e) => {
-                self.values = None;
-                self.error = Some(e.to_string());
-            }
+            Err(e) => self.error = Some(e.to_string()),
         }
+    }
+
+    /// Forgets the last fit's maps before a new one, which counts.
+    fn begin(&mut self) {
+        self.stale = false;
+        self.generation += 1;
+        self.values = None;
+        self.joined.clear();
+        self.faces.clear();
+        self.deeper = None;
+        self.first_alone = None;
     }
 }
 
