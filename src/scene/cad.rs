@@ -5,8 +5,9 @@
 //! fit gives them, and the fit checked one depth finer.
 
 use std::time::Instant;
+use streamline_kernel::grid::Grid;
 use streamline_kernel::levels::incremental::{reference_levels, tuned_points};
-use streamline_kernel::nurbs::{Fit, FitError, FitOptions, Samples, fit};
+use streamline_kernel::nurbs::{Fit, FitError, FitOptions, Samples, deviation_field, fit};
 
 use super::model::Scene;
 
@@ -109,4 +110,15 @@ pub fn fit_scene(scene: &Scene, depth: u32, opts: &FitOptions) -> Result<SceneFi
             Err(e) => return Err(e),
         }
     }
+}
+
+/// The scene's fit at its display depth ([`fit_scene`], the face a
+/// one-patch export writes) and the distance of each shown point to it
+/// (the one-patch deviation map, docs/cad.md).
+pub fn fit_shown(scene: &Scene, opts: &FitOptions) -> Result<(SceneFit, Grid<f64>), FitError> {
+    let depth = scene.display_depth;
+    let f = fit_scene(scene, depth, opts)?;
+    let shown = samples(scene, depth)?;
+    let field = deviation_field(&f.fit.surface, &shown);
+    Ok((f, field))
 }

@@ -16,8 +16,7 @@ use crate::scene::document::Document;
 use crate::scene::document_deviation::document_deviation;
 use bevy::prelude::*;
 use std::collections::HashMap;
-use streamline_kernel::Grid;
-use streamline_kernel::nurbs::{FitError, FitOptions, deviation_field};
+use streamline_kernel::nurbs::FitOptions;
 
 /// A frame at 60 Hz, seconds: a fit within it is redone on every edit.
 pub const FRAME_BUDGET_S: f64 = 1.0 / 60.0;
@@ -126,7 +125,7 @@ impl DeviationField {
                 self.max = self.faces.iter().map(|f| f.max).fold(0.0, f64::max);
                 let n = self.faces.len().max(1) as f64;
                 self.mean = self.faces.iter().map(|f| f.mean).sum::<f64>() / n;
-                if alone && let Ok((f, field)) = fit_one(first, opts) {
+                if alone && let Ok((f, field)) = cad::fit_shown(first, opts) {
                     let r = &f.fit.report;
                     self.tolerance = r.tolerance;
                     self.values = Some(field.into_data());
@@ -149,7 +148,7 @@ impl DeviationField {
     pub fn refit(&mut self, scene: &Scene, opts: &FitOptions) {
         self.begin();
         let t0 = std::time::Instant::now();
-        let result = fit_one(scene, opts);
+        let result = cad::fit_shown(scene, opts);
         self.seconds = t0.elapsed().as_secs_f64();
         match result {
             Ok((f, field)) => {
@@ -175,16 +174,6 @@ impl DeviationField {
         self.deeper = None;
         self.first_alone = None;
     }
-}
-
-/// `scene`'s one-patch fit at its display depth (`cad::fit_scene`, the face
-/// a one-patch export writes) and the distance of each shown point to it.
-fn fit_one(scene: &Scene, opts: &FitOptions) -> Result<(cad::SceneFit, Grid<f64>), FitError> {
-    let depth = scene.display_depth;
-    let f = cad::fit_scene(scene, depth, opts)?;
-    let shown = cad::samples(scene, depth)?;
-    let field = deviation_field(&f.fit.surface, &shown);
-    Ok((f, field))
 }
 
 /// The map's `u` coordinate: a third of the ramp per tolerance, so the
