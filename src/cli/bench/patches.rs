@@ -96,6 +96,23 @@ pub fn rows() -> Vec<Workload> {
             })
         }));
     }
+    out.push(Workload::lazy(
+        "ecs/patches/hood-screen-wing/d6/edit-hood".into(),
+        || {
+            let text = include_str!("../../../scenes/hood-screen-wing.ron");
+            let mut doc = Document::parse(text, std::path::Path::new("hood-screen-wing.ron"))
+                .expect("the shipped scene reads");
+            doc.display_depth = 6;
+            let mut app = ecs::headless_document_app(&doc, None, ModelConfig::default());
+            let mut sign = 1.0;
+            Box::new(move || {
+                let edit = super::ecs_rows::wiggle(2, 4, &mut sign);
+                ecs::send(&mut app, edit);
+                app.update();
+                app.world().resource::<SurfaceData>().points.data()[0].x
+            })
+        },
+    ));
     out.extend(kernel_rows(depth));
     out
 }

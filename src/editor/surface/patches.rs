@@ -32,6 +32,7 @@ use crate::ecs::joined::{Joined, PatchHidden, PatchStart, PatchSurface};
 use bevy::prelude::*;
 use bevy_state::prelude::State;
 use std::collections::HashMap;
+use streamline_kernel::joins::rejoin::RowSpan;
 use streamline_kernel::joins::{Continuity, Edge};
 use streamline_kernel::{DVec3, Grid};
 
@@ -55,6 +56,10 @@ pub struct PatchMeshes {
     /// How many of those wrote only a rejoin's moved rows into the meshes
     /// in place ([`PatchSurface::rows`]).
     pub partial: u64,
+    /// How many of those were written into the meshes in place, a rejoin's
+    /// moved rows or every row of a surface of the same shape (no new Bevy
+    /// mesh, no new triangles).
+    pub in_place: u64,
 }
 
 impl PatchMeshes {
@@ -208,24 +213,31 @@ fn sync_patch_meshes(
         let (patch, surface, hidden) = (r.0, &r.1, r.4);
         let visible = streamline && !hidden && surface.stack().is_some();
         let fresh = !have.contains_key(&patch);
-        // the moved rows only, written into the mesh in place (its
-        // triangles are for the grid's shape: the shape was kept)
-        let partial = !fresh
+        // a surface of the same shape is written into the mesh in place
+        // (its triangles are for the grid's shape): a rejoin's moved rows
+        // only, every row of a patch built again (a G2 run's members on
+        // every frame of a drag); no new mesh, no new triangles
+        let in_place = !fresh
             && surface.is_changed()
             && kernel.mesh(patch, surface).is_some()
             && match (
-                surface.rows,
                 surface.stack(),
                 have.get(&patch).and_then(|(_, h)| meshes.get_mut(h)),
             ) {
-                (Some(span), Some(s), Some(mut mesh)) => {
-                    write_rows(&mut mesh, s.finest_points(), &surface.normals, span)
+                (Some(s), Some(mut mesh)) => {
+                    let p = s.finest_points();
+                    let all = RowSpan {
+                        lo: 0,
+                        hi: p.rows().saturating_sub(1),
+                    };
+                    write_rows(&mut mesh, p, &surface.normals, surface.rows.unwrap_or(all))
                 }
                 _ => false,
             };
-        if partial {
+        if in_place {
             kernel.rebuilt += 1;
-            kernel.partial += 1;
+            kernel.partial += u64::from(surface.rows.is_some());
+            kernel.in_place += 1;
         } else if fresh || surface.is_changed() || !kernel.is_drawn(patch) {
             let old = kernel.triangles.remove(&patch);
             let (bevy_mesh, triangles) = match surface.stack() {
@@ -502,6 +514,96 @@ mod tests {
         match mesh.attribute(Mesh::ATTRIBUTE_NORMAL) {
             Some(VertexAttributeValues::Float32x3(n)) => assert_eq!(*n, f32s(&whole.normals)),
             _ => panic!("no normals"),
+        }
+    }
+
+    /// A drag of the hood rebuilds its G2 run (hood and screen, no moved
+    /// rows: `PatchSurface::rows` is `None`) and the wing on it: each of
+    /// the three meshes is written in place, every row (the same Bevy mesh,
+    /// its triangles kept, no new asset), and then equals its stack's
+    /// finest points and the whole mesh normals computed independently
+    /// (`SurfaceMesh::from_points`) with the grid's own triangles.
+    /// Controls: the edit moved every mesh, and a patch given another
+    /// shape (the display depth) gets a new mesh.
+    #[test]
+    fn a_rebuilt_patch_of_the_same_shape_is_written_in_place() {
+        let mut app = app(SurfaceMode::Shaded);
+        let names = ["hood", "screen", "wing"];
+        let patches: Vec<Entity> = names.iter().map(|n| by_name(&mut app, n)).collect();
+        let handle = |app: &mut App, p: Entity| {
+            let w = app.world_mut();
+            w.query::<(&PatchSurfaceMesh, &Mesh3d)>()
+                .iter(w)
+                .find(|(of, _)| of.0 == p)
+                .map(|(_, m)| m.0.id())
+                .unwrap()
+        };
+        let before: Vec<_> = patches.iter().map(|&p| handle(&mut app, p)).collect();
+        let old: Vec<_> = patches
+            .iter()
+            .map(|&p| drawn(&mut app, p).unwrap().0)
+            .collect();
+        let meters = app.world().resource::<PatchMeshes>();
+        let (in_place, rebuilt) = (meters.in_place, meters.rebuilt);
+        let dir = DVec3::new(0.8, 0.1, 0.5).normalize();
+        crate::ecs::apply(
+            &mut app,
+            crate::ecs::Edit::SetDirection {
+                row: 2,
+                col: 4,
+                dir,
+            },
+        )
+        .unwrap();
+        app.update();
+        let meters = app.world().resource::<PatchMeshes>();
+        assert_eq!(
+            meters.in_place - in_place,
+            3,
+            "three meshes written in place"
+        );
+        assert_eq!(meters.rebuilt - rebuilt, 3);
+        for (k, &p) in patches.iter().enumerate() {
+            assert_eq!(
+                handle(&mut app, p),
+                before[k],
+                "{}: the same mesh",
+                names[k]
+            );
+            let surface = app.world().get::<PatchSurface>(p).unwrap().clone();
+            let points = surface.stack().unwrap().finest_points().clone();
+            let whole = SurfaceMesh::from_points(&points);
+            let (pos, _) = drawn(&mut app, p).unwrap();
+            assert_eq!(pos, stack_points(&app, p), "{}", names[k]);
+            assert_ne!(pos, old[k], "{}: the edit moved it", names[k]);
+            let w = app.world_mut();
+            let h = w
+                .query::<(&PatchSurfaceMesh, &Mesh3d)>()
+                .iter(w)
+                .find(|(of, _)| of.0 == p)
+                .map(|(_, m)| m.0.clone())
+                .unwrap();
+            let mesh = w.resource::<Assets<Mesh>>().get(&h).unwrap();
+            let f32s = |v: &[DVec3]| v.iter().map(|n| n.as_vec3().to_array()).collect::<Vec<_>>();
+            match mesh.attribute(Mesh::ATTRIBUTE_NORMAL) {
+                Some(VertexAttributeValues::Float32x3(n)) => {
+                    assert_eq!(*n, f32s(&whole.normals), "{}", names[k])
+                }
+                _ => panic!("no normals"),
+            }
+            match mesh.indices() {
+                Some(bevy::mesh::Indices::U32(t)) => assert_eq!(*t, whole.indices, "{}", names[k]),
+                _ => panic!("no triangles"),
+            }
+        }
+        // control: another shape is another mesh
+        let in_place = app.world().resource::<PatchMeshes>().in_place;
+        crate::ecs::apply(&mut app, crate::ecs::Edit::SetDisplayDepth(3)).unwrap();
+        app.update();
+        assert_eq!(app.world().resource::<PatchMeshes>().in_place, in_place);
+        for (k, &p) in patches.iter().enumerate() {
+            let (pos, _) = drawn(&mut app, p).unwrap();
+            assert_eq!(pos, stack_points(&app, p), "{} at depth 3", names[k]);
         }
     }
 
