@@ -7,7 +7,10 @@
 //! (`ecs/patches/car-g2x3/d5/edit-first`, `…/edit-last`: the run kept
 //! between edits, `joins::g2_state`), and the kernel's G2 run after an edit
 //! of the first car updated in place beside built whole
-//! (`joins/car-g2x3/d5/update`, `joins/car-g2x3/d5/whole`).
+//! (`joins/car-g2x3/d5/update`, `joins/car-g2x3/d5/whole`); and the shipped
+//! `scenes/hood-screen-wing.ron` at depth 6, its hood's tangent (2, 4) (the
+//! seam column of its G2 run with the screen, the wing side-joined on the
+//! hood) turned back and forth (`ecs/patches/hood-screen-wing/d6/edit-hood`).
 
 use super::workloads::Workload;
 use crate::scene::document::{Document, PatchScene, Start};
@@ -67,7 +70,7 @@ pub fn chained_cars_with(n: usize, depth: u32, continuity: Continuity) -> Docume
 
 /// The rows (module documentation).
 pub fn rows() -> Vec<Workload> {
-    use crate::ecs::{self, Edit, ModelConfig, SurfaceData};
+    use crate::ecs::{self, Edit, ModelConfig};
     let depth = 5;
     let mut out = Vec::new();
     let rows = [
@@ -87,13 +90,7 @@ pub fn rows() -> Vec<Workload> {
                 ecs::apply(&mut app, Edit::Patch(PatchEdit::SetPatch(target)))
                     .expect("the patch exists");
             }
-            let mut sign = 1.0;
-            Box::new(move || {
-                let edit = super::ecs_rows::wiggle(2, 4, &mut sign);
-                ecs::send(&mut app, edit);
-                app.update();
-                app.world().resource::<SurfaceData>().points.data()[0].x
-            })
+            wiggling(app)
         }));
     }
     out.push(Workload::lazy(
@@ -103,18 +100,28 @@ pub fn rows() -> Vec<Workload> {
             let mut doc = Document::parse(text, std::path::Path::new("hood-screen-wing.ron"))
                 .expect("the shipped scene reads");
             doc.display_depth = 6;
-            let mut app = ecs::headless_document_app(&doc, None, ModelConfig::default());
-            let mut sign = 1.0;
-            Box::new(move || {
-                let edit = super::ecs_rows::wiggle(2, 4, &mut sign);
-                ecs::send(&mut app, edit);
-                app.update();
-                app.world().resource::<SurfaceData>().points.data()[0].x
-            })
+            wiggling(ecs::headless_document_app(
+                &doc,
+                None,
+                ModelConfig::default(),
+            ))
         },
     ));
     out.extend(kernel_rows(depth));
     out
+}
+
+/// One run of a row: the active patch's tangent (2, 4) turned one way or
+/// back ([`super::ecs_rows::wiggle`]), then one update of `app`.
+fn wiggling(mut app: bevy::app::App) -> Box<dyn FnMut() -> f64> {
+    use crate::ecs::{self, SurfaceData};
+    let mut sign = 1.0;
+    Box::new(move || {
+        let edit = super::ecs_rows::wiggle(2, 4, &mut sign);
+        ecs::send(&mut app, edit);
+        app.update();
+        app.world().resource::<SurfaceData>().points.data()[0].x
+    })
 }
 
 /// The kernel's G2 run of three cars: an edit of the first car's tangent

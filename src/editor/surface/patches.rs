@@ -359,6 +359,50 @@ mod tests {
             .collect()
     }
 
+    /// Turns the active patch's tangent (2, 4) and updates.
+    fn turn_2_4(app: &mut App) {
+        let dir = DVec3::new(0.8, 0.1, 0.5).normalize();
+        crate::ecs::apply(
+            app,
+            crate::ecs::Edit::SetDirection {
+                row: 2,
+                col: 4,
+                dir,
+            },
+        )
+        .unwrap();
+        app.update();
+    }
+
+    /// The handle of patch `p`'s Bevy mesh.
+    fn mesh_handle(app: &mut App, p: Entity) -> Handle<Mesh> {
+        let w = app.world_mut();
+        w.query::<(&PatchSurfaceMesh, &Mesh3d)>()
+            .iter(w)
+            .find(|(of, _)| of.0 == p)
+            .map(|(_, m)| m.0.clone())
+            .expect("drawn")
+    }
+
+    /// Patch `p`'s Bevy mesh (a copy).
+    fn mesh_of(app: &mut App, p: Entity) -> Mesh {
+        let h = mesh_handle(app, p);
+        let meshes = app.world().resource::<Assets<Mesh>>();
+        meshes.get(&h).expect("a mesh").clone()
+    }
+
+    /// The normals of patch `p`'s Bevy mesh.
+    fn mesh_normals(app: &mut App, p: Entity) -> Vec<[f32; 3]> {
+        match mesh_of(app, p).attribute(Mesh::ATTRIBUTE_NORMAL) {
+            Some(VertexAttributeValues::Float32x3(n)) => n.clone(),
+            _ => panic!("no normals"),
+        }
+    }
+
+    fn f32s(v: &[DVec3]) -> Vec<[f32; 3]> {
+        v.iter().map(|n| n.as_vec3().to_array()).collect()
+    }
+
     /// Every joined patch is drawn, its mesh being its stack's finest
     /// points (as `f32`), with a normal per point equal to the kernel's
     /// mesh normals (computed independently of the sync here).
@@ -466,17 +510,7 @@ mod tests {
         let car = by_name(&mut app, "car1");
         let old = drawn(&mut app, car).expect("car1 drawn").0;
         let partial = app.world().resource::<PatchMeshes>().partial;
-        let dir = DVec3::new(0.8, 0.1, 0.5).normalize();
-        crate::ecs::apply(
-            &mut app,
-            crate::ecs::Edit::SetDirection {
-                row: 2,
-                col: 4,
-                dir,
-            },
-        )
-        .unwrap();
-        app.update();
+        turn_2_4(&mut app);
         let surface = app.world().get::<PatchSurface>(car).unwrap().clone();
         let points = surface.stack().unwrap().finest_points().clone();
         let span = surface.rows.expect("a rejoin's moved rows");
@@ -502,19 +536,7 @@ mod tests {
         let (pos, _) = drawn(&mut app, car).unwrap();
         assert_eq!(pos, stack_points(&app, car));
         assert_ne!(pos, old, "the edit moved the mesh");
-        let w = app.world_mut();
-        let h = w
-            .query::<(&PatchSurfaceMesh, &Mesh3d)>()
-            .iter(w)
-            .find(|(of, _)| of.0 == car)
-            .map(|(_, m)| m.0.clone())
-            .unwrap();
-        let mesh = w.resource::<Assets<Mesh>>().get(&h).unwrap();
-        let f32s = |v: &[DVec3]| v.iter().map(|n| n.as_vec3().to_array()).collect::<Vec<_>>();
-        match mesh.attribute(Mesh::ATTRIBUTE_NORMAL) {
-            Some(VertexAttributeValues::Float32x3(n)) => assert_eq!(*n, f32s(&whole.normals)),
-            _ => panic!("no normals"),
-        }
+        assert_eq!(mesh_normals(&mut app, car), f32s(&whole.normals));
     }
 
     /// A drag of the hood rebuilds its G2 run (hood and screen, no moved
@@ -530,14 +552,7 @@ mod tests {
         let mut app = app(SurfaceMode::Shaded);
         let names = ["hood", "screen", "wing"];
         let patches: Vec<Entity> = names.iter().map(|n| by_name(&mut app, n)).collect();
-        let handle = |app: &mut App, p: Entity| {
-            let w = app.world_mut();
-            w.query::<(&PatchSurfaceMesh, &Mesh3d)>()
-                .iter(w)
-                .find(|(of, _)| of.0 == p)
-                .map(|(_, m)| m.0.id())
-                .unwrap()
-        };
+        let handle = |app: &mut App, p: Entity| mesh_handle(app, p).id();
         let before: Vec<_> = patches.iter().map(|&p| handle(&mut app, p)).collect();
         let old: Vec<_> = patches
             .iter()
@@ -545,17 +560,7 @@ mod tests {
             .collect();
         let meters = app.world().resource::<PatchMeshes>();
         let (in_place, rebuilt) = (meters.in_place, meters.rebuilt);
-        let dir = DVec3::new(0.8, 0.1, 0.5).normalize();
-        crate::ecs::apply(
-            &mut app,
-            crate::ecs::Edit::SetDirection {
-                row: 2,
-                col: 4,
-                dir,
-            },
-        )
-        .unwrap();
-        app.update();
+        turn_2_4(&mut app);
         let meters = app.world().resource::<PatchMeshes>();
         assert_eq!(
             meters.in_place - in_place,
@@ -576,23 +581,11 @@ mod tests {
             let (pos, _) = drawn(&mut app, p).unwrap();
             assert_eq!(pos, stack_points(&app, p), "{}", names[k]);
             assert_ne!(pos, old[k], "{}: the edit moved it", names[k]);
-            let w = app.world_mut();
-            let h = w
-                .query::<(&PatchSurfaceMesh, &Mesh3d)>()
-                .iter(w)
-                .find(|(of, _)| of.0 == p)
-                .map(|(_, m)| m.0.clone())
-                .unwrap();
-            let mesh = w.resource::<Assets<Mesh>>().get(&h).unwrap();
-            let f32s = |v: &[DVec3]| v.iter().map(|n| n.as_vec3().to_array()).collect::<Vec<_>>();
-            match mesh.attribute(Mesh::ATTRIBUTE_NORMAL) {
-                Some(VertexAttributeValues::Float32x3(n)) => {
-                    assert_eq!(*n, f32s(&whole.normals), "{}", names[k])
-                }
-                _ => panic!("no normals"),
-            }
+            let name = names[k];
+            assert_eq!(mesh_normals(&mut app, p), f32s(&whole.normals), "{name}");
+            let mesh = mesh_of(&mut app, p);
             match mesh.indices() {
-                Some(bevy::mesh::Indices::U32(t)) => assert_eq!(*t, whole.indices, "{}", names[k]),
+                Some(bevy::mesh::Indices::U32(t)) => assert_eq!(*t, whole.indices, "{name}"),
                 _ => panic!("no triangles"),
             }
         }

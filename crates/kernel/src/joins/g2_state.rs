@@ -16,13 +16,13 @@
 
 use crate::grid::Grid;
 use crate::joins::error::JoinError;
-use crate::joins::merged::{MergedRun, cut, cut_row, cuts, merge_g2};
+use crate::joins::merged::{MergedRun, cut, cut_row_from, cuts, merge_g2};
 use crate::joins::stack::Stack;
 use crate::levels::design::Design;
 use crate::levels::dirty_window::{DirtyWindow, Span};
 use crate::levels::incremental::{LevelState, build_levels, propagate};
 use crate::levels::multires::Details;
-use crate::streamline::integrate::{place_slice, segment_at};
+use crate::streamline::integrate::{place_slice, place_slice_from, segment_at};
 use glam::DVec3;
 
 /// A G2 run's merged levels at every depth `0 ..= d` (their points are
@@ -194,18 +194,33 @@ impl G2State {
         // the first merged column the window changed (none: only starts moved)
         let from = window.map_or(usize::MAX, |w| w.cols.lo);
         for r in (0..nrows).filter(|&r| rows[r]) {
-            place(level, &self.origins[d], r, &mut row);
             let moved = bits(before[r]) != bits(self.origins[d][r]);
             let k = segment_at(level.params.s.row(r), level.params.sigma[r]);
-            for (p, stack) in stacks.iter_mut().enumerate() {
-                // a patch's points read the merged tangents up to its
-                // last column and `s` one further, and the anchor's
-                // segment (Eq. 65): left of the window, they are as they were
-                if !moved && cuts[p + 1].max(k) + 1 < from {
+            // a patch's points read the merged tangents up to its last
+            // column and `s` one further, and the anchor's segment (Eq.
+            // 65): left of the window, they are as they were
+            let kept = |p: usize| !moved && cuts[p + 1].max(k) + 1 < from;
+            let Some(first) = (0..stacks.len()).find(|&p| !kept(p)) else {
+                continue;
+            };
+            // the row summed again from the point before the window (its
+            // sums up to there read nothing the window changed; that point
+            // read back from the stack it was cut into), and only what
+            // changed cut again: the same bits as placing it whole
+            let again = from.saturating_sub(1);
+            let start = if !moved && again >= 1 && again < cols {
+                row[again] = merged_point(stacks, d, r, &cuts, again);
+                place_from(level, &self.origins[d], r, again, &mut row)
+            } else {
+                place(level, &self.origins[d], r, &mut row);
+                0
+            };
+            for (p, stack) in stacks.iter_mut().enumerate().skip(first) {
+                if kept(p) {
                     continue;
                 }
                 let to = stack.points[d].row_mut(r);
-                cut_row(&level.tangents, &level.params.s, &row, r, &cuts, p, to);
+                cut_row_from(level, &row, r, &cuts, p, start, to);
                 changed[p] = true;
             }
         }
@@ -329,6 +344,36 @@ fn place(level: &LevelState, origins: &[DVec3], r: usize, out: &mut [DVec3]) {
         origins[r],
         out,
     );
+}
+
+/// [`place`] after the merged row's tangents and `s` changed from column
+/// `from + 1` on, `out[from]` holding the row's point there as placed
+/// before (Eq. 65 with the same sums, so the same bits): the first point
+/// written, `from + 1`, or 0 when the anchor's segment reads the change and
+/// the whole row was placed ([`place_slice_from`]).
+fn place_from(
+    level: &LevelState,
+    origins: &[DVec3],
+    r: usize,
+    from: usize,
+    out: &mut [DVec3],
+) -> usize {
+    place_slice_from(
+        level.tangents.row(r),
+        level.params.s.row(r),
+        level.params.sigma[r],
+        origins[r],
+        from,
+        out,
+    )
+}
+
+/// Point `m` (`1 ..=` the last tangent column) of merged row `r` of level
+/// `d`, read back from the stack it was cut into ([`super::merged::cut_row`]: patch `p`'s
+/// points `1 ..= hi − lo` are the merged points `lo + 1 ..= hi`).
+fn merged_point(stacks: &[Stack], d: usize, r: usize, cuts: &[usize], m: usize) -> DVec3 {
+    let p = cuts.partition_point(|&c| c < m) - 1;
+    stacks[p].points[d].get(r, m - cuts[p])
 }
 
 /// Patch `p`'s level (`part`) cut again from the merged `level` inside its

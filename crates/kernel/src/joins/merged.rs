@@ -12,6 +12,7 @@ use crate::joins::error::JoinError;
 use crate::joins::kinds::Continuity;
 use crate::joins::stack::Stack;
 use crate::levels::design::{Design, Level};
+use crate::levels::incremental::LevelState;
 use crate::levels::params::ParamGrid;
 use crate::levels::surface::SurfaceScheme;
 use glam::DVec3;
@@ -169,6 +170,37 @@ pub(crate) fn cut_row(
     out[0] = if p == 0 { row[0] } else { seam(lo) };
     out[1..=hi - lo].copy_from_slice(&row[lo + 1..=hi]);
     out[hi - lo + 1] = if last { row[hi + 1] } else { seam(hi) };
+}
+
+/// [`cut_row`] of a merged `level` when only the merged points from `start`
+/// on changed (`out` holding the patch's points as cut before; `start` 0:
+/// all of them): what the patch reads before `start` is kept, the rest
+/// written, the same values as `cut_row`. `row` needs only its points from
+/// `start − 1` on.
+pub(crate) fn cut_row_from(
+    level: &LevelState,
+    row: &[DVec3],
+    r: usize,
+    cuts: &[usize],
+    p: usize,
+    start: usize,
+    out: &mut [DVec3],
+) {
+    let (tangents, s) = (&level.tangents, &level.params.s);
+    let (lo, hi) = (cuts[p], cuts[p + 1]);
+    // the first point (the seam at `lo` reads the merged point `lo`) too
+    if start <= lo {
+        cut_row(tangents, s, row, r, cuts, p, out);
+        return;
+    }
+    if start <= hi {
+        out[start - lo..=hi - lo].copy_from_slice(&row[start..=hi]);
+    }
+    out[hi - lo + 1] = if p + 2 == cuts.len() {
+        row[hi + 1]
+    } else {
+        seam_point(tangents, s, row, r, hi)
+    };
 }
 
 /// Columns `lo ..= hi` of `g`.
