@@ -22,7 +22,7 @@ use crate::levels::design::Design;
 use crate::levels::dirty_window::{DirtyWindow, Span};
 use crate::levels::incremental::{LevelState, build_levels, propagate};
 use crate::levels::multires::Details;
-use crate::streamline::integrate::{place_slice, place_slice_from, segment_at};
+use crate::streamline::integrate::{place_slice_from, segment_at};
 use glam::DVec3;
 
 /// A G2 run's merged levels at every depth `0 ..= d` (their points are
@@ -103,7 +103,7 @@ impl G2State {
             let (rows, cols) = level.shape();
             let mut points = Grid::filled(rows, cols + 1, DVec3::ZERO);
             for r in 0..rows {
-                place(level, origins, r, points.row_mut(r));
+                place(level, origins, r, 0, points.row_mut(r));
             }
             let points = &points;
             let cuts = cuts(scheme, &self.run.seams, d as u32, cols);
@@ -208,13 +208,13 @@ impl G2State {
             // read back from the stack it was cut into), and only what
             // changed cut again: the same bits as placing it whole
             let again = from.saturating_sub(1);
-            let start = if !moved && again >= 1 && again < cols {
+            let again = if !moved && again >= 1 && again < cols {
                 row[again] = merged_point(stacks, d, r, &cuts, again);
-                place_from(level, &self.origins[d], r, again, &mut row)
+                again
             } else {
-                place(level, &self.origins[d], r, &mut row);
                 0
             };
+            let start = place(level, &self.origins[d], r, again, &mut row);
             for (p, stack) in stacks.iter_mut().enumerate().skip(first) {
                 if kept(p) {
                     continue;
@@ -335,29 +335,13 @@ fn origins(design: &Design, level: &LevelState) -> Vec<DVec3> {
 }
 
 /// Row `r` of `level` placed from its start `origins[r]` (Eq. 65, as
-/// [`Design::place_row`]).
-fn place(level: &LevelState, origins: &[DVec3], r: usize, out: &mut [DVec3]) {
-    place_slice(
-        level.tangents.row(r),
-        level.params.s.row(r),
-        level.params.sigma[r],
-        origins[r],
-        out,
-    );
-}
-
-/// [`place`] after the merged row's tangents and `s` changed from column
-/// `from + 1` on, `out[from]` holding the row's point there as placed
-/// before (Eq. 65 with the same sums, so the same bits): the first point
-/// written, `from + 1`, or 0 when the anchor's segment reads the change and
-/// the whole row was placed ([`place_slice_from`]).
-fn place_from(
-    level: &LevelState,
-    origins: &[DVec3],
-    r: usize,
-    from: usize,
-    out: &mut [DVec3],
-) -> usize {
+/// [`Design::place_row`]); with `from > 0`, after its tangents and `s`
+/// changed from column `from + 1` on, `out[from]` holding the row's point
+/// there as placed before: summed again from there (the same sums, so the
+/// same bits). The first point written: `from + 1`, or 0 when the whole row
+/// was placed (`from` 0, or the anchor's segment reads the change;
+/// [`place_slice_from`]).
+fn place(level: &LevelState, origins: &[DVec3], r: usize, from: usize, out: &mut [DVec3]) -> usize {
     place_slice_from(
         level.tangents.row(r),
         level.params.s.row(r),
