@@ -207,12 +207,12 @@ impl G2State {
             // sums up to there read nothing the window changed; that point
             // read back from the stack it was cut into), and only what
             // changed cut again: the same bits as placing it whole
-            let again = from.saturating_sub(1);
-            let again = if !moved && again >= 1 && again < cols {
-                row[again] = merged_point(stacks, d, r, &cuts, again);
-                again
-            } else {
-                0
+            let again = match from.checked_sub(1) {
+                Some(a) if !moved && (1..cols).contains(&a) => {
+                    row[a] = merged_point(stacks, d, r, &cuts, a);
+                    a
+                }
+                _ => 0,
             };
             let start = place(level, &self.origins[d], r, again, &mut row);
             for (p, stack) in stacks.iter_mut().enumerate().skip(first) {
@@ -353,8 +353,9 @@ fn place(level: &LevelState, origins: &[DVec3], r: usize, from: usize, out: &mut
 }
 
 /// Point `m` (`1 ..=` the last tangent column) of merged row `r` of level
-/// `d`, read back from the stack it was cut into ([`super::merged::cut_row`]: patch `p`'s
-/// points `1 ..= hi − lo` are the merged points `lo + 1 ..= hi`).
+/// `d`, read back from the stack it was cut into
+/// ([`super::merged::cut_row`]: patch `p`'s points `1 ..= hi − lo` are the
+/// merged points `lo + 1 ..= hi`).
 fn merged_point(stacks: &[Stack], d: usize, r: usize, cuts: &[usize], m: usize) -> DVec3 {
     let p = cuts.partition_point(|&c| c < m) - 1;
     stacks[p].points[d].get(r, m - cuts[p])
