@@ -16,7 +16,7 @@ use streamline_kernel::joins::edges::Edges;
 use streamline_kernel::joins::rejoin::{Rejoin, rejoin};
 use streamline_kernel::joins::side::side;
 use streamline_kernel::joins::{Continuity, Edge, Stack};
-use streamline_kernel::{Design, KernelError};
+use streamline_kernel::{BlendOrder, Design, KernelError};
 
 const DEPTH: u32 = 3;
 
@@ -125,8 +125,10 @@ proptest! {
     }
 
     /// Side joins: `rejoin` equals `side` on the new `A` bit for bit; G0
-    /// always rejoins; G1 keeps `B` whole when the edge curve did not change
-    /// and is refused otherwise.
+    /// always rejoins; G1 rejoins too when `B` is an s-first Kobbelt net
+    /// (its first column projected again where `A`'s edge moved, and what
+    /// reads it re-blended, `joins::reproject`), and is refused otherwise,
+    /// or where the whole join is refused.
     #[test]
     fn a_side_join_rejoins_bit_for_bit(
         spec in pair_spec(),
@@ -144,17 +146,68 @@ proptest! {
         let Some(sa2) = stack(&a2) else { return Ok(()) };
         let Ok(sb) = side(&sa, &b, edge, c) else { return Ok(()) };
         let whole = side(&sa2, &b, edge, c);
+        let kept = b.scheme().is_interpolatory() && b.order() == BlendOrder::SFirst;
         match rejoin(&a2, &Edges::of(&sa, true), &Edges::of(&sa2, true), &b, sb.clone(), edge, c) {
             Rejoin::Moved { stack: s, .. } => prop_assert!(same(&s, &whole.unwrap())),
             Rejoin::Unchanged(s) => prop_assert!(same(&s, &whole.unwrap())),
             Rejoin::Rebuild(s) => {
-                prop_assert!(same(&s, &sb), "the old stack handed back");
-                prop_assert!(g1 || whole.is_err(), "G0 rejoins unless the join is refused");
+                prop_assert!(whole.is_err() || (g1 && !kept),
+                    "G0, and G1 on an s-first Kobbelt net, rejoin unless the join is refused");
+                prop_assert!(whole.is_err() || same(&s, &sb), "the old stack handed back");
             }
         }
     }
 }
 
+/// A G1 side join on an s-first Kobbelt `B` after an edit of `A` near its
+/// edge: `rejoin` projects `B`'s first column again and re-blends only what
+/// reads it, bit for bit the whole join; at the finest depth that leaves
+/// most columns of `B` untouched (the re-blended window is the first few
+/// columns, while every point moves with its start). Controls: the edit
+/// moved `A`'s edge normals at every depth from 2 on (so the levels did
+/// need re-blending), and `B`'s finest tangents differ from the old ones in
+/// the first column but not in the last.
+#[test]
+fn a_side_g1_join_reblends_only_its_first_columns() {
+    let spec = common::joins::PairSpec::kobbelt_s_first(7, 9);
+    let edge = Edge::First;
+    let depth = 4;
+    let (a, sa, b) = side_pair(&spec, Field::Bent, edge, depth).expect("a side pair");
+    let a2 = turned(&a, 1, 4, DVec3::new(0.2, 0.9, 0.3).normalize(), 0.2);
+    let sa2 = Stack::build(&a2, depth).unwrap();
+    let sb = side(&sa, &b, edge, Continuity::G1).unwrap();
+    let whole = side(&sa2, &b, edge, Continuity::G1).unwrap();
+    let (old_a, new_a) = (Edges::of(&sa, true), Edges::of(&sa2, true));
+    for d in 2..=depth as usize {
+        let (o, n) = (
+            old_a.levels[d].curve(edge).unwrap(),
+            new_a.levels[d].curve(edge).unwrap(),
+        );
+        assert!(!o.same_bits(n), "control: the edge moved at depth {d}");
+    }
+    let Rejoin::Moved { stack, rows } =
+        rejoin(&a2, &old_a, &new_a, &b, sb.clone(), edge, Continuity::G1)
+    else {
+        panic!("a G1 side join on an s-first Kobbelt net rejoins");
+    };
+    assert!(same(&stack, &whole));
+    let (fine, old) = (stack.finest(), sb.finest());
+    let cols = fine.tangents.cols();
+    let differs = |c: usize| {
+        (0..fine.tangents.rows())
+            .any(|r| bits(fine.tangents.get(r, c)) != bits(old.tangents.get(r, c)))
+    };
+    assert!(differs(0), "control: the first column was projected again");
+    let untouched = (0..cols).rev().take_while(|&c| !differs(c)).count();
+    assert!(
+        untouched * 2 > cols,
+        "only the first columns re-blended: {untouched} of {cols} columns untouched"
+    );
+    assert!(
+        rows.last().copied().flatten().is_some(),
+        "the moved rows are reported"
+    );
+}
 /// The rows of `new` whose first point is not bit for bit `old`'s.
 fn moved_rows(
     old: &streamline_kernel::Grid<DVec3>,

@@ -136,12 +136,13 @@ impl G2State {
         };
         self.run = run;
         let mut prop_dirty: Vec<Option<DirtyWindow>> = vec![None; self.levels.len()];
-        let mut reblended = 0;
+        let (mut reblended, mut params) = (0, false);
         if let Some(w) = seed {
             let mut refs: Vec<&mut LevelState> = self.levels.iter_mut().collect();
             match propagate(&self.run.design, &Details::new(), &mut refs, &[Some(w)]) {
                 Ok(p) => {
                     reblended = p.reblended;
+                    params = p.params;
                     prop_dirty = p.dirty;
                 }
                 // s stopped increasing somewhere: the whole build's error
@@ -150,7 +151,7 @@ impl G2State {
         }
         let mut changed = vec![false; n];
         for (d, w) in prop_dirty.into_iter().enumerate() {
-            self.recut_level(d, w, stacks, &mut changed);
+            self.recut_level(d, w, params, stacks, &mut changed);
         }
         Ok(G2Update {
             changed,
@@ -163,12 +164,13 @@ impl G2State {
     /// window `window` was re-blended: the rows of the window, and those
     /// whose start on the initial curve moved, placed again (Eq. 65) and
     /// cut into each patch's points (Eq. 70), and the window's tangents and
-    /// parameters cut into each patch's level; `changed` marks the patches
-    /// written.
+    /// (when `params`, some parameter of the edit changed) parameters cut
+    /// into each patch's level; `changed` marks the patches written.
     fn recut_level(
         &mut self,
         d: usize,
         window: Option<DirtyWindow>,
+        params: bool,
         stacks: &mut [Stack],
         changed: &mut [bool],
     ) {
@@ -226,7 +228,7 @@ impl G2State {
         }
         if let Some(w) = window {
             for (p, stack) in stacks.iter_mut().enumerate() {
-                changed[p] |= recut_window(level, w, &cuts, p, &mut stack.levels[d]);
+                changed[p] |= recut_window(level, w, &cuts, p, params, &mut stack.levels[d]);
             }
         }
     }
@@ -362,19 +364,31 @@ fn merged_point(stacks: &[Stack], d: usize, r: usize, cuts: &[usize], m: usize) 
 }
 
 /// Patch `p`'s level (`part`) cut again from the merged `level` inside its
-/// window `w` (Eq. 69): the tangents and `s` of the window's cells in the
-/// patch's columns, and the window rows' `t` and `σ` (the first patch's
-/// merged `σ`, a later one's first `s`). Whether any of them changed.
+/// window `w` (Eq. 69): the tangents of the window's cells in the patch's
+/// columns and, when `params` (an edit that changed a parameter; else they
+/// are as they were), their `s` and the window rows' `t` and `σ` (the first
+/// patch's merged `σ`, a later one's first `s`). Whether any of them changed.
 fn recut_window(
     level: &LevelState,
     w: DirtyWindow,
     cuts: &[usize],
     p: usize,
+    params: bool,
     part: &mut crate::levels::design::Level,
 ) -> bool {
     let (lo, hi) = (cuts[p], cuts[p + 1]);
     let mut changed = false;
     for r in w.rows.iter() {
+        let (c0, c1) = (w.cols.lo.max(lo), w.cols.hi.min(hi));
+        if !params {
+            if c0 <= c1 {
+                changed |= assign(
+                    &mut part.tangents.row_mut(r)[c0 - lo..=c1 - lo],
+                    &level.tangents.row(r)[c0..=c1],
+                );
+            }
+            continue;
+        }
         let sigma = if p == 0 {
             level.params.sigma[r]
         } else {
@@ -382,7 +396,6 @@ fn recut_window(
         };
         changed |= assign_f64(&mut part.params.t[r..=r], &level.params.t[r..=r]);
         changed |= assign_f64(&mut part.params.sigma[r..=r], &[sigma]);
-        let (c0, c1) = (w.cols.lo.max(lo), w.cols.hi.min(hi));
         if c0 > c1 {
             continue;
         }

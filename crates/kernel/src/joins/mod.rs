@@ -12,7 +12,8 @@
 //!   [`side`]: joins on it, G0 or G1 (§11.2).
 //! - [`build`]: one join built whole; [`seam`]: the seam report (§11.3).
 //! - [`edges`]: what the patches on a patch read of it; [`rejoin`]: a
-//!   joined patch brought up to date after its parent changed.
+//!   joined patch brought up to date after its parent changed (a side G1
+//!   join's levels re-blended where the new projections reach, `reproject`).
 //! - [`error`]: why a join is refused, and what to do.
 
 pub mod build;
@@ -24,6 +25,7 @@ pub mod g2_state;
 pub mod kinds;
 pub mod merged;
 pub mod rejoin;
+mod reproject;
 pub mod seam;
 pub mod side;
 pub mod stack;

@@ -11,9 +11,12 @@
 //! `B`'s streamlines, G1 also to project `B`'s first column (Eq. 73) while
 //! making its levels. So when those inputs are bit for bit what they were,
 //! `B`'s levels are kept and only its points are placed again (or nothing
-//! at all changes), and the result is bit for bit what [`super::chain::chain`]
-//! or [`super::side::side`] would build; otherwise [`rejoin`] answers
-//! [`Rejoin::Rebuild`] and the caller builds `B` whole.
+//! at all changes); when only a side G1 join's edge normals moved, its first
+//! column is projected again and only what reads it re-blended
+//! (`super::reproject`, s-first Kobbelt nets). The result is bit for bit
+//! what [`super::chain::chain`] or [`super::side::side`] would build;
+//! otherwise [`rejoin`] answers [`Rejoin::Rebuild`] and the caller builds
+//! `B` whole.
 //!
 //! `A` before and after the edit are given as [`Edges`], exactly what `B`
 //! reads of it (not `A`'s stacks, megabytes at depth 5), and `B`'s points
@@ -21,11 +24,14 @@
 
 use crate::grid::Grid;
 use crate::joins::chain::check_chain;
+use crate::joins::edge_curve::EdgeCurve;
 use crate::joins::edges::Edges;
 use crate::joins::kinds::{Continuity, Edge};
+use crate::joins::reproject::reproject;
 use crate::joins::side::check_rows;
 use crate::joins::stack::{Stack, place_at_starts};
 use crate::levels::design::{Design, Level};
+use crate::levels::dirty_window::{DirtyWindow, Span};
 use crate::streamline::integrate::place_slice;
 use glam::DVec3;
 
@@ -34,18 +40,21 @@ use glam::DVec3;
 pub enum Rejoin {
     /// Nothing `B` reads of `A` changed: `B`'s stack as it was.
     Unchanged(Stack),
-    /// `B`'s levels as they were (moved, not copied), its points placed
-    /// again in place in the rows whose start point moved (the others as
-    /// they were); `rows` holds the first and last row placed again at
-    /// each depth (`None` where nothing moved), so that callers can be
-    /// local too.
+    /// `B`'s levels as they were (moved, not copied; a side G1 join's
+    /// re-blended in place where its first column's projection changed),
+    /// its points placed again in place in the rows whose start point
+    /// moved or whose tangents were re-blended (the others as they were);
+    /// `rows` holds the first and last row placed again at each depth
+    /// (`None` where nothing moved), so that callers can be local too.
     Moved {
         stack: Stack,
         rows: Vec<Option<RowSpan>>,
     },
     /// `B`'s levels read something of `A` that changed, the depths differ,
     /// the join is G2 (a G2 chain is one net) or no longer valid: build `B`
-    /// whole (its error is the whole build's). `B`'s old stack, handed back.
+    /// whole (its error is the whole build's). `B`'s old stack, handed back
+    /// (partly re-blended when a side G1 join's projection was refused on
+    /// the way, which the whole build then reports).
     Rebuild(Stack),
 }
 
@@ -86,25 +95,46 @@ pub fn rejoin(
                 && (a_new.levels.iter().zip(&b_old.levels))
                     .all(|(n, l)| n.end_points.len() == l.tangents.rows())
         }
-        Edge::First | Edge::Last => keeps_side(a_old, a_new, b, edge, continuity),
+        Edge::First | Edge::Last => keeps_side(a_old, a_new, b, edge),
     };
     if !keeps {
         return Rejoin::Rebuild(b_old);
     }
-    let Stack { levels, mut points } = b_old;
+    let Stack {
+        mut levels,
+        mut points,
+    } = b_old;
+    // a side G1 join whose edge moved: its first column projected again,
+    // and what reads it re-blended (super::reproject)
+    let mut reblended: Vec<Option<DirtyWindow>> = vec![None; depths];
+    if edge != Edge::End && continuity == Continuity::G1 {
+        let (Some(old), Some(new)) = (curves(a_old, edge), curves(a_new, edge)) else {
+            return Rejoin::Rebuild(Stack { levels, points });
+        };
+        if !old.iter().zip(&new).all(|(o, n)| o.same_bits(n)) {
+            match reproject(b, &mut levels, &old, &new) {
+                Some(w) => reblended = w,
+                None => return Rejoin::Rebuild(Stack { levels, points }),
+            }
+        }
+    }
     let mut starts = Vec::new();
     let rows: Vec<Option<RowSpan>> = (levels.iter().zip(points.iter_mut()))
         .zip(a_old.levels.iter().zip(&a_new.levels))
-        .map(|((level, bp), (old, new))| match edge {
-            Edge::End => replace_moved(level, bp, &new.end_points),
-            side => {
-                let (o, curve) = (old.curve(side)?, new.curve(side)?);
-                if o.same_bits(curve) {
-                    return None;
+        .zip(&reblended)
+        .map(|(((level, bp), (old, new)), re)| {
+            let also = re.map(|w| w.rows);
+            match edge {
+                Edge::End => replace_moved(level, bp, &new.end_points, also),
+                side => {
+                    let (o, curve) = (old.curve(side)?, new.curve(side)?);
+                    if o.same_bits(curve) && also.is_none() {
+                        return None;
+                    }
+                    starts.clear();
+                    starts.extend(level.params.t.iter().map(|&t| curve.point(t)));
+                    replace_moved(level, bp, &starts, also)
                 }
-                starts.clear();
-                starts.extend(level.params.t.iter().map(|&t| curve.point(t)));
-                replace_moved(level, bp, &starts)
             }
         })
         .collect();
@@ -117,11 +147,16 @@ pub fn rejoin(
 }
 
 /// Places again, in `out` (`B`'s points on `level`), the rows whose start
-/// in `starts` is not bit for bit their first point (Eq. 65, as
-/// [`place_at_starts`] places every row; the rows are independent, so the
-/// others stay); every row when the sizes differ. The rows placed again,
-/// `None` when no start moved.
-fn replace_moved(level: &Level, out: &mut Grid<DVec3>, starts: &[DVec3]) -> Option<RowSpan> {
+/// in `starts` is not bit for bit their first point and the rows `also`
+/// (whose tangents were re-blended) (Eq. 65, as [`place_at_starts`] places
+/// every row; the rows are independent, so the others stay); every row
+/// when the sizes differ. The rows placed again, `None` when none was.
+fn replace_moved(
+    level: &Level,
+    out: &mut Grid<DVec3>,
+    starts: &[DVec3],
+    also: Option<Span>,
+) -> Option<RowSpan> {
     let (rows, cols) = (level.tangents.rows(), level.tangents.cols());
     if out.rows() != rows || out.cols() != cols + 1 || starts.len() != rows {
         // sizes differ (not a stack of this level): every row again
@@ -133,7 +168,8 @@ fn replace_moved(level: &Level, out: &mut Grid<DVec3>, starts: &[DVec3]) -> Opti
     }
     let mut span: Option<RowSpan> = None;
     for (r, &start) in starts.iter().enumerate() {
-        if bits(out.get(r, 0)) == bits(start) {
+        let re = also.is_some_and(|a| a.lo <= r && r <= a.hi);
+        if !re && bits(out.get(r, 0)) == bits(start) {
             continue;
         }
         let s = level.params.s.row(r);
@@ -141,6 +177,11 @@ fn replace_moved(level: &Level, out: &mut Grid<DVec3>, starts: &[DVec3]) -> Opti
         span = Some(span.map_or(RowSpan { lo: r, hi: r }, |sp| RowSpan { lo: sp.lo, hi: r }));
     }
     span
+}
+
+/// `A`'s edge curve on `edge` at every depth, as `B` read it.
+fn curves(e: &Edges, edge: Edge) -> Option<Vec<&EdgeCurve>> {
+    e.levels.iter().map(|l| l.curve(edge)).collect()
 }
 
 /// The bits of a vector.
@@ -176,15 +217,11 @@ fn keeps_chain(
     })
 }
 
-/// A side join (docs/math.md §11.2): `B`'s levels read `A`'s edge curve
-/// only for G1; its points start on that curve at `B`'s `t`.
-fn keeps_side(
-    a_old: &Edges,
-    a_new: &Edges,
-    b: &Design,
-    edge: Edge,
-    continuity: Continuity,
-) -> bool {
+/// A side join (docs/math.md §11.2) still valid on the new `A`: `B`'s
+/// rows inside its edge curve. (Its points start on that curve at `B`'s
+/// `t`; under G1 its levels also read the curve's normals, and are
+/// projected again where those moved, [`reproject`].)
+fn keeps_side(a_old: &Edges, a_new: &Edges, b: &Design, edge: Edge) -> bool {
     let pairs: Option<Vec<_>> = (a_old.levels.iter().zip(&a_new.levels))
         .map(|(o, n)| Some((o.curve(edge)?, n.curve(edge)?)))
         .collect();
@@ -192,5 +229,4 @@ fn keeps_side(
         return false;
     };
     check_rows(&b.params().t, pairs[0].1.length()).is_ok()
-        && (continuity != Continuity::G1 || pairs.iter().all(|(o, n)| o.same_bits(n)))
 }

@@ -82,7 +82,7 @@ pub(crate) fn check_rows(t: &[f64], length: f64) -> Result<(), JoinError> {
 /// `b` projected onto the great circle perpendicular to `n` (Eq. 73):
 /// `(b − (b·n) n)/|…|`; `None` within [`ALONG_NORMAL_SIN`] of `±n`. Where `A`'s
 /// normal vanishes (a collapsed edge) `b` is kept.
-fn project(b: DVec3, n: Option<DVec3>) -> Option<DVec3> {
+pub(crate) fn project(b: DVec3, n: Option<DVec3>) -> Option<DVec3> {
     let Some(n) = n else {
         return Some(b);
     };

@@ -113,6 +113,31 @@ fn bent(angle: f64, noise: DVec3) -> DVec3 {
 }
 
 impl PairSpec {
+    /// A fixed pair of s-first Kobbelt nets (ω = 1): `A` with `rows × cols`
+    /// tangents, `B` (on a side) with `rows` columns and 6 rows; the
+    /// noise, spacings and bends are fixed numbers, not drawn.
+    pub fn kobbelt_s_first(rows: usize, cols: usize) -> PairSpec {
+        let unit = |i: usize| {
+            let (a, b) = (i as f64 * 0.7, i as f64 * 1.3);
+            DVec3::new(a.sin(), b.cos(), (a + b).sin()).normalize()
+        };
+        PairSpec {
+            scheme: SurfaceScheme::Kobbelt { omega: 1.0 },
+            order_a: BlendOrder::SFirst,
+            order_b: BlendOrder::SFirst,
+            rows,
+            cols_a: cols,
+            cols_b: 6,
+            rate_a: 0.12,
+            rate_b: 0.1,
+            noise: (0..72).map(unit).collect(),
+            steps: (0..72)
+                .map(|i| 0.6 + 0.3 * (i as f64 * 0.9).sin().abs())
+                .collect(),
+            wild: (0..72).map(unit).collect(),
+        }
+    }
+
     /// A's row parameters: uneven spacings.
     pub fn t(&self) -> Vec<f64> {
         let mut acc = 0.0;
