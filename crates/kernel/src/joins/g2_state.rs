@@ -411,15 +411,16 @@ fn recut_window(
     changed
 }
 
-/// Writes `from` into `to` (of the same length) in one pass; whether some
-/// bit differed.
+/// Writes `from` into `to` (of the same length); whether some bit
+/// differed. Compared up to the first difference, copied from there (in a
+/// drag's frame the first cell of a window row differs: the row is copied,
+/// not compared cell by cell).
 fn assign(to: &mut [DVec3], from: &[DVec3]) -> bool {
-    let mut differs = false;
-    for (t, f) in to.iter_mut().zip(from) {
-        differs |= bits(*t) != bits(*f);
-        *t = *f;
-    }
-    differs
+    let Some(k) = to.iter().zip(from).position(|(t, f)| bits(*t) != bits(*f)) else {
+        return false;
+    };
+    to[k..].copy_from_slice(&from[k..]);
+    true
 }
 
 /// [`assign`] for numbers.
