@@ -134,6 +134,8 @@ impl G2State {
         let Some(seed) = seed else {
             return self.rebuild(patches, depth, stacks);
         };
+        // the rows' starts stay unless the initial curve or a `t` changes
+        let same_curve = (self.run.design.initial()).same_bits(run.design.initial());
         self.run = run;
         let mut prop_dirty: Vec<Option<DirtyWindow>> = vec![None; self.levels.len()];
         let (mut reblended, mut params) = (0, false);
@@ -151,7 +153,7 @@ impl G2State {
         }
         let mut changed = vec![false; n];
         for (d, w) in prop_dirty.into_iter().enumerate() {
-            self.recut_level(d, w, params, stacks, &mut changed);
+            self.recut_level(d, w, params, same_curve && !params, stacks, &mut changed);
         }
         Ok(G2Update {
             changed,
@@ -165,18 +167,25 @@ impl G2State {
     /// whose start on the initial curve moved, placed again (Eq. 65) and
     /// cut into each patch's points (Eq. 70), and the window's tangents and
     /// (when `params`, some parameter of the edit changed) parameters cut
-    /// into each patch's level; `changed` marks the patches written.
+    /// into each patch's level; `changed` marks the patches written. With
+    /// `same_starts` (the initial curve and every `t` as they were) the
+    /// rows' starts are not computed again.
     fn recut_level(
         &mut self,
         d: usize,
         window: Option<DirtyWindow>,
         params: bool,
+        same_starts: bool,
         stacks: &mut [Stack],
         changed: &mut [bool],
     ) {
         let scheme = self.run.design.scheme();
         let level = &self.levels[d];
-        let origins = origins(&self.run.design, level);
+        let origins = if same_starts {
+            self.origins[d].clone()
+        } else {
+            origins(&self.run.design, level)
+        };
         // the rows whose points are placed again: the window's, and
         // those whose start moved (the initial curve changed)
         let mut rows: Vec<bool> = vec![false; level.shape().0];

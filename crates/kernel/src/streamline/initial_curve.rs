@@ -164,6 +164,28 @@ impl InitialCurve {
         }
     }
 
+    /// Whether `other` is the same curve bit for bit (control tangents,
+    /// order, length, origin and mirror; what every point is computed
+    /// from), so that points computed on one are those of the other.
+    pub fn same_bits(&self, other: &InitialCurve) -> bool {
+        let v = |a: DVec3| a.to_array().map(f64::to_bits);
+        let (a, b) = (self.qi.tangents(), other.qi.tangents());
+        self.qi.order() == other.qi.order()
+            && a.len() == b.len()
+            && a.iter().zip(b).all(|(x, y)| v(*x) == v(*y))
+            && self.length.to_bits() == other.length.to_bits()
+            && v(self.origin) == v(other.origin)
+            && match (self.mirror, other.mirror) {
+                (None, None) => true,
+                (Some((t, p)), Some((u, q))) => {
+                    t.to_bits() == u.to_bits()
+                        && v(p.point) == v(q.point)
+                        && v(p.normal) == v(q.normal)
+                }
+                _ => false,
+            }
+    }
+
     fn own_point(&self, t: f64) -> DVec3 {
         let u = t / self.length;
         if u < 0.0 {
@@ -257,5 +279,44 @@ mod tests {
             let e = c.quadrature_error_estimate();
             assert!(e < 1e-13, "order {k}: quadrature error estimate {e:e}");
         }
+    }
+
+    /// `same_bits` tells apart curves whose points differ: a control
+    /// tangent turned by 1e-9, another order, the length or the origin one
+    /// ulp off, a mirror added; the same inputs give the same curve and
+    /// points.
+    #[test]
+    fn same_bits_is_what_the_points_are_computed_from() {
+        let t = [
+            DVec3::new(0.0, 1.0, -0.6),
+            DVec3::Y,
+            DVec3::new(0.0, 1.0, 0.6),
+        ];
+        let make = |t: &[DVec3], k, len, o| InitialCurve::new(t, k, len, o).unwrap();
+        let c = make(&t, 3, 2.0, DVec3::ZERO);
+        assert!(c.same_bits(&make(&t, 3, 2.0, DVec3::ZERO)));
+        assert_eq!(
+            c.point(0.7).to_array().map(f64::to_bits),
+            make(&t, 3, 2.0, DVec3::ZERO)
+                .point(0.7)
+                .to_array()
+                .map(f64::to_bits)
+        );
+        let ulp = |x: f64| f64::from_bits(x.to_bits() + 1);
+        let mut t2 = t;
+        t2[1].x = 1e-9;
+        assert!(!c.same_bits(&make(&t2, 3, 2.0, DVec3::ZERO)));
+        assert!(!c.same_bits(&make(&t, 2, 2.0, DVec3::ZERO)));
+        assert!(!c.same_bits(&make(&t, 3, ulp(2.0), DVec3::ZERO)));
+        assert!(!c.same_bits(&make(&t, 3, 2.0, DVec3::new(0.0, ulp(0.0), 0.0))));
+        let plane = MirrorPlane {
+            point: DVec3::ZERO,
+            normal: DVec3::Y,
+        };
+        assert!(!c.same_bits(&c.mirrored_about(0.5, plane)));
+        assert!(
+            c.mirrored_about(0.5, plane)
+                .same_bits(&c.mirrored_about(0.5, plane))
+        );
     }
 }
