@@ -2,7 +2,9 @@
 //! stage wrote the points themselves into the surface's rows), announced to
 //! the surface's readers as a [`SurfaceChanged`] message. While the editor
 //! defers them ([`DeferNormals`]) a steady drag's `f64` normals are left
-//! behind and made when it ends.
+//! behind and made when it ends: made only as the renderer's `f32` staging
+//! pair, or not at all while nothing draws the surface (the staging paused,
+//! [`VertexMirror::set_paused`]: a G2 run's first patch, drawn as its cut).
 
 use super::components::*;
 use super::resources::{DeferNormals, Stats, SurfaceChanged, SurfaceData};
@@ -23,11 +25,13 @@ pub(crate) fn patch_mesh(
     mut changes: MessageWriter<SurfaceChanged>,
     // the renderer's staging pair, if one is wanted, and whether the
     // surface's own normals may wait ([`DeferNormals`])
-    (mut mirror, defer): (Option<ResMut<VertexMirror>>, Res<DeferNormals>),
+    (mirror, defer): (Option<ResMut<VertexMirror>>, Res<DeferNormals>),
     mut scratch: Local<Vec<DVec3>>,
 ) {
     let _meter = meter.start();
     let t0 = Instant::now();
+    // a paused staging pair is not written (nothing draws the surface)
+    let mut mirror = mirror.filter(|m| !m.paused());
     let s = &mut *surface;
     let (rows, cols) = (s.points.rows(), s.points.cols());
     // the rows that moved, and the first point that moved in any of them
@@ -68,6 +72,10 @@ pub(crate) fn patch_mesh(
             },
         };
         match mirror.as_deref_mut() {
+            // nothing draws them: left behind while deferred
+            None if defer.0 => {
+                s.normals_behind = Some(s.normals_behind.map_or(around, |b| b.union(around)));
+            }
             None => {
                 catch_up(s);
                 normals_in(s, around)

@@ -190,8 +190,8 @@ pub struct SurfaceData {
     /// mesh stage then makes the normals and triangles afresh).
     pub(crate) reshaped: bool,
     /// The points whose `normals` the mesh stage left unwritten while
-    /// [`DeferNormals`] was on (the renderer's `f32` staging pair has them);
-    /// written as soon as it is off.
+    /// [`DeferNormals`] was on (the renderer's `f32` staging pair has them,
+    /// or nothing draws the surface); written as soon as it is off.
     pub(crate) normals_behind: Option<DirtyWindow>,
 }
 
@@ -200,8 +200,9 @@ pub struct SurfaceData {
 /// frames, writing only the renderer's `f32` staging pair
 /// ([`super::vertex_mirror::VertexMirror`]) that it makes them for. The
 /// editor turns it on while a handle is dragged and nothing reads those
-/// normals (no zebra stripes, no joined patches); off (the default, and
-/// always headless), the mesh stage first writes whatever it left behind.
+/// normals (no zebra stripes, and no joined patches unless the first patch
+/// heads a G2 run); off (the default, and always headless), the mesh stage
+/// first writes whatever it left behind.
 /// On the car at depth 6 that is 4 MB of stores less in a drag's frame.
 #[derive(Resource, Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct DeferNormals(pub bool);

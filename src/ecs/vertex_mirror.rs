@@ -53,6 +53,9 @@ pub struct VertexMirror {
     staged: Stale,
     /// What the reader's pair lacks.
     shown: Stale,
+    /// Nothing draws the surface for now (the reader hides it): the mesh
+    /// stage writes nothing here ([`Self::set_paused`]).
+    paused: bool,
 }
 
 impl VertexMirror {
@@ -116,6 +119,29 @@ impl VertexMirror {
         write_f32(&mut self.normals, &s.normals);
         self.staged = Stale::Nothing;
         self.shown = Stale::All;
+    }
+
+    /// Pauses the staging (`true`: the reader hides the surface, so the mesh
+    /// stage converts nothing, and may leave the surface's `f64` normals
+    /// behind while they are deferred) or resumes it. Paused, the staging
+    /// pair lacks everything, so the first change after it is resumed
+    /// writes it whole.
+    pub fn set_paused(&mut self, paused: bool) {
+        self.paused = paused;
+        if paused {
+            self.staged = Stale::All;
+        }
+    }
+
+    /// Whether the staging is paused ([`Self::set_paused`]).
+    pub fn paused(&self) -> bool {
+        self.paused
+    }
+
+    /// Whether the staging pair is up to date (a swap takes it when the
+    /// shapes agree).
+    pub fn staged_whole(&self) -> bool {
+        self.staged == Stale::Nothing
     }
 
     /// What the reader's pair lacks.

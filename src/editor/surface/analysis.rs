@@ -11,6 +11,7 @@ use super::deviation::{BANDS, DeviationField, band_u};
 use super::shaded::{ShadedMaterial, SurfaceEntity};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::exchange::ExportSettings;
+use crate::ecs::joined::g2::G2RunState;
 use crate::ecs::joined::{PatchHidden, PatchSurface};
 use crate::ecs::patch::Joined;
 use crate::ecs::{DeferNormals, ModelSet, SurfaceChanges, SurfaceData};
@@ -225,19 +226,24 @@ fn setup(
 /// Lets the mesh stage leave the surface's `f64` normals behind
 /// ([`DeferNormals`]) while a handle is dragged and nothing shown reads
 /// them: the zebra stripes do, and so do the joined patches (their meshes
-/// and maps start from the first patch's). The drawn surface has its own
-/// `f32` normals all along; the `f64` ones are made in the frame the drag
-/// ends, or the frame the stripes are turned on.
+/// and maps start from the first patch's), unless the first patch heads a
+/// G2 run (the run makes its surface; the incremental one is hidden while
+/// shaded, so its normals are not made at all then). The drawn surface has
+/// its own `f32` normals all along; the `f64` ones are made in the frame
+/// the drag ends, or the frame the stripes are turned on.
 fn defer_normals(
     meter: Res<crate::ecs::meter::CpuMeter>,
     drag: Res<Drag>,
     settings: Res<AnalysisSettings>,
     joined: Query<(), With<Joined>>,
+    g2_head: Query<(), (With<G2RunState>, Without<Joined>)>,
     mut defer: ResMut<DeferNormals>,
 ) {
     let _meter = meter.start();
     defer.set_if_neq(DeferNormals(
-        drag.0.is_some() && settings.mode != SurfaceMode::Zebra && joined.is_empty(),
+        drag.0.is_some()
+            && settings.mode != SurfaceMode::Zebra
+            && (joined.is_empty() || !g2_head.is_empty()),
     ));
 }
 

@@ -90,10 +90,29 @@ fn sync_mesh(
     mut changes: SurfaceChanges,
     mut shown: ResMut<ShownSurface>,
     mut meshes: ResMut<Assets<Mesh>>,
-    surface: Single<&Mesh3d, With<SurfaceEntity>>,
+    surface: Single<(&Mesh3d, Option<&Visibility>), With<SurfaceEntity>>,
     mut mirror: Option<ResMut<VertexMirror>>,
 ) {
     let _meter = meter.start();
+    let (surface, visibility) = *surface;
+    // hidden (a G2 run's first patch drawn as its cut, mesh mode): nothing
+    // is copied and the mesh stage stages nothing; the changes are left
+    // unread, so the first copy once shown sees all of them (or, too late
+    // for them, a change of everything)
+    let hidden = visibility == Some(&Visibility::Hidden) && shown.built;
+    if let Some(m) = mirror.as_deref_mut()
+        && m.paused() != hidden
+    {
+        m.set_paused(hidden);
+    }
+    if hidden {
+        return;
+    }
+    // normals left behind (deferred) are not copied: the staging pair has
+    // them, or the mesh stage makes them first
+    if data.normals_behind().is_some() && !mirror.as_deref().is_some_and(|m| m.staged_whole()) {
+        return;
+    }
     let change = changes.take();
     if !change.any() {
         return;
@@ -393,6 +412,96 @@ mod tests {
                     "{rows} rows: row {r} should have shade {want}"
                 );
             }
+        }
+    }
+
+    /// Hidden (a G2 run's first patch, drawn as its cut): the sync copies
+    /// nothing and pauses the staging pair, so in a drag with the normals
+    /// deferred the mesh stage makes no normals at all (left behind, the
+    /// staging pair untouched); after the drag, shown again, the mesh is
+    /// the model bit for bit. Controls: while hidden the mesh is not the
+    /// model, and the surface's normals are behind.
+    #[test]
+    fn a_hidden_surface_is_not_copied_and_is_exact_once_shown() {
+        use crate::ecs::DeferNormals;
+        let mut app = app(1, true);
+        app.update();
+        mesh_is_model(&mut app).unwrap();
+        let e = app
+            .world_mut()
+            .query_filtered::<Entity, With<SurfaceEntity>>()
+            .single(app.world())
+            .unwrap();
+        app.world_mut().entity_mut(e).insert(Visibility::Hidden);
+        app.insert_resource(DeferNormals(true));
+        for k in 1..=5 {
+            let a = 0.03 * k as f64;
+            app.world_mut().write_message(EditMessage {
+                edit: Edit::SetDirection {
+                    row: 4,
+                    col: 2,
+                    dir: DVec3::new(a.cos(), a.sin(), 0.3 * a),
+                },
+                group: None,
+            });
+            app.update();
+        }
+        assert!(app.world().resource::<VertexMirror>().paused());
+        assert!(
+            app.world()
+                .resource::<SurfaceData>()
+                .normals_behind()
+                .is_some()
+        );
+        assert!(mesh_is_model(&mut app).is_err(), "control: not copied");
+        // shown while the normals are still behind, in a frame without an
+        // edit: nothing is copied (not the normals left behind)
+        let before = positions(&mut app);
+        app.world_mut().entity_mut(e).insert(Visibility::Inherited);
+        app.update();
+        assert!(!app.world().resource::<VertexMirror>().paused());
+        assert_eq!(positions(&mut app), before, "nothing copied yet");
+        // the drag goes on shown: the staging pair is written whole, exact
+        app.world_mut().write_message(EditMessage {
+            edit: Edit::SetDirection {
+                row: 4,
+                col: 2,
+                dir: DVec3::new(0.9, 0.3, 0.2),
+            },
+            group: None,
+        });
+        app.update();
+        mesh_is_model(&mut app).unwrap();
+        // hidden again, then the drag ends and the surface is shown
+        app.world_mut().entity_mut(e).insert(Visibility::Hidden);
+        app.update();
+        app.insert_resource(DeferNormals(false));
+        app.update();
+        assert_eq!(app.world().resource::<SurfaceData>().normals_behind(), None);
+        app.world_mut().entity_mut(e).insert(Visibility::Inherited);
+        app.update();
+        mesh_is_model(&mut app).unwrap();
+    }
+
+    /// The drawn mesh's positions, as bits.
+    fn positions(app: &mut App) -> Vec<[u32; 3]> {
+        let w = app.world_mut();
+        let handle = w
+            .query_filtered::<&Mesh3d, With<SurfaceEntity>>()
+            .single(w)
+            .unwrap()
+            .0
+            .clone();
+        match w
+            .resource::<Assets<Mesh>>()
+            .get(&handle)
+            .unwrap()
+            .attribute(Mesh::ATTRIBUTE_POSITION)
+        {
+            Some(VertexAttributeValues::Float32x3(v)) => {
+                v.iter().map(|p| p.map(f32::to_bits)).collect()
+            }
+            _ => Vec::new(),
         }
     }
 
