@@ -5,7 +5,7 @@
 //! the stack's finest points, its triangles a function of the grid's shape
 //! ([`Triangles`]). Pure: [`super::patches`] calls them.
 
-use crate::ecs::vertex_mirror::write_f32;
+use crate::ecs::vertex_mirror::{stream_f32, streamed};
 use bevy::mesh::VertexAttributeValues;
 use bevy::prelude::Mesh;
 use std::borrow::Cow;
@@ -77,16 +77,19 @@ pub(super) fn write_rows(
     {
         return false;
     }
+    // streaming stores: the mesh's buffers were last read by the renderer a
+    // frame ago, so a plain store would first read every line from memory
     let range = span.lo * cols..(span.hi + 1) * cols;
     if let Some(VertexAttributeValues::Float32x3(p)) = mesh.attribute_mut(Mesh::ATTRIBUTE_POSITION)
     {
-        write_f32(&mut p[range.clone()], &points.data()[range.clone()]);
+        stream_f32(&mut p[range.clone()], &points.data()[range.clone()]);
     } else {
         return false;
     }
     if let Some(VertexAttributeValues::Float32x3(n)) = mesh.attribute_mut(Mesh::ATTRIBUTE_NORMAL) {
-        write_f32(&mut n[range.clone()], &normals[range]);
+        stream_f32(&mut n[range.clone()], &normals[range]);
     }
+    streamed();
     true
 }
 
