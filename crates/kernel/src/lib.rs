@@ -27,6 +27,7 @@
 pub mod aesthetic;
 pub mod analysis;
 pub mod authoring;
+pub(crate) mod bits;
 pub mod curve;
 pub mod error;
 pub mod finetune;

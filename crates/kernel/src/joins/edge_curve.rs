@@ -11,6 +11,7 @@
 //! starts and ends inside `A`'s level-0 range at depth `d > 0`; outside its
 //! points the curve continues along its end segments.
 
+use crate::bits::same;
 use crate::grid::Grid;
 use crate::joins::kinds::Edge;
 use crate::joins::stack::Stack;
@@ -83,15 +84,9 @@ impl EdgeCurve {
     /// lengths and cross derivatives), as [`super::rejoin`] needs to know
     /// that a side join's inputs did not change.
     pub fn same_bits(&self, other: &EdgeCurve) -> bool {
-        let v = |a: &[DVec3], b: &[DVec3]| {
-            a.len() == b.len()
-                && a.iter()
-                    .zip(b)
-                    .all(|(x, y)| x.to_array().map(f64::to_bits) == y.to_array().map(f64::to_bits))
-        };
-        v(&self.points, &other.points)
-            && v(&self.tangents, &other.tangents)
-            && v(&self.cross, &other.cross)
+        same(&self.points, &other.points)
+            && same(&self.tangents, &other.tangents)
+            && same(&self.cross, &other.cross)
             && self.arc.len() == other.arc.len()
             && self
                 .arc

@@ -14,6 +14,7 @@
 //! that row's tangents, parameters and start (Eq. 65), and the cut is the
 //! same per row (Eq. 70).
 
+use crate::bits::bits;
 use crate::grid::Grid;
 use crate::joins::error::JoinError;
 use crate::joins::merged::{MergedRun, cut, cut_row_from, cuts, merge_g2};
@@ -57,11 +58,6 @@ fn whole_count(levels: &[LevelState]) -> usize {
         .skip(1)
         .map(|l| l.shape().0 * l.shape().1)
         .sum()
-}
-
-/// The bits of a vector.
-fn bits(v: DVec3) -> [u64; 3] {
-    v.to_array().map(f64::to_bits)
 }
 
 impl G2State {
@@ -387,24 +383,17 @@ fn recut_window(
 ) -> bool {
     let (lo, hi) = (cuts[p], cuts[p + 1]);
     let mut changed = false;
+    let (c0, c1) = (w.cols.lo.max(lo), w.cols.hi.min(hi));
     for r in w.rows.iter() {
-        let (c0, c1) = (w.cols.lo.max(lo), w.cols.hi.min(hi));
-        if !params {
-            if c0 <= c1 {
-                changed |= assign(
-                    &mut part.tangents.row_mut(r)[c0 - lo..=c1 - lo],
-                    &level.tangents.row(r)[c0..=c1],
-                );
-            }
-            continue;
+        if params {
+            let sigma = if p == 0 {
+                level.params.sigma[r]
+            } else {
+                level.params.s.get(r, lo)
+            };
+            changed |= assign_f64(&mut part.params.t[r..=r], &level.params.t[r..=r]);
+            changed |= assign_f64(&mut part.params.sigma[r..=r], &[sigma]);
         }
-        let sigma = if p == 0 {
-            level.params.sigma[r]
-        } else {
-            level.params.s.get(r, lo)
-        };
-        changed |= assign_f64(&mut part.params.t[r..=r], &level.params.t[r..=r]);
-        changed |= assign_f64(&mut part.params.sigma[r..=r], &[sigma]);
         if c0 > c1 {
             continue;
         }
@@ -412,10 +401,12 @@ fn recut_window(
             &mut part.tangents.row_mut(r)[c0 - lo..=c1 - lo],
             &level.tangents.row(r)[c0..=c1],
         );
-        changed |= assign_f64(
-            &mut part.params.s.row_mut(r)[c0 - lo..=c1 - lo],
-            &level.params.s.row(r)[c0..=c1],
-        );
+        if params {
+            changed |= assign_f64(
+                &mut part.params.s.row_mut(r)[c0 - lo..=c1 - lo],
+                &level.params.s.row(r)[c0..=c1],
+            );
+        }
     }
     changed
 }

@@ -22,6 +22,7 @@
 //! reads of it (not `A`'s stacks, megabytes at depth 5), and `B`'s points
 //! are placed again in place, in the rows whose start moved.
 
+use crate::bits::{bits, same};
 use crate::grid::Grid;
 use crate::joins::chain::check_chain;
 use crate::joins::edge_curve::EdgeCurve;
@@ -182,16 +183,6 @@ fn replace_moved(
 /// `A`'s edge curve on `edge` at every depth, as `B` read it.
 fn curves(e: &Edges, edge: Edge) -> Option<Vec<&EdgeCurve>> {
     e.levels.iter().map(|l| l.curve(edge)).collect()
-}
-
-/// The bits of a vector.
-fn bits(v: DVec3) -> [u64; 3] {
-    v.to_array().map(f64::to_bits)
-}
-
-/// Two slices of vectors bit for bit equal.
-fn same(a: &[DVec3], b: &[DVec3]) -> bool {
-    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| bits(*x) == bits(*y))
 }
 
 /// A chain (docs/math.md §11.1): `B`'s levels read `A`'s `t` and (G1) last

@@ -20,6 +20,7 @@
 //! column it may read in place feeds only the first column, which is then
 //! made again from that curve step.
 
+use crate::bits::bits;
 use crate::curve::scheme::Prepared;
 use crate::grid::Grid;
 use crate::joins::edge_curve::EdgeCurve;
@@ -110,7 +111,6 @@ fn project_column(
     before: &[DVec3],
     was: &[DVec3],
 ) -> Option<Option<DirtyWindow>> {
-    let bits = |v: DVec3| v.to_array().map(f64::to_bits);
     let mut rows: Option<Span> = None;
     for (r, (&b, &old)) in before.iter().zip(was).enumerate() {
         let v = project(b, curve.normal(level.params.t[r]))?;

@@ -12,6 +12,7 @@
 //! curve and against a much finer rule ([`InitialCurve::quadrature_error_estimate`]).
 //! Outside `[0, L]` the curve continues along its end tangents.
 
+use crate::bits::{bits, same};
 use crate::curve::qi::QiCurve;
 use crate::error::{KernelError, Place};
 use crate::plane::MirrorPlane;
@@ -168,19 +169,16 @@ impl InitialCurve {
     /// order, length, origin and mirror; what every point is computed
     /// from), so that points computed on one are those of the other.
     pub fn same_bits(&self, other: &InitialCurve) -> bool {
-        let v = |a: DVec3| a.to_array().map(f64::to_bits);
-        let (a, b) = (self.qi.tangents(), other.qi.tangents());
         self.qi.order() == other.qi.order()
-            && a.len() == b.len()
-            && a.iter().zip(b).all(|(x, y)| v(*x) == v(*y))
+            && same(self.qi.tangents(), other.qi.tangents())
             && self.length.to_bits() == other.length.to_bits()
-            && v(self.origin) == v(other.origin)
+            && bits(self.origin) == bits(other.origin)
             && match (self.mirror, other.mirror) {
                 (None, None) => true,
                 (Some((t, p)), Some((u, q))) => {
                     t.to_bits() == u.to_bits()
-                        && v(p.point) == v(q.point)
-                        && v(p.normal) == v(q.normal)
+                        && bits(p.point) == bits(q.point)
+                        && bits(p.normal) == bits(q.normal)
                 }
                 _ => false,
             }
