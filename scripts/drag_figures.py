@@ -12,7 +12,9 @@ Prints, over all frames with an edit: the CPU time of our systems (median,
 90th and 99th percentile, largest, frames over 4 ms), each system's mean, and
 the speed probe's verdict: a frame is "steady" when the fixed piece of work
 run at four points of it took at most 1.5 times its usual time (the median
-over all frames of each frame's fastest probe).
+over all frames of each frame's fastest probe). Two more lines help judge
+the frames the machine slowed: the "quiet" frames (every probe within 1.1
+times its usual time), and every frame divided by its probes' mean slowdown.
 
 Usage: drag_figures.py REPORT.json [REPORT.json ...]
 """
@@ -23,6 +25,7 @@ import sys
 
 BUDGET_MS = 4.0
 STEADY = 1.5
+QUIET = 1.1
 
 
 def pct(sorted_values, p):
@@ -64,6 +67,11 @@ def main(paths):
     steady = [ms for ms, p in known if max(p) <= STEADY * usual]
     print(f"speed probe: usual {usual:.0f} µs")
     print(line(f"steady frames (every probe within {STEADY}x)", steady))
+    quiet = [ms for ms, p in known if max(p) <= QUIET * usual]
+    if quiet:
+        print(line(f"quiet frames (every probe within {QUIET}x)", quiet))
+    scaled = [ms * usual * len(p) / sum(p) for ms, p in known]
+    print(line("all frames divided by their probes' mean slowdown", scaled))
     for ms, p in sorted(known, key=lambda x: -x[0]):
         if ms <= BUDGET_MS:
             break
