@@ -2,11 +2,11 @@
 //! and full builds of the 9×6 car surface at depths 0–5 (fresh, and into a
 //! kept `Builder` on one thread with and without the vector path, and on two). The workloads are the
 //! ones `streamline-studio bench` runs (`src/cli/bench/workloads.rs`); the `incremental`
-//! group times one edit through the ECS against a full rebuild (issue 3), and
-//! one fine-tuning value edit on the car at depth 3 (issue 6); the `loop` group
-//! Loop subdivision of a ~20k-vertex open mesh under each boundary rule (issue 22);
-//! the `authoring` group an insert, an initial-curve edit and the mirrored car (issue 20);
-//! the `fit` group the B-spline fit of CAD export (issue 21).
+//! group times one edit through the ECS against a full rebuild (docs/math.md §5), and
+//! one fine-tuning value edit on the car at depth 3 (docs/math.md §6); the `loop` group
+//! Loop subdivision of a ~20k-vertex open mesh under each boundary rule (docs/math.md §7);
+//! the `authoring` group an insert, an initial-curve edit and the mirrored car (docs/math.md §9);
+//! the `fit` group the B-spline fit of CAD export (docs/math.md §10).
 //!
 //! Run: `cargo bench --bench table1`. Figures and ratios: docs/benchmarks.md.
 
@@ -54,7 +54,7 @@ fn incremental(c: &mut Criterion) {
     g.finish();
 }
 
-/// Loop subdivision of a ~20k-vertex open mesh, each boundary rule, levels 1–3 (issue 22).
+/// Loop subdivision of a ~20k-vertex open mesh, each boundary rule, levels 1–3 (docs/math.md §7).
 fn loop_subdivision(c: &mut Criterion) {
     let mut g = c.benchmark_group("loop");
     g.warm_up_time(Duration::from_millis(500))
@@ -66,8 +66,8 @@ fn loop_subdivision(c: &mut Criterion) {
     g.finish();
 }
 
-/// The B-spline fit of CAD export (issue 21: the car at depth 5 within 1e-4
-/// of its diagonal in at most 10 ms on one thread; docs/cad.md).
+/// The B-spline fit of CAD export (docs/math.md §10, docs/cad.md; target: the
+/// car at depth 5 within 1e-4 of its diagonal in at most 10 ms on one thread).
 fn fit(c: &mut Criterion) {
     let mut g = c.benchmark_group("fit");
     g.warm_up_time(Duration::from_millis(500))
@@ -79,7 +79,7 @@ fn fit(c: &mut Criterion) {
     g.finish();
 }
 
-/// Issue 28: the export of the three-patch scene (STEP shell, its fit, IGES, glTF).
+/// The export of the three-patch scene (STEP shell, its fit, IGES, glTF; docs/cad.md).
 fn export(c: &mut Criterion) {
     let mut g = c.benchmark_group("export");
     g.warm_up_time(Duration::from_millis(500))
@@ -91,7 +91,7 @@ fn export(c: &mut Criterion) {
     g.finish();
 }
 
-/// Issue 20: an insert, an initial-curve edit and the mirrored car, at depth 5.
+/// Authoring (docs/math.md §9): an insert, an initial-curve edit and the mirrored car, at depth 5.
 fn authoring(c: &mut Criterion) {
     let mut g = c.benchmark_group("authoring");
     g.warm_up_time(Duration::from_millis(500))

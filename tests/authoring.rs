@@ -1,4 +1,4 @@
-//! Authoring through the ECS (issue 20, `docs/math.md §9`): an initial-curve
+//! Authoring through the ECS (`docs/math.md §9`): an initial-curve
 //! or anchor edit places every streamline again, moved rigidly, re-blending no
 //! tangent, and equals a fresh build; every authoring edit is one undo step
 //! that restores the scene bit for bit; structure edits drop the details and
@@ -68,7 +68,7 @@ proptest! {
         prop_assert_eq!(stats.tangents_reblended, 0, "an initial-curve edit re-blends nothing");
         prop_assert!(!stats.full_rebuild);
         // an edit that sets what is already there (the anchor or order it
-        // has) changes no component, so redoes nothing (issue 26)
+        // has) changes no component, so redoes nothing
         let noop = bits(&scene(&app)) == start;
         let placed = if noop { 0 } else { before.rows() };
         prop_assert_eq!(stats.streamlines_replaced, placed, "every streamline placed again, unless nothing changed");

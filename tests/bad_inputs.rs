@@ -1,8 +1,8 @@
-//! The bad-input catalogue (issue 7): every broken scene, script and OBJ file
-//! in `tests/bad/` and the exact message it must produce, from
-//! `tests/bad/catalogue.txt` (blocks of two lines: the file, its message).
-//! Each message names the file, the line and column (the whole file only
-//! where no line is at fault), what is wrong and, after a `;`, what to do.
+//! The bad-input catalogue (docs/math.md §8, docs/reliability.md): every broken
+//! scene, script and OBJ file in `tests/bad/` and the exact message it must
+//! produce, from `tests/bad/catalogue.txt` (blocks of two lines: the file, its
+//! message). Each message names the file, the line and column (the whole file
+//! only where no line is at fault), what is wrong and, after a `;`, what to do.
 //!
 //! `BLESS=1 cargo test --release --test bad_inputs` rewrites the catalogue
 //! from what the code says now (then read the diff); never in CI.

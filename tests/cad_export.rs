@@ -40,10 +40,10 @@ fn write_points(path: &Path, scene: &Scene, depth: u32) {
 /// The scenes the reader checks, with their export depths: both cars at
 /// their display depth (4); qi-side at 5; a Cylinder template (120° of
 /// radius 0.5); car1 mirrored (docs/math.md §9), fitted as one surface over
-/// both halves, at depth 5; and the exports issue 27 found refused, which now
-/// sample as deep as the default tolerance needs (`cad::fit_scene`): qi-side,
-/// qi-up and car1 shown at depth 3, qi-side at 4, and car1 after random
-/// turns of every control tangent at 3 and 4.
+/// both halves, at depth 5; and the exports a fit at the display depth alone
+/// would refuse, which sample as deep as the default tolerance needs
+/// (`cad::fit_scene`): qi-side, qi-up and car1 shown at depth 3, qi-side at
+/// 4, and car1 after random turns of every control tangent at 3 and 4.
 fn scenes() -> Vec<(&'static str, Scene, u32)> {
     let mut out: Vec<(&'static str, Scene, u32)> = ["car1", "car2", "qi-side"]
         .into_iter()
@@ -214,7 +214,7 @@ fn iges_name(name: &str) -> String {
         .collect()
 }
 
-/// Issue 27: a scene may be called anything. Each name below goes through
+/// A scene may be called anything. Each name below goes through
 /// the export the CLI and the editor use into a STEP and an IGES file (one
 /// file name hostile too); OpenCascade must read every file (one valid
 /// face, degree and poles as reported) and read back, from STEP, the name

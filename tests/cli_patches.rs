@@ -1,4 +1,4 @@
-//! `build --json` on designs of several patches (issue 28, docs/math.md
+//! `build --json` on designs of several patches (docs/math.md
 //! §11): `"patches"` and `"seams"` come from the world's patch entities and
 //! equal the scene library's `Document::build` (an independent path); a
 //! one-patch scene reports one patch and no seams and keeps every key.
@@ -209,4 +209,65 @@ fn build_exports_every_patch() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("hsw.dwg"), "{err}");
     assert!(!bad.exists());
+}
+
+/// A design of two patches, the second on its own initial curve with a
+/// detail, a fine-tuning function or tangent interpolation: only the first
+/// patch carries these through the ECS layer, so loading refuses the file
+/// with a located error naming the patch and the field, and a script that
+/// loads and saves it keeps (and saves) the scene it had, instead of saving
+/// the design without them.
+#[test]
+fn a_later_patchs_own_fields_are_refused_never_dropped() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad/scenes");
+    for (file, key) in [
+        ("v3-details-on-later.ron", "details"),
+        ("v3-tuning-on-later.ron", "tuning"),
+        ("v3-interpolate-on-later.ron", "interpolate_tangents"),
+    ] {
+        let scene = dir.join(file);
+        let out = Command::new(env!("CARGO_BIN_EXE_streamline-studio"))
+            .args(["build", scene.to_str().unwrap()])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{file}: {err}");
+        assert!(
+            err.contains(&format!("{file}:")) && err.contains(&format!("patch `b` has `{key}`")),
+            "{file}: {err}"
+        );
+        let line = text_line_of(&scene, &format!("{key}:"));
+        assert!(
+            err.contains(&format!(":{line}:")),
+            "{file} line {line}: {err}"
+        );
+
+        let work = tmp(&format!("later-{key}")).with_extension("");
+        std::fs::create_dir_all(&work).unwrap();
+        std::fs::copy(&scene, work.join("two.ron")).unwrap();
+        std::fs::write(
+            work.join("steps.ron"),
+            r#"(steps: [Load("two.ron"), Save("saved.ron")])"#,
+        )
+        .unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_streamline-studio"))
+            .args(["play", work.join("steps.ron").to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert!(!out.status.success(), "{file}: the script passed");
+        let said = String::from_utf8_lossy(&out.stdout);
+        assert!(said.contains("the current scene is kept"), "{file}: {said}");
+        // the save writes the scene that was kept, never `two` without `key`
+        let saved = std::fs::read_to_string(work.join("saved.ron")).unwrap_or_default();
+        assert!(
+            !saved.contains("\"two\"") && !saved.contains("name: \"b\""),
+            "{file}: a copy without `{key}` was saved:\n{saved}"
+        );
+    }
+}
+
+/// The 1-based line of the first line of `path` that contains `needle`.
+fn text_line_of(path: &Path, needle: &str) -> usize {
+    let text = std::fs::read_to_string(path).unwrap();
+    1 + text.lines().position(|l| l.contains(needle)).unwrap()
 }

@@ -1,4 +1,4 @@
-//! Crash-safe saving (issue 7, item 2): a process saving a large scene over
+//! Crash-safe saving (docs/reliability.md): a process saving a large scene over
 //! and over is killed with SIGKILL at pseudo-random moments; after every kill
 //! the scene file is the old or the new version, whole, never a broken one.
 //! (Autosave writes the recovery file through the same `io::save`.) The

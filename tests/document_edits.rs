@@ -1,9 +1,8 @@
-//! Edits of a design of several patches (issue 28 items 4 and 8,
-//! docs/math.md §11): the patch edits are applied by the edit stage as the
-//! editor sends them; handle edits act on the active patch; undo and redo
-//! restore the whole document bit for bit (every patch's name, start,
-//! design and hidden flag, and the points each builds); saving, loading and
-//! recovering keep every patch.
+//! Edits of a design of several patches (docs/math.md §11): the patch edits are
+//! applied by the edit stage as the editor sends them; handle edits act on the
+//! active patch; undo and redo restore the whole document bit for bit (every
+//! patch's name, start, design and hidden flag, and the points each builds);
+//! saving, loading and recovering keep every patch.
 
 mod common;
 
@@ -346,7 +345,7 @@ fn save_writes_every_patch_and_one_patch_as_version_2() {
     ecs::apply(&mut one, Edit::Save(a.clone())).unwrap();
     io::save(&scene, &b).unwrap();
     assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
-    // one renamed patch: still version 2 (issue 28 item 1), and the save
+    // one renamed patch: still version 2 (one patch saves as version 2), and the save
     // says that the name is not kept
     let said = ecs::apply(&mut one, Edit::Save(a.clone())).unwrap();
     assert_eq!(said, format!("saved {}", a.display()));

@@ -1,4 +1,4 @@
-//! Designs of several patches (issue 28, docs/math.md §11): version-3 files,
+//! Designs of several patches (docs/math.md §11): version-3 files,
 //! versions 1 and 2 as one patch, saving (version 2 for one patch, byte for
 //! byte; version 3 bit for bit), building through the kernel's joins with a
 //! seam report per join, and the shipped three-patch scene.
@@ -89,7 +89,7 @@ fn the_one_surface_loader_says_the_file_has_several_patches() {
     assert!(
         e.message.contains("3 patches (`hood`, `screen`, `wing`)")
             && e.message
-                .contains("the editor does not open several patches yet"),
+                .contains("this reader takes one surface only"),
         "{e}"
     );
     assert!(e.line > 0, "located: {e}");

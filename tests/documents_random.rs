@@ -1,4 +1,4 @@
-//! Random designs of several patches (issue 28, docs/math.md §11): version-3
+//! Random designs of several patches (docs/math.md §11): version-3
 //! files made at random, saved and read back bit for bit, built or refused
 //! with a located error; mutated files give located errors or valid
 //! documents, never a panic.

@@ -161,7 +161,7 @@ proptest! {
     }
 }
 
-/// Issue 3: on a 20×20 net at depth 3 (Kobbelt), one interior edit re-blends
+/// On a 20×20 net at depth 3 (Kobbelt), one interior edit re-blends
 /// at most 20 % of the tangents and re-integrates at most 30 % of the streamlines.
 #[test]
 fn single_edit_is_local_20x20_depth_3() {
@@ -496,12 +496,12 @@ fn bad_edits_are_refused() {
     assert_eq!(app.world().resource::<ecs::History>().undo_len(), 0);
 }
 
-/// Issue 19: an edit of the initial curve is "place every streamline again,
+/// An edit of the initial curve is "place every streamline again,
 /// re-blend nothing": no tangent is re-blended, every streamline is
 /// integrated again, and the surface has the very bits of a build from
 /// scratch of the new scene. The initial curve's length and start point are
 /// written into the patch's component directly: change detection alone
-/// decides what is redone (issue 26).
+/// decides what is redone.
 #[test]
 fn replacing_the_streamlines_equals_a_fresh_build() {
     let mut app = car_app(0, 3);

@@ -1,4 +1,4 @@
-//! Issue 26: the model in the shape the design card names. A patch entity
+//! The entity model (docs/architecture.md, "Entities"): a patch entity
 //! owns its tangent handles, levels and streamlines; the edit stage writes
 //! components only; change detection alone decides what is re-blended.
 //! Each test checks a consequence against an independent measure: the

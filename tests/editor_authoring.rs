@@ -1,4 +1,4 @@
-//! Issue 20 on the editor's interaction core, headless under
+//! Authoring (docs/math.md §9) on the editor's interaction core, headless under
 //! `MinimalPlugins` (as `tests/editor_core.rs`): the initial curve's control
 //! tangents are handles of their own kind (a drag moves the curve's tangent,
 //! leaves every surface tangent bit for bit, places the streamlines again and

@@ -1,4 +1,4 @@
-//! Issue 19: the editor's interaction core runs headless under
+//! The editor's interaction core runs headless under
 //! `MinimalPlugins` with injected input: presses and drag directions as the
 //! views report them, the left button and Esc as the input plugin reads
 //! them. The drag state machine (one undo step per drag, Esc restores and
@@ -173,7 +173,7 @@ fn picking_finds_the_nearest_shown_handle() {
     assert!(back.is_none_or(|g| g.dir.dot(-a.dir) >= 0.0));
 }
 
-/// Issue 26: the selected handles' entities carry the `Selected` marker, and
+/// The selected handles' entities carry the `Selected` marker, and
 /// only they.
 #[test]
 fn the_selected_handle_entity_is_marked() {
@@ -210,7 +210,7 @@ fn the_selected_handle_entity_is_marked() {
     assert!(marked(&mut app).is_empty());
 }
 
-/// Issue 26: turning a control tangent moves only its row's handles (a
+/// Turning a control tangent moves only its row's handles (a
 /// streamline is a running sum along its row), and they are where a full
 /// placement of every handle puts them, bit for bit.
 #[test]
@@ -289,7 +289,7 @@ fn changed_since(app: &mut App, since: bevy::ecs::change_detection::Tick) -> Vec
     v
 }
 
-/// Issue 26, item 4: after a drag of one control tangent at edit depth 0,
+/// After a drag of one control tangent at edit depth 0,
 /// exactly the handle entities whose place differs have `Changed<Placed>`:
 /// the turned one among them, all of them in its row, none outside it;
 /// and every handle equals a fresh editor's placement bit for bit.
@@ -332,7 +332,7 @@ fn only_the_moved_handles_are_marked_changed() {
     assert_eq!(placements(&mut app), placements(&mut fresh));
 }
 
-/// Issue 26, item 4: at an edit depth above 0 each cell of that level is a
+/// At an edit depth above 0 each cell of that level is a
 /// handle entity (a `RefinedHandle`, child of the patch), placed as a fresh
 /// editor places it; picking one and turning it turns that level's tangent;
 /// back at depth 0 the refined entities are gone.

@@ -262,11 +262,11 @@ fn authoring(dir: &Path, mode: &str, file: &Path) -> Report {
     serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap()
 }
 
-/// Issue 20: with a real pointer, File ▸ New ▸ New design… with rows 4,
-/// columns 7 and a Flat width of 3 makes exactly that net (the rectangle
-/// `[0, 4] × [0, 3]`), saved under a typed path; then a right click on arrow
-/// (1, 3) and "Insert row after" from its menu give a fifth row at index 2
-/// (one undo step, the new row selected), saved with Ctrl+S.
+/// Authoring (docs/authoring.md) with a real pointer: File ▸ New ▸ New design…
+/// with rows 4, columns 7 and a Flat width of 3 makes exactly that net (the
+/// rectangle `[0, 4] × [0, 3]`), saved under a typed path; then a right click
+/// on arrow (1, 3) and "Insert row after" from its menu give a fifth row at
+/// index 2 (one undo step, the new row selected), saved with Ctrl+S.
 #[test]
 fn new_design_dialog_and_right_click_insert() {
     let _gui = gui_lock();
@@ -355,10 +355,11 @@ fn a_glb_exported_with_a_map_shown_has_its_colours() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// Issue 28: the editor draws every patch of hood-screen-wing, its two
-/// seams with their continuities and measured figures, and a click on the
-/// wing's surface chooses the wing (`tests/gui/patches.sh` checks the
-/// report; the picture shows the three patches in their colours).
+/// Several patches (docs/patches.md): the editor draws every patch of
+/// hood-screen-wing, its two seams with their continuities and measured
+/// figures, and a click on the wing's surface chooses the wing
+/// (`tests/gui/patches.sh` checks the report; the picture shows the three
+/// patches in their colours).
 #[test]
 fn several_patches_are_drawn_and_a_click_chooses_one() {
     let _gui = gui_lock();

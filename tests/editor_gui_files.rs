@@ -92,7 +92,7 @@ fn the_idle_editor_rests_and_wakes_on_input() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// A 1 GiB OBJ does not hang the editor (issue 7, item 3): it is read off the
+/// A 1 GiB OBJ does not hang the editor (docs/reliability.md): it is read off the
 /// frame while frames keep coming, refused at the memory cap with the line
 /// where that happened, and the streamline surface stays on screen.
 #[test]
@@ -172,7 +172,7 @@ fn browser(dir: &Path, cwd: &Path, mode: &str, folder: &Path, name: &str) -> Rep
     serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap()
 }
 
-/// Issue 27: with a real pointer, File ▸ Open… in the menu bar opens the file
+/// With a real pointer, File ▸ Open… in the menu bar opens the file
 /// browser in the working folder; a typed folder elsewhere, a click on the
 /// scene listed there and on Open load it (its path, its net). Then File ▸
 /// Export ▸ OBJ mesh… opens the browser in that scene's folder: a typed name

@@ -1,9 +1,10 @@
-//! Issue 20 with a real pointer: on a virtual X display (Mesa's software
-//! Vulkan, xdotool, as `tests/editor_gui.rs`), a left drag on a cyan arrow of
-//! the initial curve turns that control tangent of the initial curve (one
-//! undo step) and leaves every tangent of the surface's net as it was; the
-//! same drag with Esc before release restores it exactly. The screenshots of
-//! the Initial curve and Curvature sections show them drawn.
+//! Authoring the initial curve (docs/authoring.md) with a real pointer: on a
+//! virtual X display (Mesa's software Vulkan, xdotool, as
+//! `tests/editor_gui.rs`), a left drag on a cyan arrow of the initial curve
+//! turns that control tangent of the initial curve (one undo step) and leaves
+//! every tangent of the surface's net as it was; the same drag with Esc before
+//! release restores it exactly. The screenshots of the Initial curve and
+//! Curvature sections show them drawn.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -1,4 +1,4 @@
-//! Issue 28, item 4: the handle room on several patches, headless. The
+//! The handle room on several patches (docs/editor.md), headless. The
 //! active patch's handles are placed, found and picked (a joined patch's on
 //! level 0 of its built stack), every other patch's are dimmed and never
 //! picked, a hidden patch's are not shown; a drag sends the same edits as

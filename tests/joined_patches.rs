@@ -1,4 +1,4 @@
-//! Several patches in the ECS world (issue 28, docs/math.md §11): a
+//! Several patches in the ECS world (docs/math.md §11): a
 //! document's patches are entities; the joined ones are built through the
 //! kernel's joins into `PatchSurface`, with a `SeamState` per join, and
 //! rebuilt by change detection. Checked against `Document::build` (the

@@ -1,8 +1,8 @@
-//! Resource limits (issue 7, item 3): what would need more than the memory
-//! cap is refused with a message before it is allocated; a 1 GB OBJ and a
-//! million-step script are read off the frame, with progress, and can be
-//! cancelled. No test here asserts a speed: the time bounds only turn a
-//! hang into a failure.
+//! Resource limits (docs/math.md §8, docs/reliability.md): what would need more
+//! than the memory cap is refused with a message before it is allocated; a 1 GB
+//! OBJ and a million-step script are read off the frame, with progress, and can
+//! be cancelled. No test here asserts a speed: the time bounds only turn a hang
+//! into a failure.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};

@@ -1,4 +1,4 @@
-//! Loop surfaces on the command line (issue 22).
+//! Loop surfaces on the command line (docs/math.md §7, docs/loop.md).
 //! - USD out: `interpolate … --out control.usda` read back with Pixar's own
 //!   library (PyPI `usd-core` in the test virtual environment that
 //!   `scripts/venv.sh` makes at `$STREAMLINE_VENV`, default

@@ -1,4 +1,4 @@
-//! Issue 19: the files of `src/editor`, `src/ecs`, `src/scene` and `src/cli` import each other
+//! The files of `src/editor`, `src/ecs`, `src/scene` and `src/cli` import each other
 //! without a circle. Each folder is checked on its own: its nodes are its
 //! files and sub-folders (a sub-folder is one node, checked in turn); a
 //! file's use of its folder's `mod.rs` items, and `mod.rs`'s use of its

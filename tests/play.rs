@@ -179,7 +179,7 @@ fn play_exit_codes() {
 
 /// Scripts write only inside their own folder, links resolved: a symbolic
 /// link inside the folder that leads elsewhere is refused, and nothing is
-/// written outside (issue 7, item 5).
+/// written outside (docs/reliability.md, "Scripts are data").
 #[test]
 fn a_link_out_of_the_script_folder_is_refused() {
     let base = std::env::temp_dir().join(format!("streamline-link-{}", std::process::id()));

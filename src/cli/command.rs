@@ -13,7 +13,7 @@ pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
     /// With no subcommand: the scene to open, a .ron file or a built-in scene
-    /// (car1, car2, qi-down, qi-side, qi-up, minimal).
+    /// (car1, car2, qi-down, qi-side, qi-up, minimal, car1-tuned).
     #[arg(value_name = "SCENE")]
     pub file: Option<String>,
     /// The same as SCENE, as an option.
@@ -40,7 +40,7 @@ pub enum Command {
     Bench(bench::BenchArgs),
     /// Run a script of edits and expectations headless; exit 0 only if all hold.
     Play(play::PlayArgs),
-    /// Build a scene headless and print JSON stats; optionally export OBJ/STL.
+    /// Build a scene headless and print JSON stats; optionally export it (OBJ, STL, glTF, STEP, IGES).
     Build(build::BuildArgs),
     /// Open the editor, render, save a PNG of the window and exit.
     Screenshot(editor::ScreenshotArgs),

@@ -8,7 +8,8 @@
 //!
 //! With `STREAMLINE_STUDIO_METER_DETAIL=1` the meter also keeps each
 //! system's share (keyed by where it started the meter), which the
-//! screenshot report lists: how the frame budget of issue 4 was found.
+//! screenshot report lists: where a frame's time goes, system by system
+//! (docs/editor.md, "Frame cost").
 
 use bevy::prelude::*;
 use std::collections::HashMap;

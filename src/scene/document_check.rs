@@ -2,8 +2,9 @@
 //! input"), each a located error that names the patch and the fix: unique
 //! names; every join on an *earlier* patch (so joins form a forest, never a
 //! cycle); a G2 chain one net from a patch on its own curve, continued by
-//! one patch per edge; nothing a join would drop (details, fine tuning,
-//! tangent interpolation on a joined patch); and then the kernel's own checks
+//! one patch per edge; nothing the ECS layer would drop (details, fine
+//! tuning, tangent interpolation on a joined patch or on any patch after the
+//! first); and then the kernel's own checks
 //! of every join (rows of a chain, its seam column, schemes, side `t`, G2 on
 //! a side edge), by building the document at depth 0 through the joins.
 //! Each patch's own fields are checked before, as a version-2 scene's are.
@@ -142,18 +143,22 @@ pub fn check_document(doc: &Document, file: &Path, place: &PatchText) -> Result<
     for (i, p) in doc.patches.iter().enumerate() {
         let joined = doc.parent(i).is_some()
             || (0..doc.patches.len()).any(|k| doc.parent(k).is_some_and(|(a, _)| a == i));
-        if !joined {
+        if !joined && i == 0 {
             continue;
         }
+        // Only the first patch, unjoined, carries these through the editor
+        // and the ECS layer: anything else would be dropped on the next save.
         let refuse = |key: &str| {
-            at(
-                i,
-                key,
-                format!(
-                    "patch `{}` has `{key}`, but it is joined to another patch, and joins are built from the control nets alone (`{key}` on a joined patch is future work); remove `{key}`, or the join",
+            let why = match joined {
+                true => format!(
+                    "it is joined to another patch, and joins are built from the control nets alone (`{key}` on a joined patch is future work); remove `{key}`, or the join"
+                ),
+                false => format!(
+                    "only the first patch of a design carries `{key}` (on a later patch it is future work); make `{}` the first patch, or remove `{key}`",
                     p.name
                 ),
-            )
+            };
+            at(i, key, format!("patch `{}` has `{key}`, but {why}", p.name))
         };
         if !p.details.is_empty() {
             return Err(refuse("details"));

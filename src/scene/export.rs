@@ -31,24 +31,42 @@ pub enum Format {
 }
 
 impl Format {
+    /// Every format, in the order the help and the menus list them.
+    pub const ALL: [Format; 5] = [
+        Format::Obj,
+        Format::Stl,
+        Format::Glb,
+        Format::Step,
+        Format::Iges,
+    ];
+
+    /// The file extensions that choose it, the usual one first.
+    pub fn extensions(self) -> &'static [&'static str] {
+        match self {
+            Format::Obj => &["obj"],
+            Format::Stl => &["stl"],
+            Format::Glb => &["glb"],
+            Format::Step => &["step", "stp"],
+            Format::Iges => &["igs", "iges"],
+        }
+    }
+
     /// From a path's extension.
     pub fn of(path: &Path) -> Result<Self, SceneError> {
-        match path
+        let ext = path
             .extension()
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase)
-            .as_deref()
-        {
-            Some("obj") => Ok(Format::Obj),
-            Some("stl") => Ok(Format::Stl),
-            Some("glb") => Ok(Format::Glb),
-            Some("step" | "stp") => Ok(Format::Step),
-            Some("igs" | "iges") => Ok(Format::Iges),
-            _ => Err(SceneError::file(
-                path,
-                "unknown export format; name the file .obj, .stl, .glb, .step/.stp or .igs/.iges",
-            )),
-        }
+            .unwrap_or_default();
+        Self::ALL
+            .into_iter()
+            .find(|f| f.extensions().contains(&ext.as_str()))
+            .ok_or_else(|| {
+                SceneError::file(
+                    path,
+                    "unknown export format; name the file .obj, .stl, .glb, .step/.stp or .igs/.iges",
+                )
+            })
     }
 
     /// Whether the format holds the fitted B-spline surface (STEP, IGES).

@@ -412,7 +412,7 @@ impl Scene {
                 "`patches` is empty; a design needs at least one patch, the first starting on its own curve (`initial: Curve(tangents: […], order: 3, length: L, origin: (x, y, z))`)".to_string()
             } else {
                 format!(
-                    "this design has {} patches ({}), and this part of the program opens one surface only (the editor does not open several patches yet); open a design of one patch, or a version-2 scene",
+                    "this design has {} patches ({}), and this reader takes one surface only (the editor, `build` and a script's `Load` open several patches); open it there, or give a design of one patch or a version-2 scene",
                     names.len(),
                     names.join(", ")
                 )

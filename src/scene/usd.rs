@@ -1,8 +1,8 @@
-//! USD out (issue 22): a Loop control mesh as a `UsdGeomMesh` in `.usda` text,
-//! `subdivisionScheme = "loop"` and `interpolateBoundary` the rule it was
-//! interpolated for, so a USD renderer (OpenSubdiv inside) draws the
-//! interpolating surface. USD has no token for 002's boundary rule: writing it
-//! is refused.
+//! USD out (docs/loop.md, "USD out"): a Loop control mesh as a `UsdGeomMesh` in
+//! `.usda` text, `subdivisionScheme = "loop"` and `interpolateBoundary` the
+//! rule it was interpolated for, so a USD renderer (OpenSubdiv inside) draws
+//! the interpolating surface. USD has no token for 002's boundary rule: writing
+//! it is refused.
 
 use super::error::SceneError;
 use super::io::write_atomic;

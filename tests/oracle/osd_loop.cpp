@@ -1,6 +1,7 @@
-// OpenSubdiv oracle for Loop subdivision (issue 22; docs/loop.md "Checked by
-// OpenSubdiv"). Compiled and run by crates/kernel/tests/osd_oracle.rs against
-// Debian's libosd-dev (OpenSubdiv 3.5):
+// OpenSubdiv oracle for Loop subdivision (docs/math.md §7; docs/loop.md
+// "Checked by OpenSubdiv"). Compiled and run by
+// crates/kernel/tests/osd_oracle.rs against Debian's libosd-dev (OpenSubdiv
+// 3.5):
 //
 //   g++ -O2 -std=c++14 osd_loop.cpp -o osd_loop -losdCPU
 //

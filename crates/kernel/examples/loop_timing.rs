@@ -1,4 +1,4 @@
-//! Loop subdivision beside OpenSubdiv's (issue 22; `bash scripts/loop_vs_osd.sh`
+//! Loop subdivision beside OpenSubdiv's (docs/loop.md; `bash scripts/loop_vs_osd.sh`
 //! runs it): for each mesh (an OBJ, `:k` to subdivide it `k` times first), each
 //! boundary rule and levels 1–3, the best of 15 runs (3 rounds of 5, alternating
 //! with OpenSubdiv's) of building the topology

@@ -1,4 +1,4 @@
-//! Issue 27's figures (docs/math.md §6, docs/finetune.md): the largest second
+//! The fine-tuning figures (docs/math.md §6, docs/finetune.md): the largest second
 //! difference across the streamlines of the fine-tuned cars at depths 3–5,
 //! with every constraint and with random tuning functions; the largest end
 //! error; the export's fit (depth 4, checked at depth 5); the time of one

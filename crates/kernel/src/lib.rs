@@ -22,7 +22,7 @@
 //! targets use, plus the documented rules a geometer looks up (the Loop masks,
 //! the caps in [`limits`]); the rest is crate-internal. [`Design`] keeps its
 //! invariants: its fields are read through getters and changed through setters
-//! that check (`docs/kernel-map.md`, "The public API").
+//! that check (docs/architecture.md, "The kernel's modules and public API").
 
 pub mod aesthetic;
 pub mod analysis;

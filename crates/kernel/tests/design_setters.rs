@@ -1,5 +1,5 @@
-//! `Design`'s setters keep its invariants (docs/kernel-map.md, "The public
-//! API"): random edits with nasty values (NaN, ±∞, zero and subnormal
+//! `Design`'s setters keep its invariants (docs/architecture.md, "The
+//! kernel's modules and public API"): random edits with nasty values (NaN, ±∞, zero and subnormal
 //! vectors, coordinates past the cap, non-increasing parameters, wrong
 //! shapes, out-of-range indices and scheme parameters) either succeed and
 //! leave a design that holds every invariant [`Design::new`] checks, or fail

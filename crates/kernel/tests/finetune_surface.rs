@@ -6,7 +6,7 @@
 //! change the tuning makes is small beside it or shrinks — and the
 //! constraint still holds exactly. Half of the designs are exactly symmetric
 //! (a random half mirrored about the middle row), whose middle streamline is
-//! planar: one equation of its end constraint vanishes there (issue 27).
+//! planar: one equation of its end constraint vanishes there (docs/finetune.md).
 //!
 //! The negative control `per_streamline_solve_breaks_the_symmetric_car` shows
 //! the measure can fail: the per-streamline solve alone ([`fine_tune_into`]
@@ -292,7 +292,7 @@ fn car1_tuned() -> TensorBSpline {
     .unwrap()
 }
 
-/// Issue 27's figures: car1-tuned (keep ends) at depths 3, 4, 5 has the
+/// The figures of docs/finetune.md: car1-tuned (keep ends) at depths 3, 4, 5 has the
 /// untuned car's second difference across the streamlines (3.1e-3, 7.8e-4,
 /// 2.0e-4), not 7.7e-2 at every depth, and its ends stay put.
 #[test]

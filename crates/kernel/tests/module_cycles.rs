@@ -3,7 +3,7 @@
 //! comments) is an edge `b → a`, and the graph of those edges must be acyclic,
 //! so the folders can be read bottom-up (sphere → curve → streamline → levels).
 //!
-//! The same holds between files (issue 26, item 8): every `crate::a::b::…`
+//! The same holds between files: every `crate::a::b::…`
 //! path and every `super::…` path (in `use` or inline) in a file of the kernel
 //! is an edge from that file's module (`a/b.rs` is `a::b`, `a/mod.rs` is `a`)
 //! to the module file the path names (its longest prefix that is a module of

@@ -313,7 +313,7 @@ proptest! {
     /// is at most 1.05 times it. Between the check grid's points the
     /// distance can rise a little past the largest one sampled (car1 with
     /// turned tangents, the case kept in the regressions file: 1.0104 times).
-    /// A bound of exactly 1 failed once in four clean runs (session 23).
+    /// A bound of exactly 1 failed once in four clean runs.
     #[test]
     fn the_reported_deviation_holds_two_depths_finer(
         (d, name) in perturbed(),

@@ -1,4 +1,4 @@
-//! Checked by OpenSubdiv itself (issue 22; `docs/math.md §7`): a small C++
+//! Checked by OpenSubdiv itself (`docs/math.md §7`, docs/loop.md): a small C++
 //! oracle (`tests/oracle/osd_loop.cpp`) is compiled against Debian's
 //! `libosd-dev` (OpenSubdiv 3.5; `bash scripts/setup.sh --tests` installs it
 //! and g++) and run on every test mesh and on the knight with holes cut (5

@@ -409,7 +409,7 @@ fn keeping_the_levels_after_a_seam_column_edit_is_wrong() {
     assert!(checked >= 16, "only {checked} nets checked");
 }
 
-/// The drag of the two-car scene (issue 28 item 4): the car and a copy
+/// The drag of the two-car scene: the car and a copy
 /// G1-chained on its `End` at depth 5, the car's tangent (2, 4) turned. The
 /// rejoin moves most of the 161 rows at depth 5, not all, and equals the whole chain bit for bit; the rows it did
 /// not place are the old ones (negative control: the span's end rows moved).

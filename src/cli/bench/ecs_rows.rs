@@ -22,8 +22,8 @@ pub(super) fn wiggle(row: usize, col: usize, sign: &mut f64) -> crate::ecs::Edit
 /// A drag's frame on the car at `depth` as the editor runs it: control
 /// tangent (2, 4) turned back and forth, with the mesh stage's `f32` staging
 /// pair ([`crate::ecs::vertex_mirror::VertexMirror`]) that the editor's
-/// renderer swaps in (`ecs/car/d6/drag`; issue 26 item 7's frame, less the
-/// panels and the renderer); the same with the surface's `f64` normals left
+/// renderer swaps in (`ecs/car/d6/drag`: the editor's drag frame at depth 6, less
+/// the panels and the renderer); the same with the surface's `f64` normals left
 /// behind as the editor leaves them while a handle is dragged
 /// (`…/drag-deferred`, [`crate::ecs::DeferNormals`]); and the frame after
 /// the drag, which makes them (`…/release`: the window of a drag's frame);
@@ -83,7 +83,7 @@ pub fn car_drag(depth: u32) -> Vec<Workload> {
     ]
 }
 
-/// Authoring on the car at depth 5 (issue 20, `docs/math.md §9`), each
+/// Authoring on the car at depth 5 (`docs/math.md §9`), each
 /// from message to updated mesh: a row inserted and deleted in turn
 /// (`ecs/car/d5/insert-row`, a full rebuild each), an initial-curve tangent
 /// turned back and forth (`ecs/car/d5/initial-curve`: every streamline
@@ -163,7 +163,7 @@ pub fn authoring() -> Vec<Workload> {
 }
 
 /// One fine-tuning control-value edit on the car at depth 3 (3×3 quadratic
-/// function, paper 003's surfaces), from message to updated mesh (issue 6),
+/// function, paper 003's surfaces), from message to updated mesh (docs/math.md §6),
 /// free and with every streamline's ends kept, beside the same app's tangent
 /// edit. Rows: `tune/car/d3/<free|keep-ends>`.
 pub fn fine_tuning() -> Vec<Workload> {
@@ -215,7 +215,7 @@ fn force_full_build(app: &mut bevy::prelude::App) {
 }
 
 /// One edit through the ECS pipeline (message → blend → integrate → mesh) vs a
-/// full rebuild, on the car and on a 20×20 net, at depths 3 and 5 (issue 3).
+/// full rebuild, on the car and on a 20×20 net, at depths 3 and 5 (docs/math.md §5).
 /// Rows: `ecs/<net>/d<depth>/<edit-interior|edit-corner|full>`; `full` sends
 /// the blend order the design has and builds everything afresh.
 pub fn incremental() -> Vec<Workload> {
@@ -256,7 +256,7 @@ pub fn incremental() -> Vec<Workload> {
                             ecs::send(&mut app, edit);
                             if cell.is_none() {
                                 // the order it has changes no component, so asks
-                                // for no build (issue 26): mark the patch's
+                                // for no build: mark the patch's
                                 // structure changed, as a structural edit does
                                 force_full_build(&mut app);
                             }

@@ -1,4 +1,4 @@
-//! Export of a design of several patches (issue 28 item 7; docs/cad.md,
+//! Export of a design of several patches (docs/cad.md,
 //! "Several patches"): the shipped `scenes/hood-screen-wing.ron` (a G2 chain
 //! and a G1 side join) at its display depth, from the document built at
 //! that depth, as the CLI or the editor hands it to

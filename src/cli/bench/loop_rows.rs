@@ -24,11 +24,11 @@ fn read_test_mesh(name: &str) -> streamline_kernel::loop_subdiv::trimesh::TriMes
 /// level's topology derived from the one before) of a small, a medium and the
 /// largest test mesh (`loop/subdivide/<mesh>/d<k>`, 002's rule); the same for
 /// a 19,730-vertex open mesh (fairing-cross subdivided once, 4 boundary loops)
-/// under each boundary rule (`loop/20k/<rule>/d<k>`, issue 22: beside
+/// under each boundary rule (`loop/20k/<rule>/d<k>`, beside
 /// OpenSubdiv in `docs/loop.md`); and
 /// progressive interpolation to 1e-3 of a 1,151,994-vertex mesh (fertility
 /// subdivided 4 times, every vertex then moved by up to 2 mean edge lengths),
-/// topology included (`pi/1m/<plain|fast>`) — issue 5.
+/// topology included (`pi/1m/<plain|fast>`; docs/math.md §7).
 pub fn loop_rows() -> Vec<Workload> {
     use streamline_kernel::loop_subdiv::mesh_interpolation::{Method, Options, interpolate};
     use streamline_kernel::loop_subdiv::subdivide::{BoundaryRule, subdivide, subdivide_levels};
@@ -84,7 +84,7 @@ pub fn loop_rows() -> Vec<Workload> {
 
 /// Loop subdivision of a 19,730-vertex open mesh (fairing-cross subdivided
 /// once, 4 boundary loops) under each boundary rule, levels 1–3, building the
-/// topology from the face list included (`loop/20k/<rule>/d<k>`, issue 22;
+/// topology from the face list included (`loop/20k/<rule>/d<k>`;
 /// beside OpenSubdiv in `docs/loop.md`).
 pub fn loop_20k_rows() -> Vec<Workload> {
     use streamline_kernel::loop_subdiv::subdivide::{BoundaryRule, subdivide, subdivide_levels};

@@ -1,8 +1,8 @@
-//! Bench rows of designs of several patches (issue 28 item 7, docs/math.md
-//! §11): a tangent edit in the first of three chained cars at depth 5
-//! (`ecs/patches/car-x3/d5/edit-first`: the first patch's incremental
-//! pipeline, then the joined patches rebuilt through the kernel's joins)
-//! beside the same edit with the car alone (`ecs/patches/car-x1/d5/edit-first`);
+//! Bench rows of designs of several patches (docs/math.md §11): a tangent edit
+//! in the first of three chained cars at depth 5
+//! (`ecs/patches/car-x3/d5/edit-first`: the first patch's incremental pipeline,
+//! then the joined patches rebuilt through the kernel's joins) beside the same
+//! edit with the car alone (`ecs/patches/car-x1/d5/edit-first`);
 //! the same three cars G2-chained, edited in the first car and in the last
 //! (`ecs/patches/car-g2x3/d5/edit-first`, `…/edit-last`: the run kept
 //! between edits, `joins::g2_state`), and the kernel's G2 run after an edit

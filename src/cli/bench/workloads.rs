@@ -116,9 +116,9 @@ pub fn car_surface(depths: impl IntoIterator<Item = u32>) -> Vec<Workload> {
         .collect()
 }
 
-/// Full builds of the car at `depth` into a kept [`Builder`] (buffers
-/// reused, every entry recomputed; issue 2's 0.5 ms target) on one thread:
-/// with the CPU's widest vector path, with AVX2 at most, and scalar
+/// Full builds of the car at `depth` into a kept [`Builder`] (buffers reused,
+/// every entry recomputed; the 0.5 ms target of docs/benchmarks.md) on one
+/// thread: with the CPU's widest vector path, with AVX2 at most, and scalar
 /// (`surface/kobbelt/9x6/d5/builder-1t`, `…/builder-1t-avx2`,
 /// `…/builder-1t-scalar`; the results are bitwise equal).
 pub fn car_builder(depth: u32) -> Vec<Workload> {
@@ -163,7 +163,7 @@ pub(super) fn surface_row_named(design: Design, name: String, depth: u32) -> Wor
 
 /// The B-spline fit of CAD export (docs/math.md §10, docs/cad.md) on one thread:
 /// the car at depth 5 (161 × 258 points, checked at depth 6's 321 × 514)
-/// within the default `1e-4` of its diagonal (`fit/car/d5`, issue 21's
+/// within the default `1e-4` of its diagonal (`fit/car/d5`, against a
 /// 10 ms target), the reshaped car likewise, and the car at depth 4. The
 /// builds of both depths are made once, outside the timing.
 pub fn fit_rows() -> Vec<Workload> {
@@ -188,7 +188,7 @@ pub fn fit_rows() -> Vec<Workload> {
     .collect()
 }
 
-/// CAD export's fit from the display depth (docs/math.md §10; issue 27): the
+/// CAD export's fit from the display depth (docs/math.md §10): the
 /// car shown at depth 3 fitted within the default `1e-4` of its diagonal,
 /// which its depth-3 grid is too coarse for, so the fit samples deeper
 /// (`cad::fit_scene`; the depth it settles on is the row's result), every

@@ -1,6 +1,6 @@
 //! A G2 run's merged levels, kept on its first patch between edits
-//! (docs/math.md §11.1, Eqs. 68–70; issue 28: "a G2 chain re-blends the
-//! merged window only"). [`build_joined`](super::build::build_joined)
+//! (docs/math.md §11.1, Eqs. 68–70), so that an edit re-blends only the
+//! merged window it reaches. [`build_joined`](super::build::build_joined)
 //! moves the state and the run's stacks out, brings them up to date with
 //! [`run`] and puts them back: the kernel's [`G2State`] re-blends the merged
 //! net inside the edit's window and cuts again, in place, only the rows that

@@ -14,7 +14,7 @@ use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
 use streamline_kernel::SurfaceScheme;
 use streamline_kernel::authoring::Template;
 
-/// The smallest and largest control net side (docs/math.md §9, issue 20).
+/// The smallest and largest control net side (docs/math.md §9).
 pub const SIDES: std::ops::RangeInclusive<usize> = 2..=64;
 
 /// Which template the dialog builds.

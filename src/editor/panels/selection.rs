@@ -103,7 +103,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx) {
         }
     }
     // rotation and length in a sub-section, closed unless asked for: while a
-    // drag runs, every widget drawn costs the frame budget (issue 4)
+    // drag runs, every widget drawn costs time out of the 4 ms frame budget
     let mut more = egui::CollapsingHeader::new("Rotate about an axis, length")
         .id_salt("selection_more")
         .default_open(false);

@@ -179,7 +179,8 @@ pub fn show(ui: &mut egui::Ui, rows: &[(&'static str, String, &'static str)], wa
 /// The rows as two labels side by side (names, figures), each row with its
 /// own tooltip, chosen by where the pointer is. Two labels instead of a grid
 /// of 34: this section is open while dragging, when egui lays out every
-/// figure anew each frame, and each widget costs our frame budget (issue 4).
+/// figure anew each frame, and each widget costs time out of the 4 ms frame
+/// budget (docs/editor.md, "Frame cost").
 fn two_columns(ui: &mut egui::Ui, rows: &[(&'static str, String, &'static str)]) {
     if rows.is_empty() {
         return;

@@ -394,7 +394,7 @@ mod tests {
         (app, whole)
     }
 
-    /// Issue 19: the surface's changes reach the mesh sync as messages with
+    /// The surface's changes reach the mesh sync as messages with
     /// their windows, read with its own cursor; run only every second or
     /// third frame during a drag, the mesh still equals the model bit for bit.
     /// The mirrored half (the first half of the rows, the seam excluded) is

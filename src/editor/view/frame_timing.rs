@@ -3,8 +3,8 @@
 //! ([`crate::ecs::meter`]), over the last 120 frames with an edit. With
 //! `STREAMLINE_STUDIO_METER_DETAIL=1` it also keeps each system's share, the
 //! page faults and preemptions taken in our systems, and a speed probe at four
-//! points of each frame (issue 4, item 9: a frame that is dear because the
-//! machine ran slow shows a slow probe too).
+//! points of each frame (a frame that is dear because the machine ran slow
+//! shows a slow probe too).
 
 use crate::ecs::{EditLog, Stats};
 use bevy::prelude::*;

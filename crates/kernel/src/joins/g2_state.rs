@@ -1,6 +1,6 @@
 //! A G2 run kept between edits (docs/math.md §11.1, Eqs. 68–70; docs/math.md
-//! §5 for the incremental levels): what issue 28 asks of a local edit, "a
-//! G2 chain re-blends the merged window only".
+//! §5 for the incremental levels): after a local edit a G2 chain re-blends
+//! the merged window only.
 //!
 //! [`super::merged::g2_run`] subdivides the run's merged net whole. A
 //! [`G2State`] keeps the merged net's levels ([`LevelState`]), so that after

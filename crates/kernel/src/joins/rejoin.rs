@@ -1,7 +1,6 @@
 //! A joined patch `B` brought up to date after its parent `A` changed while
-//! `B`'s own design did not (docs/math.md §11; what issue 28 asks of a
-//! local edit: "of the patches that start on it, only what its changed
-//! edge moved").
+//! `B`'s own design did not (docs/math.md §11): a local edit of `A` redoes, of
+//! the patches that start on it, only what its changed edge moved.
 //!
 //! What `B`'s build reads of `A` is small. A chain (§11.1) reads, at every
 //! depth `d`, `A`'s row parameters `t` and (G1) `A`'s last column of
