@@ -4,7 +4,10 @@ For each scene: our fit's time (the `bench` row's median), net and reported
 deviation; GeomAPI_PointsToBSplineSurface on the same 161 x 258 grid
 (degree 3-8, C2, our tolerance), timed (best of 5); and both surfaces'
 largest and mean distance from the depth-5 and depth-6 points by
-OpenCascade's projection (GeomAPI_ProjectPointOnSurf)."""
+OpenCascade's projection (GeomAPI_ProjectPointOnSurf). It prints one JSON
+object a scene, then a table; with `--json` after the folder, the JSON only.
+
+Usage: cad_peers.py FOLDER [--json]"""
 import json
 import os
 import sys
@@ -51,6 +54,7 @@ def distances(surf, pts):
     return worst, total / len(pts)
 
 
+as_json = "--json" in sys.argv[2:]
 rows = []
 for scene, row in [("car1", "fit/car/d5"), ("car2", "fit/car2/d5")]:
     rep = json.load(open(os.path.join(out, f"{scene}.json")))
@@ -84,6 +88,8 @@ for scene, row in [("car1", "fit/car/d5"), ("car2", "fit/car2/d5")]:
     print(json.dumps(r), flush=True)
     rows.append(r)
 
+if as_json:
+    sys.exit(0)
 print()
 print("| scene | fitter | time | degree | poles | largest distance d5 / d6 | mean d6 | within tolerance |")
 print("|---|---|---:|---|---|---|---:|---|")

@@ -1,7 +1,10 @@
 """Times Loop subdivision in trimesh and pymeshlab on the test meshes and
 prints them beside ours (a JSON-lines file from `streamline-studio bench
 --json --filter loop/`). Both peers use Loop's vertex weight, as we do
-(docs/math.md §7); pymeshlab refines every edge only with threshold=PureValue(0)."""
+(docs/math.md §7); pymeshlab refines every edge only with threshold=PureValue(0).
+With `--json` after the file it prints one JSON object a row instead of the
+table: mesh, levels, vertices_out, and ours_s, pymeshlab_s, trimesh_s
+(seconds; the peers' best of 3 runs, of 1 at level 3)."""
 import json
 import sys
 import time
@@ -36,8 +39,10 @@ for line in open(sys.argv[1]):
     row = json.loads(line)
     ours[row["name"]] = row["median_ns"] * 1e-9
 
-print("| mesh | levels | vertices out | ours | pymeshlab | trimesh | pymeshlab ÷ ours | trimesh ÷ ours |")
-print("|---|---:|---:|---:|---:|---:|---:|---:|")
+as_json = "--json" in sys.argv[2:]
+if not as_json:
+    print("| mesh | levels | vertices out | ours | pymeshlab | trimesh | pymeshlab ÷ ours | trimesh ÷ ours |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
 for name in ["knight", "spot", "camelhead"]:
     v, f = load(name)
     for k in [1, 2, 3]:
@@ -54,6 +59,10 @@ for name in ["knight", "spot", "camelhead"]:
         tp = min(pml() for _ in range(repeat))
         o = ours.get(f"loop/subdivide/{name}/d{k}")
         if o is None:
+            continue
+        if as_json:
+            row = {"mesh": name, "levels": k, "vertices_out": len(nv), "ours_s": o, "pymeshlab_s": tp, "trimesh_s": tt}
+            print(json.dumps(row), flush=True)
             continue
         print(
             f"| {name} | {k} | {len(nv):,} | {o*1e3:.2f} ms | {tp*1e3:.1f} ms | {tt*1e3:.1f} ms "

@@ -17,6 +17,7 @@
 //! - every picture in docs/img is shown by some page;
 //! - no page or comment tells the project's history (sessions, issue and
 //!   item numbers): that is git's and CHANGELOG.md's;
+//! - the benchmark tables are generated from their saved results;
 //! - `--help` of `build` names every format the exporter writes.
 
 use std::collections::BTreeSet;
@@ -571,4 +572,21 @@ fn help_names_every_built_in_scene() {
             "--help lacks the built-in scene {name}:\n{help}"
         );
     }
+}
+
+/// The tables of docs/benchmarks.md are what `scripts/bench_tables.py`
+/// makes of the saved results in docs/bench/: no figure typed by hand.
+#[test]
+fn the_benchmark_tables_are_generated_from_the_saved_results() {
+    let out = Command::new("python3")
+        .args(["scripts/bench_tables.py", "--check"])
+        .current_dir(root())
+        .output()
+        .expect("python3 is on the machine");
+    assert!(
+        out.status.success(),
+        "docs/benchmarks.md differs from its saved results; run `python3 scripts/bench_tables.py --from docs/bench`:\n{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
 }

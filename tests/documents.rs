@@ -88,8 +88,7 @@ fn the_one_surface_loader_says_the_file_has_several_patches() {
     let e = io::load(&path).unwrap_err();
     assert!(
         e.message.contains("3 patches (`hood`, `screen`, `wing`)")
-            && e.message
-                .contains("this reader takes one surface only"),
+            && e.message.contains("this reader takes one surface only"),
         "{e}"
     );
     assert!(e.line > 0, "located: {e}");
