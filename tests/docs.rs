@@ -12,8 +12,8 @@
 //!   tens of minutes, or a window): the script must exist and parse;
 //! - every link and image points at a file that exists, and every `#anchor`
 //!   at a heading of its page;
-//! - every `docs/math.md §n` cited in the docs, the code and the scripts is a
-//!   section of docs/math.md;
+//! - (every `docs/math.md §n` cited anywhere is a section of docs/math.md:
+//!   `crates/kernel/tests/citations.rs`, which scans the whole checkout);
 //! - every picture in docs/img is shown by some page;
 //! - no page or comment tells the project's history (sessions, issue and
 //!   item numbers): that is git's and CHANGELOG.md's;
@@ -218,26 +218,6 @@ fn every_picture_is_shown_by_a_page() {
     assert!(orphans.is_empty(), "pictures no page shows: {orphans:?}");
 }
 
-/// The sections of docs/math.md: `## 9.` gives `9`, `### 11.2` gives `11.2`.
-fn math_sections() -> BTreeSet<String> {
-    let md = std::fs::read_to_string(root().join("docs/math.md")).unwrap();
-    let (_, prose) = split(&md);
-    prose
-        .iter()
-        .filter(|l| l.starts_with("## ") || l.starts_with("### "))
-        .filter_map(|l| {
-            let n: String = l
-                .trim_start_matches('#')
-                .trim()
-                .chars()
-                .take_while(|c| c.is_ascii_digit() || *c == '.')
-                .collect();
-            let n = n.trim_end_matches('.');
-            (!n.is_empty()).then(|| n.to_string())
-        })
-        .collect()
-}
-
 /// Every file under `dir` whose extension is one of `exts`.
 fn files(dir: &Path, exts: &[&str], out: &mut Vec<PathBuf>) {
     let Ok(rd) = std::fs::read_dir(dir) else {
@@ -259,8 +239,7 @@ fn files(dir: &Path, exts: &[&str], out: &mut Vec<PathBuf>) {
     }
 }
 
-/// The docs, the code and the scripts: what may cite docs/math.md or tell
-/// history.
+/// The docs, the code and the scripts: what may tell history.
 fn sources() -> Vec<PathBuf> {
     let mut v = pages();
     for dir in ["src", "crates", "tests", "benches", "fuzz", "scripts"] {
@@ -271,55 +250,6 @@ fn sources() -> Vec<PathBuf> {
         );
     }
     v
-}
-
-#[test]
-fn every_math_section_cited_exists() {
-    let sections = math_sections();
-    assert!(sections.contains("11.2"), "{sections:?}");
-    let mut bad = Vec::new();
-    for f in sources() {
-        let text = std::fs::read_to_string(&f).unwrap_or_default();
-        for (i, line) in text.lines().enumerate() {
-            let mut rest = line;
-            while let Some(k) = rest.find("math.md") {
-                rest = &rest[k + "math.md".len()..];
-                let tail = rest.trim_start_matches(['`', ' ', ',']);
-                let Some(tail) = tail.strip_prefix('§') else {
-                    continue;
-                };
-                let first: String = tail
-                    .trim_start_matches('§')
-                    .trim_start()
-                    .chars()
-                    .take_while(|c| c.is_ascii_digit() || *c == '.')
-                    .collect();
-                let first = first.trim_end_matches('.');
-                if first.is_empty() {
-                    continue; // `§n`, the convention itself
-                }
-                let mut cited = vec![first.to_string()];
-                // a range `§2–4`
-                let after = &tail.trim_start_matches('§').trim_start()[first.len()..];
-                if let Some(r) = after.strip_prefix('–').or_else(|| after.strip_prefix('-')) {
-                    let last: String = r.chars().take_while(char::is_ascii_digit).collect();
-                    if !last.is_empty() {
-                        cited.push(last);
-                    }
-                }
-                for c in cited {
-                    if !sections.contains(&c) {
-                        bad.push(format!("{}:{}: docs/math.md §{c}", rel(&f), i + 1));
-                    }
-                }
-            }
-        }
-    }
-    assert!(
-        bad.is_empty(),
-        "sections cited that docs/math.md does not have:\n{}",
-        bad.join("\n")
-    );
 }
 
 /// Whether `text` names a session, an issue or an item by number

@@ -7,23 +7,7 @@
 
 use super::export::sanitize;
 use std::fmt::Write as _;
-use streamline_kernel::DVec3;
-use streamline_kernel::grid::Grid;
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
-
-/// The OBJ text of `patches` (name, point grid), one object each.
-pub fn obj_shell_text(patches: &[(&str, &Grid<DVec3>)]) -> String {
-    let meshes: Vec<SurfaceMesh> = patches
-        .iter()
-        .map(|(_, p)| SurfaceMesh::from_points(p))
-        .collect();
-    let named: Vec<(&str, &SurfaceMesh)> = patches
-        .iter()
-        .zip(&meshes)
-        .map(|((n, _), m)| (*n, m))
-        .collect();
-    obj_meshes_text(&named)
-}
 
 /// The OBJ text of `patches` (name, mesh), one object each.
 pub fn obj_meshes_text(patches: &[(&str, &SurfaceMesh)]) -> String {
@@ -49,6 +33,8 @@ pub fn obj_meshes_text(patches: &[(&str, &SurfaceMesh)]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use streamline_kernel::DVec3;
+    use streamline_kernel::grid::Grid;
 
     #[test]
     fn each_patch_is_one_object_with_its_rows_and_global_indices() {
@@ -59,7 +45,8 @@ mod tests {
             Grid::new(2, 3, data).unwrap()
         };
         let (a, b) = (grid(0.0), grid(2.0));
-        let text = obj_shell_text(&[("hood", &a), ("screen", &b)]);
+        let (ma, mb) = (SurfaceMesh::from_points(&a), SurfaceMesh::from_points(&b));
+        let text = obj_meshes_text(&[("hood", &ma), ("screen", &mb)]);
         // read by tobj (an outside reader), each object with its own indices
         let opts = tobj::LoadOptions {
             single_index: true,

@@ -255,11 +255,6 @@ pub fn faces_text_mirrored(
     finish(w, model, frame, info, "B-spline faces in one shell")
 }
 
-/// The shell's file: every face, the seams shared.
-pub fn step_shell_text(shell: &ShellFit, info: &StepInfo) -> String {
-    faces_text(&shell.faces, &shell.seams, info)
-}
-
 /// A check of a shell's file: as [`super::step::verify`], with `faces` faces.
 pub fn verify(bytes: &[u8], faces: usize) -> Result<(), String> {
     verify_faces(bytes, faces)
