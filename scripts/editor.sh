@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The README's first command: set up, build (release) and open the editor on the
 # built-in car scene. Extra arguments go to the binary (e.g. a scene file).
-# The first build compiles Bevy: 13 to 19 minutes on 2 cores; later runs start at once.
+# The first build compiles Bevy: about 25 minutes on 2 cores with nothing cached
+# (docs/benchmarks.md, "Building"); later runs start at once.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh

@@ -520,3 +520,47 @@ fn the_benchmark_tables_are_generated_from_the_saved_results() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// `screenshot --help` lists the panel sections the option takes: every
+/// one it names opens, and a wrong name is refused with the same list.
+#[test]
+fn screenshot_help_names_every_panel_section() {
+    let bin = env!("CARGO_BIN_EXE_streamline-studio");
+    let help = Command::new(bin)
+        .args(["screenshot", "--help"])
+        .output()
+        .unwrap();
+    let help = String::from_utf8(help.stdout).unwrap();
+    let line = help
+        .lines()
+        .find(|l| l.contains("Open only this panel section:"))
+        .expect("--panel is described");
+    let listed: Vec<&str> = line
+        .split_once(':')
+        .unwrap()
+        .1
+        .trim()
+        .trim_end_matches('.')
+        .split(", ")
+        .collect();
+    let out = Command::new(bin)
+        .args(["screenshot", "--panel", "no-such", "--out", "x.png"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    let refused: Vec<&str> = err
+        .split_once("choose one of ")
+        .expect("the refusal lists the sections")
+        .1
+        .trim()
+        .split(", ")
+        .collect();
+    let (mut a, mut b) = (listed.clone(), refused.clone());
+    a.sort_unstable();
+    b.sort_unstable();
+    assert_eq!(
+        a, b,
+        "--help lists {listed:?}, the parser takes {refused:?}"
+    );
+}

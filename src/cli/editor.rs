@@ -111,9 +111,8 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
     let panel = match &a.panel {
         None => None,
         Some(p) => Some(PanelName::parse(p).ok_or_else(|| {
-            CliError::Usage(format!(
-                "--panel '{p}': choose file, patches, subdivision, selection, initial, curvature, display, tuning, analysis, mesh or stats"
-            ))
+            let names: Vec<&str> = PanelName::ALL.iter().map(|n| n.name()).collect();
+            CliError::Usage(format!("--panel '{p}': choose one of {}", names.join(", ")))
         })?),
     };
     let analysis = match &a.analysis {
