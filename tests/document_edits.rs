@@ -269,19 +269,34 @@ fn handle_edits_act_on_the_active_patch() {
         &now.joined[1].design,
         &start.joined[1].design
     ));
-    // what a later patch cannot take
-    let e = ecs::apply(&mut app, Edit::ClearDetail { row: 0, col: 0 }).unwrap_err();
+    // what a later patch cannot take: the scheme, the blend order and the
+    // initial curve are the first patch's
+    let e = ecs::apply(
+        &mut app,
+        Edit::SetBlendOrder(streamline_kernel::levels::surface::BlendOrder::TFirst),
+    )
+    .unwrap_err();
     assert!(
         e.to_string()
             .contains("acts on the first patch only; on `wing`"),
         "{e}"
     );
+    // above edit depth 0 a handle edit of a later patch is a detail of it
+    let e = ecs::apply(&mut app, Edit::ClearDetail { row: 0, col: 1 }).unwrap_err();
+    assert!(e.to_string().contains("detail"), "{e}");
     ecs::apply(&mut app, Edit::SetEditDepth(1)).unwrap();
-    let e = ecs::apply(&mut app, rotate(0, 1, 5.0)).unwrap_err();
+    let said = ecs::apply(&mut app, rotate(0, 1, 5.0)).unwrap();
     assert!(
-        e.to_string().contains("`wing`") && e.to_string().contains("edit depth to 0"),
-        "{e}"
+        said.contains("detail (0, 1) at level 1") && said.contains("`wing`"),
+        "{said}"
     );
+    let wing = &doc_state(app.world()).unwrap().joined[1];
+    assert_eq!(
+        wing.details.keys().copied().collect::<Vec<_>>(),
+        vec![(1, 0, 1)]
+    );
+    ecs::apply(&mut app, Edit::ClearDetail { row: 0, col: 1 }).unwrap();
+    assert!(doc_state(app.world()).unwrap().joined[1].details.is_empty());
     ecs::apply(&mut app, Edit::SetEditDepth(0)).unwrap();
     // a G2 chain's seam column is the hood's last: turned there
     patch(&mut app, PatchEdit::SetPatch("screen".into())).unwrap();

@@ -8,14 +8,17 @@
 //! follows from those changes alone ([`super::patch::track`],
 //! [`super::joined::build`]).
 //!
-//! Handle edits (`SetDirection`, `Rotate`, `SetLength`, `RotateMany`) act
-//! on the [`super::joined::ActivePatch`]: on a later patch they change its
-//! control net (its only handles: a joined patch has no details); the
-//! other edits of one surface act on the first patch only. Patch edits
+//! Handle edits (`SetDirection`, `Rotate`, `SetLength`, `RotateMany`),
+//! `ClearDetail`, the fine-tuning edits and `SetInterpolateTangents` act on
+//! the [`super::joined::ActivePatch`]: on a later patch they change its
+//! control net, details, fine tuning or tangent interpolation
+//! ([`joined_edit`]); the other edits of one surface (scheme, blend order,
+//! initial curve) act on the first patch only. Patch edits
 //! ([`crate::scene::patch_edit::PatchEdit`]) are applied by
-//! [`super::joined::patch_ops`]. With several patches, an edit of the first
-//! patch that would make a design the file checks refuse (details, fine
-//! tuning or a net a join cannot take) is refused, naming the patch.
+//! [`super::joined::patch_ops`]. With several patches, an edit that would
+//! make a design the file checks refuse (details, fine tuning or tangent
+//! interpolation on a G2 chain, a net a join cannot take) is refused,
+//! naming the patch.
 
 use super::components::{LevelData, SubdivisionLevel};
 use super::edit_error::EditError;
@@ -198,12 +201,12 @@ fn apply_doc(ctx: &mut EditCtx, work: &mut DocWork, edit: &Edit) -> Result<Strin
         }
         _ => {}
     }
-    if work.active > 0 && is_handle_edit(edit) {
+    if work.active > 0 && is_joined_edit(edit) {
         return joined_edit(ctx, work, edit);
     }
     if work.active > 0 && !is_document_edit(edit) {
         return Err(EditError::Patch(format!(
-            "`{}` acts on the first patch only; on `{}` use SetDirection, Rotate, SetLength or RotateMany, or SetPatch to the first patch before it",
+            "`{}` acts on the first patch only; on `{}` use the handle edits (SetDirection, Rotate, SetLength, RotateMany), ClearDetail, the fine-tuning edits or SetInterpolateTangents, or SetPatch to the first patch before it",
             edit.label(),
             work.state.name(work.active)
         )));
@@ -230,46 +233,159 @@ fn set_state(work: &mut DocWork, target: DocState) {
     work.state = target;
 }
 
-/// A handle edit of the active later patch: its control net, through the
-/// same checks as the first patch's ([`apply`] on a scene of its design),
-/// refused at an edit depth above 0 (a joined patch has no details) and on
-/// a seam column shared with the patch it starts on
-/// ([`patch_ops::check_joined_cell`]).
+/// An edit of the active later patch's own surface: its handles (its
+/// control net at edit depth 0, its details above, docs/math.md §5), its
+/// fine tuning, its tangent interpolation or a detail cleared. Applied to a
+/// scene of the patch as the first patch's are ([`apply`]), its handles
+/// above depth 0 read from the document built to the edit depth
+/// ([`joined_detail`]); a seam column shared with the patch it starts on
+/// is refused ([`patch_ops::check_joined_cell`]), and so is a result the
+/// file's checks would refuse (the document is then as it was).
 fn joined_edit(ctx: &mut EditCtx, work: &mut DocWork, edit: &Edit) -> Result<String, EditError> {
     let i = work.active;
     let name = work.state.name(i).to_string();
-    if work.state.first.edit_depth > 0 {
-        return Err(EditError::Patch(format!(
-            "`{name}` starts on another patch, and its handles are its control tangents (no details, docs/math.md §11): set the edit depth to 0 to edit it"
-        )));
-    }
+    let level = work.state.first.edit_depth;
     let cells = match edit {
-        Edit::SetDirection { row, col, .. }
-        | Edit::Rotate { row, col, .. }
-        | Edit::SetLength { row, col, .. } => vec![(*row, *col)],
+        Edit::SetDirection { row, col, .. } | Edit::Rotate { row, col, .. } => vec![(*row, *col)],
+        Edit::SetLength { row, col, .. } => vec![(*row, *col)],
         Edit::RotateMany { handles, .. } => handles.clone(),
         _ => Vec::new(),
     };
+    let detail = level > 0 && is_handle_edit(edit) && !matches!(edit, Edit::SetLength { .. });
     for &(r, c) in &cells {
-        patch_ops::check_joined_cell(&work.state, i, r, c).map_err(EditError::Patch)?;
+        match detail {
+            true => patch_ops::check_joined_seam(&work.state, i, c).map_err(EditError::Patch)?,
+            false => {
+                patch_ops::check_joined_cell(&work.state, i, r, c).map_err(EditError::Patch)?
+            }
+        }
     }
     let first = &work.state.first;
+    let j = &work.state.joined[i - 1];
     let mut scene = Scene {
         name: name.clone(),
-        design: work.state.joined[i - 1].design.clone(),
+        design: j.design.clone(),
         initial: crate::scene::format_v3::placeholder_initial(),
-        details: Default::default(),
+        details: j.details.clone(),
         display_depth: first.display_depth,
-        edit_depth: 0,
+        edit_depth: level,
         view: first.view,
-        tuning: None,
-        interpolate_tangents: false,
+        tuning: j.tuning.clone(),
+        interpolate_tangents: j.interpolate_tangents,
         mirror: false,
     };
-    let done = apply(ctx, &mut scene, edit)?;
-    work.state.joined[i - 1].design = scene.design;
+    let done = match detail {
+        true => joined_detail(&work.state, i, &mut scene, edit)?,
+        false => apply(ctx, &mut scene, edit)?,
+    };
+    let before = work.state.clone();
+    let j = &mut work.state.joined[i - 1];
+    j.design = scene.design;
+    j.details = scene.details;
+    j.tuning = scene.tuning;
+    j.interpolate_tangents = scene.interpolate_tangents;
     work.state.sync_seams();
+    if let Err(m) = patch_ops::check(&work.state) {
+        work.state = before;
+        return Err(EditError::Patch(format!("`{}` refused: {m}", edit.label())));
+    }
     Ok(format!("{done} on `{name}`"))
+}
+
+/// A handle edit of later patch `i` at the edit depth `L > 0`: a detail of
+/// its level `L` (docs/math.md §5), in the frame of that level as
+/// subdivided from level `L − 1` of the document built to depth `L` (what
+/// its build applies the detail to, before a join's G1 column, §11).
+fn joined_detail(
+    state: &DocState,
+    i: usize,
+    scene: &mut Scene,
+    edit: &Edit,
+) -> Result<String, EditError> {
+    let level = scene.edit_depth;
+    let doc = state.to_document();
+    let stacks = crate::scene::document_build::stacks(&doc, level)
+        .map_err(|e| EditError::Patch(e.message))?;
+    let levels = &stacks[i].levels;
+    let (Some(prev), Some(cur)) = (levels.get(level as usize - 1), levels.get(level as usize))
+    else {
+        return Err(EditError::LevelNotBuilt { level });
+    };
+    let base = doc.patches[i]
+        .effective_design()
+        .refine(prev, level)?
+        .tangents;
+    let (rows, cols) = (cur.tangents.rows(), cur.tangents.cols());
+    let mut turn = |row: usize, col: usize, dir: DVec3| -> Result<(), EditError> {
+        check_cell(rows, cols, row, col, level)?;
+        let dir = Tangent::new(dir)
+            .map_err(|_| EditError::BadDirection { dir })?
+            .get();
+        scene
+            .details
+            .insert((level, row, col), multires::to_local(&base, row, col, dir));
+        Ok(())
+    };
+    let current = |row: usize, col: usize| -> Result<DVec3, EditError> {
+        check_cell(rows, cols, row, col, level)?;
+        Ok(cur.tangents.get(row, col))
+    };
+    match edit {
+        Edit::SetDirection { row, col, dir } => {
+            turn(*row, *col, *dir)?;
+            Ok(format!("detail ({row}, {col}) at level {level}"))
+        }
+        Edit::Rotate {
+            row,
+            col,
+            axis,
+            radians,
+        } => {
+            let q = rotation(*axis, *radians)?;
+            turn(*row, *col, q * current(*row, *col)?)?;
+            Ok(format!("detail ({row}, {col}) at level {level}"))
+        }
+        Edit::RotateMany {
+            handles,
+            axis,
+            radians,
+        } => {
+            let q = rotation(*axis, *radians)?;
+            if handles.is_empty() {
+                return Err(EditError::NoHandles);
+            }
+            let dirs = handles
+                .iter()
+                .map(|&(r, c)| current(r, c).map(|d| q * d))
+                .collect::<Result<Vec<_>, _>>()?;
+            for (&(r, c), d) in handles.iter().zip(dirs) {
+                turn(r, c, d)?;
+            }
+            Ok(format!(
+                "rotated {} handles by {:.3}° at level {level}",
+                handles.len(),
+                radians.to_degrees()
+            ))
+        }
+        _ => Err(EditError::Patch(format!(
+            "`{}` is not a handle edit",
+            edit.label()
+        ))),
+    }
+}
+
+/// The edits of one surface that act on a later patch (the rest act on
+/// the first patch only).
+fn is_joined_edit(edit: &Edit) -> bool {
+    is_handle_edit(edit)
+        || matches!(
+            edit,
+            Edit::ClearDetail { .. }
+                | Edit::SetTuning(_)
+                | Edit::SetTuningValue { .. }
+                | Edit::SetTuningConstraint(_)
+                | Edit::SetInterpolateTangents(_)
+        )
 }
 
 fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, EditError> {

@@ -1,8 +1,8 @@
 //! The whole document as values (docs/architecture.md, "Undo of
 //! documents"): the first patch's [`Scene`] and, for each later patch, its
 //! name, where it starts (by the index of the patch it starts on, since
-//! entity ids change when a patch is spawned again), its design and whether
-//! it is hidden. The edit stage assembles it from the world, applies a
+//! entity ids change when a patch is spawned again), its design, details,
+//! fine tuning and tangent interpolation, and whether it is hidden. The edit stage assembles it from the world, applies a
 //! frame's edits to it, and writes back only what differs
 //! ([`super::joined::world_io`]); undo stores it ([`super::History`]). A
 //! one-patch design's state is its scene and nothing else. (It imports
@@ -12,7 +12,9 @@ use crate::scene::Scene;
 use crate::scene::document::{Document, MAIN_PATCH, PatchScene, Start};
 use crate::scene::format::InitialSpec;
 use streamline_kernel::Design;
+use streamline_kernel::finetune::SurfaceTuning;
 use streamline_kernel::joins::{Continuity, Edge, Join};
+use streamline_kernel::levels::multires::Details;
 
 /// Where a later patch starts, by document index.
 #[derive(Debug, Clone, PartialEq)]
@@ -37,9 +39,14 @@ pub struct JoinedState {
     pub name: String,
     /// Where it starts.
     pub start: StartState,
-    /// Its control net, parameters, scheme (a joined patch has no details,
-    /// fine tuning or tangent interpolation: docs/math.md §11).
+    /// Its control net, parameters, scheme.
     pub design: Design,
+    /// Its multiresolution details (docs/math.md §5).
+    pub details: Details,
+    /// Its fine tuning, if on (docs/math.md §6).
+    pub tuning: Option<SurfaceTuning>,
+    /// Progressive interpolation of its control tangents (docs/math.md §7).
+    pub interpolate_tangents: bool,
     /// Hidden by the designer (`PatchHidden`).
     pub hidden: bool,
 }
@@ -87,6 +94,9 @@ impl DocState {
                         }
                     },
                     design: p.design.clone(),
+                    details: p.details.clone(),
+                    tuning: p.tuning.clone(),
+                    interpolate_tangents: p.interpolate_tangents,
                     hidden: false,
                 }
             })
@@ -207,9 +217,9 @@ impl DocState {
                 name: j.name.clone(),
                 start,
                 design: j.design.clone(),
-                details: Default::default(),
-                tuning: None,
-                interpolate_tangents: false,
+                details: j.details.clone(),
+                tuning: j.tuning.clone(),
+                interpolate_tangents: j.interpolate_tangents,
             });
         }
         doc
@@ -220,9 +230,7 @@ impl DocState {
     pub fn same(&self, other: &DocState) -> bool {
         self.first.to_file() == other.first.to_file()
             && same_design(&self.first.design, &other.first.design)
-            && self.first.details.len() == other.first.details.len()
-            && (self.first.details.iter().zip(&other.first.details))
-                .all(|((ka, va), (kb, vb))| ka == kb && bits(*va) == bits(*vb))
+            && same_details(&self.first.details, &other.first.details)
             && self.first_name == other.first_name
             && self.first_hidden == other.first_hidden
             && self.joined.len() == other.joined.len()
@@ -231,8 +239,17 @@ impl DocState {
                     && a.start == b.start
                     && a.hidden == b.hidden
                     && same_design(&a.design, &b.design)
+                    && same_details(&a.details, &b.details)
+                    && a.tuning == b.tuning
+                    && a.interpolate_tangents == b.interpolate_tangents
             })
     }
+}
+
+/// The same details, bit for bit.
+fn same_details(a: &Details, b: &Details) -> bool {
+    a.len() == b.len()
+        && (a.iter().zip(b)).all(|((ka, va), (kb, vb))| ka == kb && bits(*va) == bits(*vb))
 }
 
 fn bits(v: streamline_kernel::DVec3) -> [u64; 3] {

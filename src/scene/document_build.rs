@@ -6,17 +6,22 @@
 //! ([`chain`]), a side join on its patch's first or last streamline
 //! ([`side`]) — and one [`SeamReport`] per join at depth `d`.
 //!
-//! The patches are built from their control nets: multiresolution details,
-//! fine tuning and tangent interpolation are refused on a joined patch by
-//! the document's checks ([`super::document_check`]), so nothing is dropped.
+//! Every patch is built with what it adds to its control net: its
+//! multiresolution details, its fine tuning and its tangent interpolation
+//! ([`PatchScene::effective_design`], [`PatchScene::parts`]). A G2 run is
+//! one merged net of its members' control nets: the document's checks
+//! ([`super::document_check`]) refuse those three on its members, so
+//! nothing is dropped.
 
-use super::document::Document;
+use super::document::{Document, PatchScene};
 use std::fmt;
 use streamline_kernel::Design;
 use streamline_kernel::joins::chain::chain;
 use streamline_kernel::joins::merged::{g2_run, merge_g2};
 use streamline_kernel::joins::side::side;
-use streamline_kernel::joins::{Continuity, Edge, Join, JoinError, SeamReport, Stack, seam_at};
+use streamline_kernel::joins::{
+    Continuity, Edge, Join, JoinError, PatchParts, SeamReport, Stack, seam_at,
+};
 
 /// The patches of a document built to one depth, and its seams.
 #[derive(Debug, Clone)]
@@ -100,9 +105,30 @@ pub fn g2_run_from(doc: &Document, first: usize) -> Vec<usize> {
     }
 }
 
+impl PatchScene {
+    /// The design its levels are built from: its own, or with
+    /// `interpolate_tangents` the net whose limit passes through its
+    /// interior tangents (docs/math.md §7; border tangents, so a seam
+    /// column, are kept).
+    pub fn effective_design(&self) -> Design {
+        super::model::effective_design(&self.design, self.interpolate_tangents)
+    }
+
+    /// `design` (its [`Self::effective_design`]) with this patch's details
+    /// and fine tuning, as the joins build it.
+    pub fn parts<'a>(&'a self, design: &'a Design) -> PatchParts<'a> {
+        PatchParts::new(design, Some(&self.details), self.tuning.as_ref())
+    }
+}
+
 /// Every patch's [`Stack`] at depths `0 ..= depth`.
 pub fn stacks(doc: &Document, depth: u32) -> Result<Vec<Stack>, BuildError> {
     let n = doc.patches.len();
+    let effective: Vec<Design> = doc
+        .patches
+        .iter()
+        .map(PatchScene::effective_design)
+        .collect();
     let mut out: Vec<Option<Stack>> = vec![None; n];
     for i in 0..n {
         if out[i].is_some() {
@@ -113,7 +139,7 @@ pub fn stacks(doc: &Document, depth: u32) -> Result<Vec<Stack>, BuildError> {
             let run = g2_run_from(doc, i);
             if run.len() == 1 {
                 out[i] = Some(
-                    Stack::build(&p.design, depth)
+                    Stack::build_parts(p.parts(&effective[i]), depth)
                         .map_err(|e| join_error(doc, i, &JoinError::Kernel(e)))?,
                 );
             } else {
@@ -144,8 +170,8 @@ pub fn stacks(doc: &Document, depth: u32) -> Result<Vec<Stack>, BuildError> {
                     ),
                 });
             }
-            (Edge::End, c) => chain(&doc.patches[a].design, sa, &p.design, c),
-            (edge, c) => side(sa, &p.design, edge, c),
+            (Edge::End, c) => chain(&effective[a], sa, p.parts(&effective[i]), c),
+            (edge, c) => side(sa, p.parts(&effective[i]), edge, c),
         };
         out[i] = Some(built.map_err(|e| join_error(doc, i, &e))?);
     }

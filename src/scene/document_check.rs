@@ -2,9 +2,9 @@
 //! input"), each a located error that names the patch and the fix: unique
 //! names; every join on an *earlier* patch (so joins form a forest, never a
 //! cycle); a G2 chain one net from a patch on its own curve, continued by
-//! one patch per edge; nothing the ECS layer would drop (details, fine
-//! tuning, tangent interpolation on a joined patch or on any patch after the
-//! first); and then the kernel's own checks
+//! one patch per edge; no details, fine tuning or tangent interpolation on
+//! a G2 chain's patches (one merged net of their control nets) and no
+//! detail on a G1 chain's seam column (its parent's); and then the kernel's own checks
 //! of every join (rows of a chain, its seam column, schemes, side `t`, G2 on
 //! a side edge), by building the document at depth 0 through the joins.
 //! Each patch's own fields are checked before, as a version-2 scene's are.
@@ -141,33 +141,54 @@ pub fn check_document(doc: &Document, file: &Path, place: &PatchText) -> Result<
         }
     }
     for (i, p) in doc.patches.iter().enumerate() {
-        let joined = doc.parent(i).is_some()
-            || (0..doc.patches.len()).any(|k| doc.parent(k).is_some_and(|(a, _)| a == i));
-        if !joined && i == 0 {
-            continue;
-        }
-        // Only the first patch, unjoined, carries these through the editor
-        // and the ECS layer: anything else would be dropped on the next save.
-        let refuse = |key: &str| {
-            let why = match joined {
-                true => format!(
-                    "it is joined to another patch, and joins are built from the control nets alone (`{key}` on a joined patch is future work); remove `{key}`, or the join"
-                ),
-                false => format!(
-                    "only the first patch of a design carries `{key}` (on a later patch it is future work); make `{}` the first patch, or remove `{key}`",
-                    p.name
-                ),
+        // a G2 run is one merged net of its members' control nets
+        let in_g2 = doc.parent(i).is_some_and(|(_, j)| is_g2_chain(j))
+            || (0..doc.patches.len())
+                .any(|k| doc.parent(k).is_some_and(|(a, j)| a == i && is_g2_chain(j)));
+        if in_g2 {
+            let run = |key: &str, why: &str| {
+                at(
+                    i,
+                    key,
+                    format!(
+                        "patch `{}` has `{key}`, but it is in a G2 chain, which is subdivided as one merged net of its patches' control nets (docs/math.md §11.1){why}; remove `{key}`, or join the patches with G1",
+                        p.name
+                    ),
+                )
             };
-            at(i, key, format!("patch `{}` has `{key}`, but {why}", p.name))
-        };
-        if !p.details.is_empty() {
-            return Err(refuse("details"));
+            if !p.details.is_empty() {
+                return Err(run("details", ""));
+            }
+            if p.tuning.is_some() {
+                return Err(run(
+                    "tuning",
+                    ", and fine tuning scales a streamline's speed, so the curvature across the seam becomes κ/α on each side: G2 would hold only where both functions agree",
+                ));
+            }
+            if super::model::interpolates(&p.design, p.interpolate_tangents) {
+                return Err(run(
+                    "interpolate_tangents",
+                    ", whose interpolation is not the members' own",
+                ));
+            }
         }
-        if p.tuning.is_some() {
-            return Err(refuse("tuning"));
-        }
-        if p.interpolate_tangents {
-            return Err(refuse("interpolate_tangents"));
+        // a G1 chain's seam column is the parent's last column, one handle
+        if let Some((a, join)) = doc.parent(i)
+            && join.edge == streamline_kernel::joins::Edge::End
+            && join.continuity != streamline_kernel::joins::Continuity::G0
+            && let Some(&(l, r, _)) = p.details.keys().find(|&&(_, _, c)| c == 0)
+        {
+            return Err(at(
+                i,
+                "details",
+                format!(
+                    "patch `{}` has a detail at level {l}, row {r}, column 0, but column 0 is its seam with `{}` ({}), whose last column it is at every depth (one handle, docs/math.md §11.1); put the detail on `{}`'s last column instead",
+                    p.name,
+                    name(a),
+                    join.continuity.name(),
+                    name(a)
+                ),
+            ));
         }
     }
     stacks(doc, 0).map_err(|e| at(e.patch, "initial", e.message))?;

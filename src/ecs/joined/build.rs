@@ -30,10 +30,13 @@ use super::components::*;
 use super::first::FirstPipeline;
 use super::g2::G2RunState;
 use crate::ecs::patch::{
-    ArcParam, Direction, PatchIndex, PatchKernel, PatchStructure, SurfaceHandle,
+    ArcParam, Direction, PatchIndex, PatchKernel, PatchStructure, PatchTuning, SurfaceHandle,
 };
+use crate::scene::model::{effective_design, interpolates};
 use bevy::prelude::*;
 use std::collections::HashMap;
+use streamline_kernel::finetune::SurfaceTuning;
+use streamline_kernel::joins::PatchParts;
 use streamline_kernel::joins::chain::chain;
 use streamline_kernel::joins::edges::Edges;
 use streamline_kernel::joins::g2_state::G2State;
@@ -41,6 +44,7 @@ use streamline_kernel::joins::rejoin::{Rejoin, RowSpan, rejoin};
 use streamline_kernel::joins::seam::{PatchMesh, chain_seam, side_seam};
 use streamline_kernel::joins::side::side;
 use streamline_kernel::joins::{Continuity, Edge, JoinError, Stack};
+use streamline_kernel::levels::multires::Details;
 use streamline_kernel::streamline::surface_mesh::normals_window;
 use streamline_kernel::{DVec3, Design};
 
@@ -111,6 +115,8 @@ type PatchRow = (
     &'static mut PatchSurface,
     Option<&'static mut SeamState>,
     Option<&'static mut G2RunState>,
+    Option<Ref<'static, JoinedFeatures>>,
+    Option<Ref<'static, PatchTuning>>,
 );
 
 /// Rebuilds the patches whose inputs changed and the seams they touch
@@ -163,6 +169,8 @@ pub(crate) fn build_joined(
                 || r.2.is_changed()
                 || r.3.as_ref().is_some_and(|k| k.is_changed())
                 || r.4.as_ref().is_some_and(|j| j.is_changed())
+                || r.8.as_ref().is_some_and(|f| f.is_changed())
+                || r.9.as_ref().is_some_and(|t| t.is_changed())
                 || r.5.built.is_none()
         })
         .collect();
@@ -229,8 +237,40 @@ pub(crate) fn build_joined(
         }
     }
     let mut in_run = vec![false; n];
+    // each patch's design as built: with its tangents interpolated when it
+    // interpolates them (docs/math.md §7: border tangents, so seam columns, kept)
+    let interpolated: Vec<Option<Design>> = (0..n)
+        .map(|i| {
+            let raw =
+                (rows[i].3.as_deref().map(|k| &k.design)).or(rows[i].4.as_deref().map(|j| &j.0))?;
+            let on = match (&rows[i].8, rows[i].3.is_some()) {
+                (Some(f), _) => f.interpolate_tangents,
+                (None, true) => st.interpolate_tangents,
+                (None, false) => false,
+            };
+            interpolates(raw, on).then(|| effective_design(raw, true))
+        })
+        .collect();
     let design = |i: usize| -> Option<&Design> {
-        (rows[i].3.as_deref().map(|k| &k.design)).or(rows[i].4.as_deref().map(|j| &j.0))
+        (interpolated[i].as_ref())
+            .or(rows[i].3.as_deref().map(|k| &k.design))
+            .or(rows[i].4.as_deref().map(|j| &j.0))
+    };
+    // what patch i adds to its net: details and fine tuning
+    let details = |i: usize| -> Option<&Details> {
+        (rows[i].3.as_deref().map(|k| &k.details)).or(rows[i].8.as_deref().map(|f| &f.details))
+    };
+    let tuning = |i: usize| -> Option<&SurfaceTuning> {
+        match (&rows[i].9, &rows[i].8) {
+            (Some(t), _) => t.0.as_ref(),
+            (None, Some(f)) => f.tuning.as_ref(),
+            (None, None) => None,
+        }
+    };
+    let adds = |i: usize| {
+        interpolated[i].is_some()
+            || details(i).is_some_and(|d| !d.is_empty())
+            || tuning(i).is_some()
     };
     let name = |i: usize| rows[i].1.name.as_str();
     let located = |i: usize, e: &dyn std::fmt::Display| match parent[i] {
@@ -307,7 +347,8 @@ pub(crate) fn build_joined(
             None => {
                 // the first patch's stack, kept and brought up to date from
                 // its pipeline (super::first)
-                let made = match rows[i].3.is_some() {
+                // (whole, with what it adds: the pipeline's stack is its net's)
+                let made = match rows[i].3.is_some() && !adds(i) {
                     true => pipeline.stack(rows[i].0, b, depth, first_old[i].take()),
                     false => None,
                 };
@@ -320,7 +361,8 @@ pub(crate) fn build_joined(
                         if rows[i].3.is_some() {
                             pipeline.forget();
                         }
-                        Stack::build(b, depth).map_err(|e| located(i, &JoinError::Kernel(e)))
+                        Stack::build_parts(PatchParts::new(b, details(i), tuning(i)), depth)
+                            .map_err(|e| located(i, &JoinError::Kernel(e)))
                     }
                 }
             }
@@ -356,7 +398,9 @@ pub(crate) fn build_joined(
                     new_edges[a] = Some(Edges::of(sa, sides[a]));
                 }
                 let (old_a, new_a) = (old_edges[a].as_ref(), new_edges[a].as_ref());
-                if let (Some(old_b), Some(old_a), Some(new_a)) = (kept_hi[0].take(), old_a, new_a) {
+                // (a patch with details or fine tuning is built whole)
+                let old_b = kept_hi[0].take().filter(|_| !adds(i));
+                if let (Some(old_b), Some(old_a), Some(new_a)) = (old_b, old_a, new_a) {
                     match rejoin(da, old_a, new_a, b, old_b, edge, c) {
                         Rejoin::Unchanged(s) => {
                             kept_hi[0] = Some(s);
@@ -376,8 +420,14 @@ pub(crate) fn build_joined(
                         i,
                         &"a G2 chain is one net from a patch with its own curve; join it with G1",
                     )),
-                    (Edge::End, c) => chain(da, sa, b, c).map_err(|e| located(i, &e)),
-                    (edge, c) => side(sa, b, edge, c).map_err(|e| located(i, &e)),
+                    (Edge::End, c) => {
+                        let parts = PatchParts::new(b, details(i), tuning(i));
+                        chain(da, sa, parts, c).map_err(|e| located(i, &e))
+                    }
+                    (edge, c) => {
+                        let parts = PatchParts::new(b, details(i), tuning(i));
+                        side(sa, parts, edge, c).map_err(|e| located(i, &e))
+                    }
                 }
             }
         };

@@ -3,7 +3,7 @@
 //! document carries its [`PatchSlot`] (its name and place in the document),
 //! its [`PatchStart`] and its kernel-built [`PatchSurface`]; a patch that
 //! starts on an edge also carries [`Joined`], its [`JoinedDesign`] (derived
-//! from its handles) and its [`SeamState`]. A one-patch design has none of
+//! from its handles), its [`JoinedFeatures`] and its [`SeamState`]. A one-patch design has none of
 //! them, so today's pipeline sees exactly what it saw.
 
 pub use crate::ecs::patch::{Joined, JoinedHandle};
@@ -42,6 +42,32 @@ pub enum PatchStart {
 /// [`super::build::track_joined`] (its only writer after spawning).
 #[derive(Component, Debug, Clone)]
 pub struct JoinedDesign(pub Design);
+
+/// What a later patch adds to its control net: its multiresolution details
+/// (docs/math.md §5), its fine tuning (§6) and its tangent interpolation
+/// (§7), written by the edit stage and read by [`super::build`]. (The
+/// first patch keeps them as its handles and components,
+/// [`crate::ecs::patch`].)
+#[derive(Component, Debug, Clone, Default, PartialEq)]
+pub struct JoinedFeatures {
+    /// Details, by `(level, row, column)`, in the level's local frame.
+    pub details: streamline_kernel::levels::multires::Details,
+    /// Fine tuning, if on.
+    pub tuning: Option<streamline_kernel::finetune::SurfaceTuning>,
+    /// Progressive interpolation of the control tangents.
+    pub interpolate_tangents: bool,
+}
+
+impl JoinedFeatures {
+    /// A state's features.
+    pub fn of(j: &crate::ecs::edit_state::JoinedState) -> Self {
+        JoinedFeatures {
+            details: j.details.clone(),
+            tuning: j.tuning.clone(),
+            interpolate_tangents: j.interpolate_tangents,
+        }
+    }
+}
 
 /// A patch built through the kernel's joins at the display depth: its
 /// levels and points at every depth `0 ..= d` ([`Stack`]), or why it could

@@ -71,6 +71,9 @@ pub fn apply(work: &mut DocWork, edit: &PatchEdit) -> Result<String, String> {
                     continuity: c,
                 },
                 design,
+                details: Default::default(),
+                tuning: None,
+                interpolate_tangents: false,
                 hidden: false,
             });
             if let Err(m) = check(state) {
@@ -235,6 +238,31 @@ fn new_design(
 /// it is: outside its net, or its seam column when that is one handle with
 /// the patch it starts on (a G1 or G2 chain, docs/math.md §11.1): that
 /// handle is turned on the patch it starts on, whose last column it is.
+/// Column `col` of later patch `i` at an edit depth above 0: refused when
+/// it is the seam column of a G1 or G2 chain (its parent's last column at
+/// every depth, docs/math.md §11.1), naming the handle to turn instead.
+pub fn check_joined_seam(state: &DocState, i: usize, col: usize) -> Result<(), String> {
+    let j = &state.joined[i - 1];
+    if let StartState::Edge {
+        parent,
+        edge: Edge::End,
+        continuity,
+    } = j.start
+        && continuity != Continuity::G0
+        && col == 0
+    {
+        let a = state.name(parent);
+        return Err(format!(
+            "column 0 of `{}` is its {} seam with `{a}`, whose last column it is at every depth (one handle, docs/math.md §11.1); turn it on `{a}` (SetPatch(\"{a}\"), its last column)",
+            j.name,
+            continuity.name()
+        ));
+    }
+    Ok(())
+}
+
+/// Cell `(row, col)` of later patch `i`'s control net: inside the net, and
+/// not the seam column of a G1 or G2 chain (one handle with its parent's).
 pub fn check_joined_cell(state: &DocState, i: usize, row: usize, col: usize) -> Result<(), String> {
     let j = &state.joined[i - 1];
     let (rows, cols) = (j.design.net().rows(), j.design.net().cols());

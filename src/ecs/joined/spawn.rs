@@ -32,7 +32,12 @@ pub fn spawn_joined(world: &mut World, doc: &Document, first: Entity) -> Vec<Ent
             },
             None => PatchStart::Curve,
         };
-        let e = spawn_joined_patch(world, &p.name, i, start, p.design.clone());
+        let features = JoinedFeatures {
+            details: p.details.clone(),
+            tuning: p.tuning.clone(),
+            interpolate_tangents: p.interpolate_tangents,
+        };
+        let e = spawn_joined_patch(world, &p.name, i, start, p.design.clone(), features);
         if let crate::scene::document::Start::Curve(c) = &p.start {
             world.entity_mut(e).insert(PatchInitial(c.clone()));
         }
@@ -59,16 +64,17 @@ pub fn adopt_first(world: &mut World, first: Entity, name: &str) {
 }
 
 /// Spawns a joined patch `name` at document index `index`: the [`Patch`]
-/// entity with its [`JoinedDesign`] and its net handles as children. The
-/// next update builds it ([`super::build`]).
+/// entity with its [`JoinedDesign`], its [`JoinedFeatures`] and its net
+/// handles as children. The next update builds it ([`super::build`]).
 pub fn spawn_joined_patch(
     world: &mut World,
     name: &str,
     index: usize,
     start: PatchStart,
     design: Design,
+    features: JoinedFeatures,
 ) -> Entity {
-    let e = spawn_joined_with(&mut world.commands(), name, index, start, design);
+    let e = spawn_joined_with(&mut world.commands(), name, index, start, design, features);
     world.flush();
     e
 }
@@ -81,6 +87,7 @@ pub fn spawn_joined_with(
     index: usize,
     start: PatchStart,
     design: Design,
+    features: JoinedFeatures,
 ) -> Entity {
     let e = commands
         .spawn((
@@ -94,6 +101,7 @@ pub fn spawn_joined_with(
             Joined,
             PatchSurface::default(),
             SeamState::default(),
+            features,
         ))
         .id();
     let surface = spawn_net_handles(commands, e, &design, JoinedHandle);

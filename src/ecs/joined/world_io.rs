@@ -28,6 +28,7 @@ type JoinedRow = (
     &'static PatchIndex,
     Has<PatchHidden>,
     Option<&'static PatchInitial>,
+    Option<&'static mut JoinedFeatures>,
 );
 
 /// The first patch's document components, writable.
@@ -88,6 +89,7 @@ impl JoinedParts<'_, '_> {
                     r.4.0.clone(),
                     r.6,
                     r.7.map(|i| i.0.clone()),
+                    r.8.map(|f| f.clone()).unwrap_or_default(),
                 )
             })
         });
@@ -156,6 +158,7 @@ impl JoinedParts<'_, '_> {
                         k + 1,
                         want,
                         t.design.clone(),
+                        JoinedFeatures::of(t),
                     );
                     match &t.start {
                         StartState::Curve(c) => {
@@ -223,11 +226,20 @@ impl JoinedParts<'_, '_> {
 
     /// Writes `t` into the kept patch `e` at document index `index`: only what differs.
     fn update(&mut self, e: Entity, index: usize, t: &JoinedState) {
-        let Ok((_, mut slot, mut name, _, mut design, patch_index, hidden, _)) =
+        let Ok((_, mut slot, mut name, _, mut design, patch_index, hidden, _, features)) =
             self.joined.get_mut(e)
         else {
             return;
         };
+        let want = JoinedFeatures::of(t);
+        match features {
+            Some(mut f) => {
+                f.set_if_neq(want);
+            }
+            None => {
+                self.commands.entity(e).insert(want);
+            }
+        }
         if slot.name != t.name || slot.index != index {
             *slot = PatchSlot {
                 name: t.name.clone(),
@@ -268,13 +280,14 @@ pub fn document(world: &World) -> Result<Document, String> {
 }
 
 /// What [`assemble`] reads of a later patch: its slot, start, design,
-/// hidden flag and (starting on its own curve) initial curve.
+/// hidden flag, (starting on its own curve) initial curve and features.
 type JoinedValues = (
     PatchSlot,
     PatchStart,
     streamline_kernel::Design,
     bool,
     Option<crate::scene::format::InitialSpec>,
+    JoinedFeatures,
 );
 
 /// The state of a document whose first patch is `first` (named
@@ -290,25 +303,30 @@ fn assemble(
     let at = |e: Entity| ids.iter().position(|&x| x == e);
     let joined = (ids.iter().skip(1))
         .filter_map(|&e| get(e))
-        .map(|(slot, start, design, hidden, initial)| JoinedState {
-            name: slot.name,
-            start: match start {
-                PatchStart::Edge {
-                    parent,
-                    edge,
-                    continuity,
-                } if at(parent).is_some() => StartState::Edge {
-                    parent: at(parent).unwrap_or(0),
-                    edge,
-                    continuity,
+        .map(
+            |(slot, start, design, hidden, initial, features)| JoinedState {
+                name: slot.name,
+                start: match start {
+                    PatchStart::Edge {
+                        parent,
+                        edge,
+                        continuity,
+                    } if at(parent).is_some() => StartState::Edge {
+                        parent: at(parent).unwrap_or(0),
+                        edge,
+                        continuity,
+                    },
+                    _ => StartState::Curve(
+                        initial.unwrap_or_else(crate::scene::format_v3::placeholder_initial),
+                    ),
                 },
-                _ => StartState::Curve(
-                    initial.unwrap_or_else(crate::scene::format_v3::placeholder_initial),
-                ),
+                design,
+                details: features.details,
+                tuning: features.tuning,
+                interpolate_tangents: features.interpolate_tangents,
+                hidden,
             },
-            design,
-            hidden,
-        })
+        )
         .collect();
     DocState {
         first,
@@ -343,6 +361,7 @@ pub fn doc_state(world: &World) -> Result<DocState, String> {
                 world.get::<JoinedDesign>(e)?.0.clone(),
                 world.get::<PatchHidden>(e).is_some(),
                 world.get::<PatchInitial>(e).map(|i| i.0.clone()),
+                world.get::<JoinedFeatures>(e).cloned().unwrap_or_default(),
             ))
         },
     ))
@@ -367,6 +386,7 @@ type JoinedReadRow = (
     &'static JoinedDesign,
     Has<PatchHidden>,
     Option<&'static PatchInitial>,
+    Option<&'static JoinedFeatures>,
 );
 
 impl JoinedRead<'_, '_> {
@@ -398,6 +418,7 @@ impl JoinedRead<'_, '_> {
                         r.3.0.clone(),
                         r.4,
                         r.5.map(|i| i.0.clone()),
+                        r.6.cloned().unwrap_or_default(),
                     )
                 })
             },

@@ -241,12 +241,24 @@ fn basis_with(
 
 /// A tensor-product function `α(u, v) = Σ c_{j,i} M_j(v) N_i(u)`: `u` along
 /// the streamlines (`s`), `v` across them (`t`); `values` has one row per `v`
-/// control value (the paper's surfaces use 3×3 and 3×4).
-#[derive(Debug, Clone, PartialEq)]
+/// control value (the paper's surfaces use 3×3 and 3×4). Two functions are
+/// equal when their degrees, knots and control values are (`along` and
+/// `across` carry the bases; their own values are not the function's).
+#[derive(Debug, Clone)]
 pub struct TensorBSpline {
     along: BSpline,
     across: BSpline,
     values: Grid<f64>,
+}
+
+impl PartialEq for TensorBSpline {
+    fn eq(&self, o: &Self) -> bool {
+        self.along.degree == o.along.degree
+            && self.across.degree == o.across.degree
+            && self.along.knots == o.along.knots
+            && self.across.knots == o.across.knots
+            && self.values == o.values
+    }
 }
 
 impl TensorBSpline {

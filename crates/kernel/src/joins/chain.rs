@@ -8,6 +8,7 @@
 use crate::analysis::angle_between;
 use crate::joins::error::JoinError;
 use crate::joins::kinds::Continuity;
+use crate::joins::parts::PatchParts;
 use crate::joins::stack::{Stack, levels_with, place_at_starts};
 use crate::levels::design::Design;
 use crate::levels::surface::{BlendOrder, SurfaceScheme};
@@ -85,17 +86,23 @@ pub(crate) fn check_chain(a: &Design, b: &Design, continuity: Continuity) -> Res
 /// puts `A`'s last column of level `d` into `B`'s first before the next step
 /// (Eq. 67; a no-op for Kobbelt, whose 4-point rule refines a boundary column
 /// by itself). For G2 use [`crate::joins::merged::g2_run`].
-pub fn chain(
+///
+/// `B`'s details apply after each step, before the G1 column (a detail on
+/// the seam column is `A`'s, docs/math.md §11.1), and its fine tuning
+/// places each row from its start point (docs/math.md §6).
+pub fn chain<'b>(
     a_design: &Design,
     a: &Stack,
-    b: &Design,
+    b: impl Into<PatchParts<'b>>,
     continuity: Continuity,
 ) -> Result<Stack, JoinError> {
+    let parts = b.into();
+    let b = parts.design;
     if continuity == Continuity::G2 {
         return Err(JoinError::G2IsOneNet);
     }
     check_chain(a_design, b, continuity)?;
-    let levels = levels_with(b, a.depth(), |d, level| {
+    let levels = levels_with(b, parts.details, a.depth(), |d, level| {
         let al = &a.levels[d as usize];
         level.params.t.clone_from(&al.params.t);
         for r in 0..level.tangents.rows() {
@@ -114,7 +121,7 @@ pub fn chain(
         .zip(&a.points)
         .map(|(level, ap)| {
             let starts = ap.column(ap.cols() - 1);
-            place_at_starts(level, &starts)
+            place_at_starts(level, &starts, parts.tuning)
         })
         .collect();
     Ok(Stack { levels, points })

@@ -4,7 +4,8 @@
 //! construction at every depth**.
 //!
 //! - [`kinds`]: [`Edge`] (`End`, `First`, `Last`), [`Continuity`] (`G0`–`G2`), [`Join`].
-//! - [`stack`]: a patch's levels and points at every depth, what a join reads.
+//! - [`stack`]: a patch's levels and points at every depth, what a join reads;
+//!   [`parts`]: a patch's net with its details and fine tuning, what is built.
 //! - [`chain`]: `edge: End` with G0 or G1 (§11.1); [`merged`]: G2 chains as
 //!   one merged net cut at the seams (§11.1); [`g2_state`]: a G2 run kept
 //!   between edits, re-blended inside the edit's window.
@@ -24,6 +25,7 @@ pub mod error;
 pub mod g2_state;
 pub mod kinds;
 pub mod merged;
+pub mod parts;
 pub mod rejoin;
 mod reproject;
 pub mod seam;
@@ -33,5 +35,6 @@ pub mod stack;
 pub use build::join;
 pub use error::JoinError;
 pub use kinds::{Continuity, Edge, Join};
+pub use parts::PatchParts;
 pub use seam::{SeamReport, seam_at};
 pub use stack::Stack;

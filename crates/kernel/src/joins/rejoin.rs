@@ -160,7 +160,7 @@ fn replace_moved(
     let (rows, cols) = (level.tangents.rows(), level.tangents.cols());
     if out.rows() != rows || out.cols() != cols + 1 || starts.len() != rows {
         // sizes differ (not a stack of this level): every row again
-        *out = place_at_starts(level, starts);
+        *out = place_at_starts(level, starts, None);
         return (rows > 0).then(|| RowSpan {
             lo: 0,
             hi: rows - 1,

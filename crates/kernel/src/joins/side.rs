@@ -10,8 +10,8 @@ use crate::joins::chain::ROW_TOLERANCE;
 use crate::joins::edge_curve::EdgeCurve;
 use crate::joins::error::JoinError;
 use crate::joins::kinds::{Continuity, Edge};
+use crate::joins::parts::PatchParts;
 use crate::joins::stack::{Stack, levels_with, place_at_starts};
-use crate::levels::design::Design;
 use glam::DVec3;
 
 /// A first-column tangent within this sine of `A`'s normal (about 1e-6 rad)
@@ -23,8 +23,17 @@ pub const ALONG_NORMAL_SIN: f64 = 1e-6;
 /// `B` started on `A`'s edge `First` or `Last` with G0 or G1, built to `A`'s
 /// depth (`a` is `A`'s [`Stack`]). `B`'s `t` must increase strictly inside
 /// `[0, L]`, `L` the length of `A`'s streamline at level 0, and its anchor
-/// must be 0; at every depth `σ` is the first column's `s`.
-pub fn side(a: &Stack, b: &Design, edge: Edge, continuity: Continuity) -> Result<Stack, JoinError> {
+/// must be 0; at every depth `σ` is the first column's `s`. `B`'s details
+/// apply after each step, before the G1 projection, and its fine tuning
+/// places each row from its start point (docs/math.md §5, §6).
+pub fn side<'b>(
+    a: &Stack,
+    b: impl Into<PatchParts<'b>>,
+    edge: Edge,
+    continuity: Continuity,
+) -> Result<Stack, JoinError> {
+    let parts = b.into();
+    let b = parts.design;
     if edge == Edge::End {
         return Err(JoinError::NotASideEdge);
     }
@@ -38,7 +47,7 @@ pub fn side(a: &Stack, b: &Design, edge: Edge, continuity: Continuity) -> Result
         .map(|d| EdgeCurve::of(a, d, edge).expect("a side edge of a built depth"))
         .collect();
     check_rows(&b.params().t, curves[0].length())?;
-    let levels = levels_with(b, a.depth(), |d, level| {
+    let levels = levels_with(b, parts.details, a.depth(), |d, level| {
         for r in 0..level.tangents.rows() {
             level.params.sigma[r] = level.params.s.get(r, 0);
         }
@@ -58,7 +67,7 @@ pub fn side(a: &Stack, b: &Design, edge: Edge, continuity: Continuity) -> Result
         .zip(&curves)
         .map(|(level, curve)| {
             let starts: Vec<DVec3> = level.params.t.iter().map(|&t| curve.point(t)).collect();
-            place_at_starts(level, &starts)
+            place_at_starts(level, &starts, parts.tuning)
         })
         .collect();
     Ok(Stack { levels, points })
