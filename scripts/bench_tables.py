@@ -12,6 +12,8 @@ the source printed them:
     peers.jsonl     `bash scripts/peers.sh --json`    (Loop vs pymeshlab, trimesh)
     osd.jsonl       `bash scripts/loop_vs_osd.sh --json` (Loop vs OpenSubdiv)
     cad.jsonl       `bash scripts/cad_peers.sh --json`   (the fit vs OpenCascade)
+    reference.jsonl `bash scripts/reference_peers.sh --json` (a reference's fit and
+                    deviation rows, the fit vs OpenCascade's grid fitter)
     drag.jsonl      `tests/gui/drag.sh` under xvfb + `scripts/drag_figures.py --json`
                     (the editor's drag; the reports are kept in docs/bench/drag/)
 
@@ -23,7 +25,7 @@ Usage:
 
     (no option)         measure every source, save, rewrite the tables
     --measure a,b       measure only these sources (bench, peers, osd, cad,
-                        drag), read the others from DIR
+                        reference, drag), read the others from DIR
     --from DIR          measure nothing: rewrite the tables from DIR's files
                         (default DIR: docs/bench)
     --check             rewrite nothing; exit 1 if the tables differ from DIR's files
@@ -45,7 +47,7 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SOURCES = ["bench", "peers", "osd", "cad", "drag"]
+SOURCES = ["bench", "peers", "osd", "cad", "reference", "drag"]
 
 
 # ---------------------------------------------------------------- measuring
@@ -123,6 +125,7 @@ def measure(source, folder, opts):
         "peers": "bash scripts/peers.sh --json",
         "osd": "bash scripts/loop_vs_osd.sh --json",
         "cad": "bash scripts/cad_peers.sh --json",
+        "reference": "bash scripts/reference_peers.sh --json",
         "drag": f"tests/gui/drag.sh ×{opts['drag_runs']} + scripts/drag_figures.py --json",
     }[source])
     if source == "bench":
@@ -133,6 +136,8 @@ def measure(source, folder, opts):
         rows = run_lines(["bash", "scripts/loop_vs_osd.sh", "--json"], env)
     elif source == "cad":
         rows = run_lines(["bash", "scripts/cad_peers.sh", "--json"], env)
+    elif source == "reference":
+        rows = run_lines(["bash", "scripts/reference_peers.sh", "--json"], env)
     else:
         rows = measure_drag(b, folder, opts["drag_runs"])
     save(folder, source, start, rows)
@@ -454,6 +459,66 @@ def cad(m, rows):
     return out
 
 
+# The rows of a reference (src/cli/bench/reference_rows.rs), as
+# scripts/reference_peers.sh measures them beside OpenCascade.
+REFERENCE_ROWS = [
+    ("reference-fit/hood/d5", "hood.step's face fitted at the default options, the kernel's helper thread on"),
+    ("reference-fit/duct/d5", "duct.igs's face, likewise"),
+    ("reference-fit/roof/d5", "roof.step's face, likewise"),
+    ("reference-fit/hood/d5/1t", "hood.step's face on one thread"),
+    ("reference-fit/duct/d5/1t", "duct.igs's face on one thread"),
+    ("reference-fit/roof/d5/1t", "roof.step's face on one thread"),
+    ("reference-deviation/hood/d5", "every point of `scenes/references/hood.ron` at depth 5 to its face"),
+    ("reference-deviation/car/d5", "every point of the car at depth 5 to the car's depth-4 B-spline export"),
+    ("reference-deviation/car/index", "the export's closest-point index made (its dense sample, a k-d tree)"),
+]
+# Points of the deviation rows' meshes: the hood's comes with its face's row.
+CAR_D5_POINTS = 161 * 258
+
+
+def reference(m, rows):
+    out = provenance(m, " Our times are the rows' medians (`bench --millis 2000`); OpenCascade's "
+                        "`GeomAPI_PointsToBSplineSurface` (degree 3–8, C2, our tolerance) the best of 5, "
+                        "one thread.")
+    out += command("python3 scripts/bench_tables.py --measure reference") + [""]
+    b = Rows([r for r in rows if "name" in r])
+    faces = [r for r in rows if "face" in r]
+    if b.ns:
+        out += table(["row", "what", "median"], [[f"`{n}`", w, t(b(n))] for n, w in REFERENCE_ROWS
+                                                 if b(n) is not None])
+    hood = next((r for r in faces if r["face"] == "hood"), None)
+    dev = []
+    if hood and b("reference-deviation/hood/d5") is not None:
+        dev.append(("the hood", hood["points"][0] * hood["points"][1], b("reference-deviation/hood/d5")))
+    if b("reference-deviation/car/d5") is not None:
+        dev.append(("the car", CAR_D5_POINTS, b("reference-deviation/car/d5")))
+    if dev:
+        ok = all(ns / n * 5e4 <= 5e7 for _, n, ns in dev)
+        out += ["", "Target: the deviation of 50,000 points in under 50 ms (1 µs a point), the face's index "
+                "already made — "
+                f"**{'met' if ok else 'not met'}** on this machine ("
+                + "; ".join(f"{w}: {n:,} points in {t(ns)}, {ns / n / 1e3:.2f} µs a point" for w, n, ns in dev)
+                + ")."]
+    lines = []
+    for r in faces:
+        o, c = r["ours"], r["occ"]
+        lines.append([r["face"], f"{r['points'][0]} × {r['points'][1]}", f"{r['tolerance']:.2e}",
+                      t(o["seconds"] * 1e9), t(o["seconds_1t"] * 1e9), f"{o['net'][0]} × {o['net'][1]}",
+                      f"{o['to_face']:.2e} / {o['from_face']:.2e}", t(c["seconds"] * 1e9),
+                      f"{c['degree'][1]} × {c['degree'][0]}", f"{c['poles'][1]} × {c['poles'][0]}",
+                      f"{c['to_face']:.2e} / {c['from_face']:.2e}", f"{c['seconds'] / o['seconds_1t']:.2f}×"])
+    if lines:
+        out += ["", "**Beside OpenCascade** (grids, nets, degrees and poles across × along the streamlines; "
+                "largest distances in metres, to the face / from the face):", ""]
+        out += table(["face", "grid (depth 5)", "tolerance", "ours", "ours, one thread", "net", "largest distance",
+                      "OpenCascade", "degree", "poles", "largest distance", "OpenCascade ÷ ours (one thread)"],
+                     lines)
+        gap = max(abs(r["ours"]["to_face_by_occ"] - r["ours"]["to_face"]) / r["ours"]["to_face"] for r in faces)
+        out += ["", f"OpenCascade's projection of our depth-5 points puts their largest distance to the face "
+                f"within {gap:.1e} of our own measure (relative) on every face."]
+    return out
+
+
 def drag(m, rows):
     if m and m.get("transcribed"):
         out = [f"Measured {m['date']} at `{m['commit']}` on {m['machine']}, {m['cores']} cores. "
@@ -514,6 +579,7 @@ AREAS = {
     "osd": ("osd", osd, False),
     "peers": ("peers", peers, False),
     "cad": ("cad", cad, False),
+    "reference": ("reference", reference, False),
     "drag": ("drag", drag, False),
 }
 

@@ -80,6 +80,9 @@ shot() {
 
 # the car and the panel sections (README.md, docs/editor.md)
 shot editor-car1 car1 --select 3,4
+# a design fitted to a shipped reference, and its zebra stripes (docs/fit.md)
+shot fit-hood scenes/references/hood.ron --select 4,4
+shot fit-hood-zebra scenes/references/hood.ron --panel analysis --analysis zebra
 shot editor-qi-side qi-side --select 1,2
 shot panel-file car1 --panel file
 shot panel-subdivision car1 --panel subdivision
@@ -182,6 +185,9 @@ gui patches-right-click "${XVFB[@]}" bash scripts/patches-pointer.sh "$BIN" "$T/
 
 # the New design dialog and the arrow's menu (docs/authoring.md)
 gui dialog-new-design "${XVFB[@]}" bash tests/gui/authoring.sh "$BIN" "$T/new/dialog-new-design.png" "$T/d.json" dialog -
+# File ▸ Import surface… with hood.step picked in the file browser
+# (docs/editor.md, docs/fit.md)
+gui dialog-import-surface env SHOT_ARGS="--msaa 4" "${XVFB[@]}" bash tests/gui/import.sh "$BIN" "$T/new/dialog-import-surface.png" "$T/i.json" dialog "$ROOT/scenes/references/hood.step"
 cp "$T/2-insert.ron" "$T/menu.ron"
 gui menu-arrow "${XVFB[@]}" bash tests/gui/authoring.sh "$BIN" "$T/new/menu-arrow.png" "$T/m.json" menu "$T/menu.ron"
 # the menu bar and the file browser (docs/editor.md): a folder of designs,

@@ -1,5 +1,5 @@
 //! The bad-input catalogue (docs/math.md §8, docs/reliability.md): every broken
-//! scene, script and OBJ file in `tests/bad/` and the exact message it must
+//! scene, script, OBJ, STEP and IGES file in `tests/bad/` and the exact message it must
 //! produce, from `tests/bad/catalogue.txt` (blocks of two lines: the file, its
 //! message). Each message names the file, the line and column (the whole file
 //! only where no line is at fault), what is wrong and, after a `;`, what to do.
@@ -23,7 +23,7 @@ const WHOLE_FILE: [&str; 2] = [
 
 fn inputs() -> Vec<PathBuf> {
     let mut v = Vec::new();
-    for dir in ["scenes", "scripts", "meshes"] {
+    for dir in ["scenes", "scripts", "meshes", "references"] {
         let d = Path::new("tests/bad").join(dir);
         for e in std::fs::read_dir(&d).unwrap() {
             let p = e.unwrap().path();
@@ -43,6 +43,13 @@ fn message(p: &Path) -> String {
         "scenes" => document_io::load(p).map(|_| ()),
         "scripts" => Script::load(p).map(|_| ()),
         "meshes" => obj::read(p).map(|_| ()),
+        // what `fit FILE` reads: the file, then its face 0
+        "references" => {
+            return match streamline_reference::read(p).and_then(|f| f.surface(0).map(|_| ())) {
+                Ok(()) => "(accepted)".into(),
+                Err(e) => e.to_string(),
+            };
+        }
         other => panic!("unknown folder {other}"),
     };
     match r {

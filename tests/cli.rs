@@ -205,6 +205,8 @@ fn cli_bench_json_rows() {
         "fit/car/d5",
         "export/hood-screen-wing/d4/step",
         "ecs/car/d6/drag-cold",
+        "reference-fit/roof/d5",
+        "reference-deviation/car/d5",
     ] {
         assert!(
             names.iter().any(|n| n == want),

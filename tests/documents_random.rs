@@ -187,6 +187,7 @@ fn random_document(seed: u64, n: usize, kinds: &[(usize, u8)], depth: u32) -> Do
         edit_depth: 0,
         mirror: false,
         view: ViewSpec::default(),
+        reference: None,
         patches,
     }
 }

@@ -11,12 +11,14 @@ use streamline_studio::fuzz;
 /// A fuzz target: any bytes in, a panic only when an invariant breaks.
 type Target = fn(&[u8]);
 
-const TARGETS: [(&str, Target); 5] = [
+const TARGETS: [(&str, Target); 7] = [
     ("scene", fuzz::scene),
     ("script", fuzz::script),
     ("obj", fuzz::obj),
     ("cli_json", fuzz::cli_json),
     ("kernel", fuzz::kernel),
+    ("step", fuzz::step),
+    ("iges", fuzz::iges),
 ];
 
 /// Pieces that break parsers and geometry: numbers at the edges, brackets,
@@ -203,6 +205,16 @@ fn fuzz_cli_json_short() {
 #[test]
 fn fuzz_kernel_short() {
     run_target("kernel", fuzz::kernel);
+}
+
+#[test]
+fn fuzz_step_short() {
+    run_target("step", fuzz::step);
+}
+
+#[test]
+fn fuzz_iges_short() {
+    run_target("iges", fuzz::iges);
 }
 
 /// Every seed (whole, however large) and every input the long runs found

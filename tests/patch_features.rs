@@ -149,7 +149,7 @@ fn with_features(mut doc: Document, seed: u64) -> Document {
             let col = if seam { 2 } else { (level as usize) % 3 };
             p.details.insert((level, 1, col), detail(&mut rnd));
         }
-        p.tuning = Some(tuning(&mut rnd, seed % 2 == 0));
+        p.tuning = Some(tuning(&mut rnd, seed.is_multiple_of(2)));
         p.interpolate_tangents = true;
     }
     doc
@@ -434,4 +434,146 @@ fn a_later_patchs_fields_are_edited_undone_and_redone() {
     assert!(err.contains("G2 chain") && err.contains("κ/α"), "{err}");
     assert_eq!(fields(&world_io::document(app.world()).unwrap()), was);
     let _ = std::fs::remove_dir_all(dir);
+}
+
+/// A G2 chain with details on both patches is its merged net subdivided
+/// with the details at their merged places: the one-patch pipeline (the
+/// incremental ECS layer) of a scene whose net is the merged net and whose
+/// details are the members' moved by Eq. 69's seam column (computed here
+/// by hand) gives, row by row, the two patches' points. Negative control:
+/// the details moved one column off do not.
+#[test]
+fn a_g2_chain_subdivides_its_merged_net_with_its_members_details() {
+    for (k, scheme) in ["Kobbelt(omega: 1.0)", "CatmullClark", "DooSabin"]
+        .into_iter()
+        .enumerate()
+    {
+        let mut doc = three(40 + k as u64, scheme, "G2", "Last", "G0");
+        let mut rnd = rng(77 + k as u64);
+        doc.patches[0].details.insert((1, 1, 3), detail(&mut rnd));
+        doc.patches[0].details.insert((2, 2, 7), detail(&mut rnd));
+        doc.patches[1].details.insert((1, 2, 1), detail(&mut rnd));
+        doc.patches[1].details.insert((2, 1, 2), detail(&mut rnd));
+        let depth = 2;
+        doc.display_depth = depth;
+        let built = doc.build(depth).unwrap();
+        // the merged net (Eq. 68) and its details (Eq. 69)
+        let a = &doc.patches[0];
+        let b = &doc.patches[1];
+        let seam = a.design.net().cols() - 1;
+        let merged_col = |d: u32| {
+            if scheme.starts_with("Kobbelt") {
+                seam << d
+            } else {
+                ((seam - 1) << d) + 1
+            }
+        };
+        let merged = |shift: usize| {
+            let mut scene = doc.patch_scene(0);
+            let rows = a.design.net().rows();
+            let mut net = Vec::new();
+            let mut s = Vec::new();
+            for r in 0..rows {
+                let mut row = a.design.net().row(r).to_vec();
+                row.extend_from_slice(&b.design.net().row(r)[1..]);
+                net.push(row);
+                let mut sr = a.design.params().s.row(r).to_vec();
+                let off = sr[seam] - b.design.params().s.get(r, 0);
+                sr.extend(b.design.params().s.row(r)[1..].iter().map(|v| v + off));
+                s.push(sr);
+            }
+            let design = streamline_kernel::Design::new(
+                &Grid::from_rows(&net).unwrap(),
+                Grid::from_rows(&s).unwrap(),
+                a.design.params().t.clone(),
+                0,
+                a.design.scheme(),
+                a.design.order(),
+                a.design.initial().clone(),
+            )
+            .unwrap();
+            scene.design = design;
+            scene.details = a.details.clone();
+            for (&(l, r, c), &v) in &b.details {
+                scene.details.insert((l, r, merged_col(l) + c + shift), v);
+            }
+            let app = ecs::headless_app(scene);
+            app.world().resource::<SurfaceData>().points.clone()
+        };
+        let whole = merged(0);
+        let (pa, pb) = (
+            built.patches[0].finest_points(),
+            built.patches[1].finest_points(),
+        );
+        let cut = merged_col(depth);
+        for r in 0..whole.rows() {
+            let w = whole.row(r);
+            // A's points but its last, B's points but its first (Eq. 70)
+            assert_eq!(
+                bits_of(&pa.row(r)[..=cut]),
+                bits_of(&w[..=cut]),
+                "{scheme} row {r}: A"
+            );
+            let nb = pb.cols();
+            assert_eq!(
+                bits_of(&pb.row(r)[1..]),
+                bits_of(&w[cut + 1..cut + nb]),
+                "{scheme} row {r}: B"
+            );
+        }
+        let off = merged(1);
+        assert!(
+            (0..off.rows()).any(|r| bits_of(&pb.row(r)[1..]) != bits_of(&off.row(r)[cut + 1..cut + pb.cols()])),
+            "{scheme}: moved details built the same"
+        );
+    }
+}
+
+fn bits_of(p: &[DVec3]) -> Vec<[u64; 3]> {
+    p.iter().map(|v| v.to_array().map(f64::to_bits)).collect()
+}
+
+/// A detail set on a patch of a G2 chain (its first patch or the one
+/// chained on it) is, once built, the very direction set: its frame is the
+/// chain's merged level, the one drawn (docs/math.md §5, §11.1).
+#[test]
+fn a_detail_on_a_g2_chain_is_the_direction_set() {
+    for scheme in ["Kobbelt(omega: 1.0)", "CatmullClark"] {
+        let doc = three(21, scheme, "G2", "Last", "G1");
+        let mut app = app(&doc);
+        ecs::apply(&mut app, Edit::SetEditDepth(1)).unwrap();
+        for (patch, row, col) in [("p1", 2, 1), ("p0", 1, 6), ("p0", 2, 5), ("p1", 1, 3)] {
+            ecs::apply(&mut app, Edit::Patch(PatchEdit::SetPatch(patch.into()))).unwrap();
+            let want = DVec3::new(1.0, 0.3, -0.2).normalize();
+            let said = ecs::apply(
+                &mut app,
+                Edit::SetDirection {
+                    row,
+                    col,
+                    dir: want,
+                },
+            )
+            .unwrap();
+            assert!(
+                said.contains(&format!("detail ({row}, {col}) at level 1")),
+                "{said}"
+            );
+            let now = world_io::document(app.world()).unwrap();
+            let i = now.index(patch).unwrap();
+            let t = now.build(1).unwrap().patches[i].levels[1]
+                .tangents
+                .get(row, col);
+            assert!(
+                t.angle_between(want) < 1e-9,
+                "{scheme} {patch} ({row}, {col}): {t} vs {want}"
+            );
+            // and the world's surface is the document's
+            let ids = entities(&mut app);
+            let whole = now.build(now.display_depth).unwrap();
+            assert_eq!(
+                bits(&finest(&app, ids[i])),
+                bits(whole.patches[i].finest_points())
+            );
+        }
+    }
 }

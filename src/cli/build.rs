@@ -9,7 +9,11 @@
 //! for versions 1 and 2) and no seams. An export of several patches writes
 //! them all (`scene::document_export`: one STEP shell, one IGES entity 128,
 //! OBJ object, glTF node or STL solid per patch), and the report gains
-//! `"faces"`, each fitted face's poles and deviation.
+//! `"faces"`, each fitted face's poles and deviation. A design with a
+//! reference (docs/math.md §12) is measured against it at the build depth
+//! (`scene::reference_fit::measure`): `"reference"` gives the file, the face
+//! and the largest and mean distance, or the error when the file cannot be
+//! read (the build itself still succeeds).
 
 use super::input::{CliError, document_arg, write_stdout};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
@@ -19,12 +23,15 @@ use crate::ecs::warnings::BuildWarnings;
 use crate::ecs::{self, Edit, EditLog, ModelConfig, Stats, SurfaceData};
 use crate::scene::Document;
 use crate::scene::document_export::{DocumentExportSettings, export_document};
+use crate::scene::reference_fit;
+use crate::scene::reference_link::ReferenceLink;
 use bevy::prelude::*;
 use clap::Args;
 use serde::Serialize;
 use std::path::PathBuf;
 use streamline_kernel::nurbs::{FitOptions, Tolerance};
 use streamline_kernel::streamline::integrate::polyline_length;
+use streamline_kernel::{DVec3, Grid};
 
 /// Arguments of `build`.
 #[derive(Debug, Args)]
@@ -131,6 +138,44 @@ struct BuildReport {
     patches: Vec<PatchFigures>,
     /// Every join's seam at the display depth (docs/math.md §11, "Seam report").
     seams: Vec<SeamFigures>,
+    /// The design's reference and the first patch's distance to it; absent
+    /// when the design has none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    reference: Option<ReferenceFigures>,
+}
+
+/// The design's reference as the report gives it: the file (resolved, as
+/// the build read it), the face, and the distance of the first patch's
+/// streamline points at the build depth to it, or why it was not measured.
+#[derive(Serialize)]
+struct ReferenceFigures {
+    path: String,
+    face: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    deviation: Option<MaxMean>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    error: Option<String>,
+}
+
+/// A largest and a mean distance.
+#[derive(Serialize)]
+struct MaxMean {
+    max: f64,
+    mean: f64,
+}
+
+/// The report's `"reference"` of a design whose first patch shows `points`.
+fn reference_figures(link: &ReferenceLink, points: &Grid<DVec3>, mirror: bool) -> ReferenceFigures {
+    let measured = reference_fit::measure(link, points, mirror);
+    ReferenceFigures {
+        path: link.path.display().to_string(),
+        face: link.face,
+        deviation: measured.as_ref().ok().map(|d| MaxMean {
+            max: d.max,
+            mean: d.mean,
+        }),
+        error: measured.err(),
+    }
 }
 
 /// A patch as the report lists it.
@@ -336,6 +381,8 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
     }
     let stats = w.resource::<Stats>();
     let surface = w.resource::<SurfaceData>();
+    let reference =
+        (doc.reference.as_ref()).map(|link| reference_figures(link, &surface.points, scene.mirror));
     let report = BuildReport {
         scene: scene.name.clone(),
         depth: scene.display_depth,
@@ -344,6 +391,7 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         entities,
         patches,
         seams,
+        reference,
         levels: stats.levels.clone(),
         streamlines: surface.points.rows(),
         points_per_streamline: surface.points.cols(),

@@ -1,7 +1,7 @@
 //! The command line's parser and dispatch (with the editor: feature `app`).
 
 use super::input::CliError;
-use super::{bench, build, editor, geometry, interpolate, play};
+use super::{bench, build, editor, faces, fit, geometry, interpolate, play};
 use clap::{Parser, Subcommand};
 
 /// Streamline Studio: design fair free-form surfaces by streamline modeling.
@@ -46,6 +46,10 @@ pub enum Command {
     Screenshot(editor::ScreenshotArgs),
     /// Make a Loop surface interpolate a triangle mesh's vertices (paper 002); one JSON line.
     Interpolate(interpolate::InterpolateArgs),
+    /// List the faces of a STEP or IGES file that a design can be fitted to.
+    Faces(faces::FacesArgs),
+    /// Fit a streamline design to a face of a STEP or IGES file within a tolerance.
+    Fit(fit::FitArgs),
 }
 
 /// Runs the binary; returns the process exit code.
@@ -84,5 +88,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Some(Command::Play(a)) => play::play(a),
         Some(Command::Build(a)) => build::build(a),
         Some(Command::Interpolate(a)) => interpolate::run(a),
+        Some(Command::Faces(a)) => faces::run(a),
+        Some(Command::Fit(a)) => fit::run(a),
     }
 }

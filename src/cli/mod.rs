@@ -9,6 +9,10 @@ mod build;
 mod command;
 #[cfg(feature = "app")]
 mod editor;
+#[cfg(feature = "app")]
+mod faces;
+#[cfg(feature = "app")]
+mod fit;
 #[cfg(feature = "fuzz")]
 pub mod fuzz;
 pub mod geometry;

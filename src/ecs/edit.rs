@@ -33,8 +33,9 @@ use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use std::time::Instant;
 use streamline_kernel::finetune::SurfaceTuning;
+use streamline_kernel::joins::merged::g2_detail_base;
 use streamline_kernel::levels::incremental::check_params;
-use streamline_kernel::levels::multires;
+use streamline_kernel::levels::multires::{self, Details};
 use streamline_kernel::{DQuat, DVec3, Design, Tangent};
 
 /// What the edit system reads and writes.
@@ -182,6 +183,9 @@ fn apply_doc(ctx: &mut EditCtx, work: &mut DocWork, edit: &Edit) -> Result<Strin
         Edit::Replace(new) => {
             replace(ctx, work, DocState::of_scene((**new).clone()));
             ctx.model.path = None;
+            // a design fitted to a reference exists in no file yet (a
+            // built-in or a new empty scene is nothing to lose)
+            ctx.model.unsaved = new.reference.is_some();
             return Ok(format!("opened {}", new.name));
         }
         Edit::Recover { document, origin } => {
@@ -211,8 +215,26 @@ fn apply_doc(ctx: &mut EditCtx, work: &mut DocWork, edit: &Edit) -> Result<Strin
             work.state.name(work.active)
         )));
     }
+    // a detail of the first patch when it heads a G2 chain: in the frame of
+    // the chain's merged level, the one drawn
+    let level = work.state.first.edit_depth;
+    if level > 0
+        && is_handle_edit(edit)
+        && !matches!(edit, Edit::SetLength { .. })
+        && heads_g2(&work.state)
+    {
+        let before = work.state.clone();
+        let mut details = work.state.first.details.clone();
+        let done = detail_edit(&work.state, 0, level, &mut details, edit)?;
+        work.state.first.details = details;
+        if let Err(m) = patch_ops::check(&work.state) {
+            work.state = before;
+            return Err(EditError::Patch(format!("`{}` refused: {m}", edit.label())));
+        }
+        return Ok(done);
+    }
     // an edit of the first patch; with several patches, checked as a file would be
-    let level0 = is_handle_edit(edit) && work.state.first.edit_depth == 0;
+    let level0 = is_handle_edit(edit) && level == 0;
     let before = (!work.state.joined.is_empty() && !level0).then(|| work.state.clone());
     let done = apply(ctx, &mut work.state.first, edit)?;
     work.state.sync_seams();
@@ -238,7 +260,7 @@ fn set_state(work: &mut DocWork, target: DocState) {
 /// fine tuning, its tangent interpolation or a detail cleared. Applied to a
 /// scene of the patch as the first patch's are ([`apply`]), its handles
 /// above depth 0 read from the document built to the edit depth
-/// ([`joined_detail`]); a seam column shared with the patch it starts on
+/// ([`detail_edit`]); a seam column shared with the patch it starts on
 /// is refused ([`patch_ops::check_joined_cell`]), and so is a result the
 /// file's checks would refuse (the document is then as it was).
 fn joined_edit(ctx: &mut EditCtx, work: &mut DocWork, edit: &Edit) -> Result<String, EditError> {
@@ -273,9 +295,10 @@ fn joined_edit(ctx: &mut EditCtx, work: &mut DocWork, edit: &Edit) -> Result<Str
         tuning: j.tuning.clone(),
         interpolate_tangents: j.interpolate_tangents,
         mirror: false,
+        reference: first.reference.clone(),
     };
     let done = match detail {
-        true => joined_detail(&work.state, i, &mut scene, edit)?,
+        true => detail_edit(&work.state, i, level, &mut scene.details, edit)?,
         false => apply(ctx, &mut scene, edit)?,
     };
     let before = work.state.clone();
@@ -292,17 +315,19 @@ fn joined_edit(ctx: &mut EditCtx, work: &mut DocWork, edit: &Edit) -> Result<Str
     Ok(format!("{done} on `{name}`"))
 }
 
-/// A handle edit of later patch `i` at the edit depth `L > 0`: a detail of
-/// its level `L` (docs/math.md §5), in the frame of that level as
-/// subdivided from level `L − 1` of the document built to depth `L` (what
-/// its build applies the detail to, before a join's G1 column, §11).
-fn joined_detail(
+/// A handle edit of patch `i` at the edit depth `L > 0`: a detail of its
+/// level `L` (docs/math.md §5), in the frame of that level as subdivided
+/// from level `L − 1` of the document built to depth `L` (what its build
+/// applies the detail to, before a join's G1 column, §11): for a patch of a
+/// G2 chain, the chain's merged level ([`g2_detail_base`]), the level that
+/// is drawn. The details are written into `details`.
+fn detail_edit(
     state: &DocState,
     i: usize,
-    scene: &mut Scene,
+    level: u32,
+    details: &mut Details,
     edit: &Edit,
 ) -> Result<String, EditError> {
-    let level = scene.edit_depth;
     let doc = state.to_document();
     let stacks = crate::scene::document_build::stacks(&doc, level)
         .map_err(|e| EditError::Patch(e.message))?;
@@ -311,19 +336,41 @@ fn joined_detail(
     else {
         return Err(EditError::LevelNotBuilt { level });
     };
-    let base = doc.patches[i]
-        .effective_design()
-        .refine(prev, level)?
-        .tangents;
-    let (rows, cols) = (cur.tangents.rows(), cur.tangents.cols());
+    // the frame: the merged level of a G2 chain, else the patch's own
+    let head = crate::scene::document_build::g2_head(&doc, i);
+    let run = crate::scene::document_build::g2_run_from(&doc, head);
+    let (base, offset) = if run.len() > 1 {
+        let effective: Vec<_> = run
+            .iter()
+            .map(|&k| doc.patches[k].effective_design())
+            .collect();
+        let parts: Vec<_> = (run.iter().zip(&effective))
+            .map(|(&k, d)| doc.patches[k].parts(d))
+            .collect();
+        let member = run.iter().position(|&k| k == i).unwrap_or(0);
+        g2_detail_base(&parts, member, level).map_err(|e| EditError::Patch(e.to_string()))?
+    } else {
+        let d = doc.patches[i].effective_design();
+        (d.refine(prev, level)?.tangents, 0)
+    };
+    // inside the level as built here and as the patch's own levels have it
+    // (a G2 chain's cut and the patch alone differ at the cut for the
+    // approximating schemes; a detail lives in both)
+    let own = doc.patches[i].design.net();
+    let (own_rows, own_cols) =
+        doc.patches[i]
+            .design
+            .scheme()
+            .check_depth(own.rows(), own.cols(), level)?;
+    let rows = cur.tangents.rows().min(own_rows);
+    let cols = cur.tangents.cols().min(own_cols);
     let mut turn = |row: usize, col: usize, dir: DVec3| -> Result<(), EditError> {
         check_cell(rows, cols, row, col, level)?;
         let dir = Tangent::new(dir)
             .map_err(|_| EditError::BadDirection { dir })?
             .get();
-        scene
-            .details
-            .insert((level, row, col), multires::to_local(&base, row, col, dir));
+        let local = multires::to_local(&base, row, offset + col, dir);
+        details.insert((level, row, col), local);
         Ok(())
     };
     let current = |row: usize, col: usize| -> Result<DVec3, EditError> {
@@ -372,6 +419,20 @@ fn joined_detail(
             edit.label()
         ))),
     }
+}
+
+/// Whether the first patch heads a G2 chain (a patch G2-chained on its End).
+fn heads_g2(state: &DocState) -> bool {
+    state.joined.iter().any(|j| {
+        matches!(
+            j.start,
+            super::edit_state::StartState::Edge {
+                parent: 0,
+                edge: streamline_kernel::joins::Edge::End,
+                continuity: streamline_kernel::joins::Continuity::G2,
+            }
+        )
+    })
 }
 
 /// The edits of one surface that act on a later patch (the rest act on

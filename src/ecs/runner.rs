@@ -3,12 +3,14 @@
 //! a batch per frame, the batch sized so the model's systems stay near
 //! [`FRAME_BUDGET_MS`] a frame. Progress is shown and the run can be
 //! cancelled at any step, so a million-step script never hangs the editor.
+//! A `Fit` step's fit (docs/math.md §12, seconds on a large face) runs on a
+//! worker thread too; the steps after it wait for its design.
 //! Expectations are skipped here (`streamline-studio play` checks them).
 
 use super::messages::EditMessage;
 use super::resources::Stats;
 use crate::scene::job::{Job, Poll};
-use crate::scene::script::Script;
+use crate::scene::script::{Script, Step};
 use bevy::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -51,6 +53,8 @@ pub enum RunState {
         skipped: usize,
         /// Steps refused (a bad path…), with the first message.
         refused: (usize, Option<String>),
+        /// A `Fit` step's fit, under way off the frame: its edit to come.
+        fitting: Option<Job<Result<super::messages::Edit, String>>>,
     },
     /// Finished or stopped: a line for the panel.
     Done(String),
@@ -129,6 +133,7 @@ fn drive(mut run: ResMut<ScriptRun>, mut edits: MessageWriter<EditMessage>, stat
                 sent: 0,
                 skipped: 0,
                 refused: (0, None),
+                fitting: None,
             },
             Poll::Done(Err(e)) => RunState::Done(e),
             Poll::Lost => RunState::Done("the reader stopped without a result (a bug)".into()),
@@ -143,10 +148,29 @@ fn drive(mut run: ResMut<ScriptRun>, mut edits: MessageWriter<EditMessage>, stat
         sent,
         skipped,
         refused,
+        fitting,
     } = &mut run.state
     else {
         return;
     };
+    if let Some(job) = fitting {
+        let done = match job.poll() {
+            Poll::Running => return,
+            Poll::Done(r) => r,
+            Poll::Lost => Err("the fit stopped without a result (a bug)".into()),
+        };
+        match done {
+            Ok(edit) => {
+                edits.write(EditMessage::from(edit));
+                *sent += 1;
+            }
+            Err(m) => {
+                refused.0 += 1;
+                refused.1.get_or_insert(m);
+            }
+        }
+        *fitting = None;
+    }
     // size the batch by what the last frame's edits cost
     let spent_ms = stats.last.us_total() / 1e3;
     if *sent > 0 {
@@ -158,10 +182,21 @@ fn drive(mut run: ResMut<ScriptRun>, mut edits: MessageWriter<EditMessage>, stat
     }
     let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
     let end = (*next + *batch).min(script.steps.len());
-    for step in &script.steps[*next..end] {
+    let mut at = *next;
+    while at < end {
+        let step = &script.steps[at];
+        at += 1;
         if step.is_expectation() {
             *skipped += 1;
             continue;
+        }
+        if let Step::Fit(_) = step {
+            let (step, dir) = (step.clone(), dir.clone());
+            let label = format!("{} step {at}: fitting", path.display());
+            *fitting = Some(Job::spawn(&label, move |_| {
+                super::playback::to_edit(&step, &dir)
+            }));
+            break;
         }
         match super::playback::to_edit(step, &dir) {
             Ok(edit) => {
@@ -174,8 +209,8 @@ fn drive(mut run: ResMut<ScriptRun>, mut edits: MessageWriter<EditMessage>, stat
             }
         }
     }
-    *next = end;
-    if *next >= script.steps.len() {
+    *next = at;
+    if *next >= script.steps.len() && fitting.is_none() {
         let mut line = format!(
             "{}: ran {} steps ({} edits; {} expectations skipped: `streamline-studio play` checks them)",
             path.display(),

@@ -85,6 +85,7 @@ impl Plugin for EditorPlugin {
             handles::structure::StructurePlugin,
             handles::box_select::BoxSelectPlugin,
             document::file_browser::FileBrowserPlugin,
+            document::import::ImportPlugin,
             surface::patches::PatchSurfacesPlugin,
             surface::patch_maps::PatchMapsPlugin,
             seams::SeamsPlugin,

@@ -14,6 +14,8 @@ use super::format_v3::{
     DocumentFile, StartSpec, VERSION_PATCHES, Version3, patch_file_of, placeholder_initial,
 };
 use super::model::Scene;
+use super::reference_link::ReferenceLink;
+use std::path::Path;
 use streamline_kernel::Design;
 use streamline_kernel::finetune::SurfaceTuning;
 use streamline_kernel::joins::Join;
@@ -35,6 +37,10 @@ pub struct Document {
     pub mirror: bool,
     /// The camera.
     pub view: ViewSpec,
+    /// The reference the whole design was fitted to or is measured against
+    /// (docs/math.md §12), resolved against the folder of the file it was
+    /// read from; `None` when there is none.
+    pub reference: Option<ReferenceLink>,
     /// The patches; one that starts on an edge starts on an earlier one.
     pub patches: Vec<PatchScene>,
 }
@@ -116,6 +122,7 @@ impl Document {
             edit_depth: scene.edit_depth,
             mirror: scene.mirror,
             view: scene.view,
+            reference: scene.reference,
             patches: vec![PatchScene {
                 name: MAIN_PATCH.to_string(),
                 start: Start::Curve(scene.initial),
@@ -136,9 +143,9 @@ impl Document {
         }
     }
 
-    /// Patch `i` as a scene of its own (the design's depths and view; the
-    /// mirror for the first patch only; a placeholder initial curve for a
-    /// patch that starts on an edge).
+    /// Patch `i` as a scene of its own (the design's depths, view and
+    /// reference; the mirror for the first patch only; a placeholder initial
+    /// curve for a patch that starts on an edge).
     pub fn patch_scene(&self, i: usize) -> Scene {
         let p = &self.patches[i];
         Scene {
@@ -155,6 +162,7 @@ impl Document {
             tuning: p.tuning.clone(),
             interpolate_tangents: p.interpolate_tangents,
             mirror: i == 0 && self.mirror,
+            reference: self.reference.clone(),
         }
     }
 
@@ -171,7 +179,9 @@ impl Document {
         }
     }
 
-    /// The version-3 file form (whatever the number of patches).
+    /// The version-3 file form (whatever the number of patches), the
+    /// reference's path as held ([`ReferenceLink::to_spec`]); a file saved
+    /// elsewhere holds [`Document::to_file_at`].
     pub fn to_file(&self) -> DocumentFile {
         DocumentFile {
             version: Version3(VERSION_PATCHES),
@@ -180,6 +190,7 @@ impl Document {
             edit_depth: self.edit_depth,
             mirror: self.mirror,
             view: self.view,
+            reference: self.reference.as_ref().map(ReferenceLink::to_spec),
             patches: (0..self.patches.len())
                 .map(|i| {
                     let p = &self.patches[i];
@@ -189,15 +200,39 @@ impl Document {
         }
     }
 
+    /// The version-3 file form as saved to `file`: [`Document::to_file`]
+    /// with the reference's path relative to `file`'s folder (docs/math.md
+    /// §12, [`ReferenceLink::to_spec_for`]).
+    pub fn to_file_at(&self, file: &Path) -> DocumentFile {
+        DocumentFile {
+            reference: (self.reference.as_ref()).map(|r| r.to_spec_for(file)),
+            ..self.to_file()
+        }
+    }
+
     /// The text saved: version 2 for one patch (what [`Scene::to_ron`]
     /// writes), version 3 for several.
     pub fn to_ron(&self) -> String {
-        if let Some(scene) = self.one_scene() {
-            return scene.to_ron();
+        match self.one_scene() {
+            Some(scene) => scene.to_ron(),
+            None => ron_text(&self.to_file()),
         }
-        let cfg = ron::ser::PrettyConfig::new()
-            .depth_limit(4)
-            .indentor("    ".to_string());
-        ron::ser::to_string_pretty(&self.to_file(), cfg).expect("a document serialises")
     }
+
+    /// The text saved to `file` ([`Document::to_ron`] with the reference's
+    /// path relative to `file`'s folder, docs/math.md §12).
+    pub fn to_ron_at(&self, file: &Path) -> String {
+        match self.one_scene() {
+            Some(scene) => scene.to_ron_at(file),
+            None => ron_text(&self.to_file_at(file)),
+        }
+    }
+}
+
+/// The text of a version-3 file.
+fn ron_text(f: &DocumentFile) -> String {
+    let cfg = ron::ser::PrettyConfig::new()
+        .depth_limit(4)
+        .indentor("    ".to_string());
+    ron::ser::to_string_pretty(f, cfg).expect("a document serialises")
 }

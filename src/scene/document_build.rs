@@ -2,22 +2,22 @@
 //! every patch's levels and streamline points at each depth up to `d`
 //! through the kernel's joins — a patch on its own curve alone, a G2 chain
 //! (from a patch on its own curve, through each G2 `End` join) as one merged
-//! net cut at its seams ([`g2_run`]), a G0/G1 chain on its patch's points
+//! net cut at its seams ([`g2_run_parts`]), a G0/G1 chain on its patch's points
 //! ([`chain`]), a side join on its patch's first or last streamline
 //! ([`side`]) — and one [`SeamReport`] per join at depth `d`.
 //!
 //! Every patch is built with what it adds to its control net: its
 //! multiresolution details, its fine tuning and its tangent interpolation
 //! ([`PatchScene::effective_design`], [`PatchScene::parts`]). A G2 run is
-//! one merged net of its members' control nets: the document's checks
-//! ([`super::document_check`]) refuse those three on its members, so
-//! nothing is dropped.
+//! one merged net of its members' control nets, subdivided with their
+//! details; the document's checks ([`super::document_check`]) refuse fine
+//! tuning and tangent interpolation on its members, so nothing is dropped.
 
 use super::document::{Document, PatchScene};
 use std::fmt;
 use streamline_kernel::Design;
 use streamline_kernel::joins::chain::chain;
-use streamline_kernel::joins::merged::{g2_run, merge_g2};
+use streamline_kernel::joins::merged::{g2_run_parts, merge_g2};
 use streamline_kernel::joins::side::side;
 use streamline_kernel::joins::{
     Continuity, Edge, Join, JoinError, PatchParts, SeamReport, Stack, seam_at,
@@ -121,6 +121,15 @@ impl PatchScene {
     }
 }
 
+/// The first patch of the G2 run patch `i` is in (`i` itself when it is in
+/// none, or heads one).
+pub fn g2_head(doc: &Document, mut i: usize) -> usize {
+    while let Some((a, _)) = doc.parent(i).filter(|&(a, j)| a < i && is_g2_chain(j)) {
+        i = a;
+    }
+    i
+}
+
 /// Every patch's [`Stack`] at depths `0 ..= depth`.
 pub fn stacks(doc: &Document, depth: u32) -> Result<Vec<Stack>, BuildError> {
     let n = doc.patches.len();
@@ -143,8 +152,11 @@ pub fn stacks(doc: &Document, depth: u32) -> Result<Vec<Stack>, BuildError> {
                         .map_err(|e| join_error(doc, i, &JoinError::Kernel(e)))?,
                 );
             } else {
-                let designs: Vec<&Design> = run.iter().map(|&k| &doc.patches[k].design).collect();
-                let built = g2_run(&designs, depth).map_err(|e| blame_run(doc, &run, &e))?;
+                let parts: Vec<PatchParts> = run
+                    .iter()
+                    .map(|&k| doc.patches[k].parts(&effective[k]))
+                    .collect();
+                let built = g2_run_parts(&parts, depth).map_err(|e| blame_run(doc, &run, &e))?;
                 for (k, s) in run.into_iter().zip(built) {
                     out[k] = Some(s);
                 }

@@ -2,9 +2,9 @@
 //! input"), each a located error that names the patch and the fix: unique
 //! names; every join on an *earlier* patch (so joins form a forest, never a
 //! cycle); a G2 chain one net from a patch on its own curve, continued by
-//! one patch per edge; no details, fine tuning or tangent interpolation on
-//! a G2 chain's patches (one merged net of their control nets) and no
-//! detail on a G1 chain's seam column (its parent's); and then the kernel's own checks
+//! one patch per edge; no fine tuning or tangent interpolation on a G2
+//! chain's patches (one merged net of their control nets) and no detail on
+//! a G1 or G2 chain's seam column (its parent's); and then the kernel's own checks
 //! of every join (rows of a chain, its seam column, schemes, side `t`, G2 on
 //! a side edge), by building the document at depth 0 through the joins.
 //! Each patch's own fields are checked before, as a version-2 scene's are.
@@ -156,9 +156,6 @@ pub fn check_document(doc: &Document, file: &Path, place: &PatchText) -> Result<
                     ),
                 )
             };
-            if !p.details.is_empty() {
-                return Err(run("details", ""));
-            }
             if p.tuning.is_some() {
                 return Err(run(
                     "tuning",

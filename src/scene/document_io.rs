@@ -10,6 +10,7 @@ use super::format_v3::{DocumentFile, VERSION_PATCHES, declared_version};
 use super::io;
 use super::model::Scene;
 use super::patch_text::PatchText;
+use super::reference_link::resolve_in;
 use std::path::Path;
 
 impl Document {
@@ -39,12 +40,14 @@ impl Document {
                 interpolate_tangents: scene.interpolate_tangents,
             });
         }
+        let reference = resolve_in(f.reference.as_ref(), file, || place.top("reference"))?;
         let doc = Document {
             name: f.name,
             display_depth: f.display_depth,
             edit_depth: f.edit_depth,
             mirror: f.mirror,
             view: f.view,
+            reference,
             patches,
         };
         check_document(&doc, file, &place)?;
@@ -72,18 +75,19 @@ pub fn load(path: &Path) -> Result<Document, SceneError> {
 
 /// Saves `doc` atomically and verified: through [`io::save`] (version 2, the
 /// same bytes) when it has one patch, else as version 3, read back and
-/// compared field by field before it replaces the file.
+/// compared field by field before it replaces the file. The reference's
+/// path is written relative to `path`'s folder (docs/math.md §12).
 pub fn save(doc: &Document, path: &Path) -> Result<(), SceneError> {
     if let Some(scene) = doc.one_scene() {
         return io::save(&scene, path);
     }
-    let text = doc.to_ron();
-    let want = doc.to_file();
+    let text = doc.to_ron_at(path);
+    let want = doc.to_file_at(path);
     io::write_atomic(path, text.as_bytes(), |written| {
         let back = std::str::from_utf8(written)
             .map_err(|_| "read-back is not UTF-8".to_string())
             .and_then(|t| Document::parse(t, path).map_err(|e| e.to_string()))?;
-        if back.to_file() != want {
+        if back.to_file_at(path) != want {
             return Err("read-back differs from the design".into());
         }
         Ok(())

@@ -22,9 +22,11 @@
 //!     view: (yaw: 35.0, pitch: 25.0, distance: 8.0, target: (2.2, 0.0, 0.5)),
 //!     tuning: None,                          // or Some((degree_s: 2, degree_t: 2, values: [[…]], constraint: Free))
 //!     mirror: false,                         // version 2: mirror symmetry about row 0 (docs/math.md §9)
+//!     reference: Some((path: "panel.step", face: 2)), // optional: the file fitted to (docs/math.md §12)
 //! )
 //! ```
 
+use super::reference_link::ReferenceSpec;
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize};
 use streamline_kernel::DVec3;
@@ -89,6 +91,11 @@ pub struct SceneFile {
     /// tangent (`docs/math.md §9`); row 0 is the seam.
     #[serde(default)]
     pub mirror: bool,
+    /// The reference the design was fitted to or is measured against
+    /// (docs/math.md §12): its path relative to this file's folder and the
+    /// face ([`super::reference_link`]); absent when there is none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference: Option<ReferenceSpec>,
 }
 
 /// Fine tuning: a tensor B-spline scalar function `α(u, v)` scaling the

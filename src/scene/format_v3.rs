@@ -1,5 +1,6 @@
 //! The scene file, version 3: several patches (docs/math.md §11). The
-//! design keeps `name`, `display_depth`, `edit_depth`, `mirror` and `view`;
+//! design keeps `name`, `display_depth`, `edit_depth`, `mirror`, `view` and
+//! its `reference` (docs/math.md §12, [`super::reference_link`]);
 //! each patch holds every per-surface field of version 2
 //! ([`super::format::SceneFile`]) and a unique `name`, and its `initial` is
 //! either its own curve or an edge of an earlier patch. Every field is checked
@@ -14,6 +15,7 @@
 //!     edit_depth: 0,
 //!     mirror: false,
 //!     view: (yaw: -35.0, pitch: 28.0, distance: 8.0, target: (1.0, 0.0, 0.5)),
+//!     reference: Some((path: "panel.step", face: 2)),   // optional (docs/math.md §12)
 //!     patches: [
 //!         (
 //!             name: "hood",
@@ -35,6 +37,7 @@ use super::format::{
     DetailSpec, Dir, Finite, InitialSpec, OrderSpec, Point, SRow, SceneFile, SchemeSpec,
     TuningSpec, VERSION, Version, ViewSpec,
 };
+use super::reference_link::ReferenceSpec;
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize};
 use streamline_kernel::joins::{Continuity, Edge};
@@ -62,6 +65,11 @@ pub struct DocumentFile {
     /// The camera.
     #[serde(default)]
     pub view: ViewSpec,
+    /// The reference the design was fitted to or is measured against
+    /// (docs/math.md §12): its path relative to this file's folder and the
+    /// face; absent when there is none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference: Option<ReferenceSpec>,
     /// The patches, each starting on its own curve or on an earlier patch's edge.
     pub patches: Vec<PatchFile>,
 }
@@ -310,7 +318,7 @@ pub fn placeholder_initial() -> InitialSpec {
 
 /// Patch `i` of `f` as a version-2 file of its own, with `initial` as its
 /// initial curve: the design's depths and view, and the mirror for the first
-/// patch only.
+/// patch only; no reference (the design's is read once, placed at the top).
 pub fn scene_file_of(f: &DocumentFile, i: usize, initial: InitialSpec) -> SceneFile {
     let p = &f.patches[i];
     SceneFile {
@@ -330,6 +338,7 @@ pub fn scene_file_of(f: &DocumentFile, i: usize, initial: InitialSpec) -> SceneF
         tuning: p.tuning.clone(),
         interpolate_tangents: p.interpolate_tangents,
         mirror: i == 0 && f.mirror,
+        reference: None,
     }
 }
 

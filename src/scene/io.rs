@@ -71,14 +71,17 @@ pub fn utf8(path: &Path, bytes: Vec<u8>, kind: &str) -> Result<String, SceneErro
     })
 }
 
-/// Saves `scene` to `path` atomically and verifies what was written.
+/// Saves `scene` to `path` atomically and verifies what was written; its
+/// reference's path is written relative to `path`'s folder
+/// ([`Scene::to_ron_at`], docs/math.md §12).
 pub fn save(scene: &Scene, path: &Path) -> Result<(), SceneError> {
-    let text = scene.to_ron();
+    let text = scene.to_ron_at(path);
+    let want = scene.to_file_at(path);
     write_atomic(path, text.as_bytes(), |written| {
         let back = std::str::from_utf8(written)
             .map_err(|_| "read-back is not UTF-8".to_string())
             .and_then(|t| Scene::parse(t, path).map_err(|e| e.to_string()))?;
-        if back.to_file() != scene.to_file() {
+        if back.to_file_at(path) != want {
             return Err("read-back differs from the scene".into());
         }
         Ok(())

@@ -28,6 +28,8 @@ pub mod obj;
 pub mod obj_shell;
 pub mod patch_edit;
 pub mod patch_text;
+pub mod reference_fit;
+pub mod reference_link;
 pub mod script;
 pub mod spec_kernel;
 pub mod step;

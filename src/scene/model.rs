@@ -8,6 +8,7 @@ use super::format_v3::{
     placeholder_initial, scene_file_of,
 };
 use super::patch_text::PatchText;
+use super::reference_link::{ReferenceLink, resolve_in};
 use std::path::Path;
 use streamline_kernel::finetune::SurfaceTuning;
 use streamline_kernel::levels::incremental::check_params;
@@ -44,6 +45,10 @@ pub struct Scene {
     /// of a surface symmetric about [`Design::mirror_plane`]; both halves are
     /// shown, analysed and exported ([`Scene::mirrored_design`]).
     pub mirror: bool,
+    /// The reference the design was fitted to or is measured against
+    /// (docs/math.md §12): the file, resolved against the folder of the scene
+    /// file it was read from, and the face; `None` when there is none.
+    pub reference: Option<ReferenceLink>,
 }
 
 impl Scene {
@@ -61,6 +66,7 @@ impl Scene {
             tuning: None,
             interpolate_tangents: false,
             mirror: false,
+            reference: None,
         }
     }
 
@@ -325,6 +331,7 @@ impl Scene {
                 "mirror symmetry is a version 2 field; write `version: 2`".into(),
             ));
         }
+        let reference = resolve_in(f.reference.as_ref(), file, || place("reference"))?;
         let scene = Scene {
             name: f.name,
             design,
@@ -336,12 +343,15 @@ impl Scene {
             tuning,
             interpolate_tangents: f.interpolate_tangents,
             mirror: f.mirror,
+            reference,
         };
         scene.validate_at(file, place)?;
         Ok(scene)
     }
 
-    /// The file form.
+    /// The file form, the reference's path as held (relative to the working
+    /// folder, or absolute: [`ReferenceLink::to_spec`]); a file saved
+    /// elsewhere holds [`Scene::to_file_at`].
     pub fn to_file(&self) -> SceneFile {
         let d = &self.design;
         SceneFile {
@@ -374,6 +384,17 @@ impl Scene {
             tuning: self.tuning.as_ref().map(TuningSpec::from_kernel),
             interpolate_tangents: self.interpolate_tangents,
             mirror: self.mirror,
+            reference: self.reference.as_ref().map(ReferenceLink::to_spec),
+        }
+    }
+
+    /// The file form as saved to `file`: [`Scene::to_file`] with the
+    /// reference's path relative to `file`'s folder (docs/math.md §12,
+    /// [`ReferenceLink::to_spec_for`]).
+    pub fn to_file_at(&self, file: &Path) -> SceneFile {
+        SceneFile {
+            reference: (self.reference.as_ref()).map(|r| r.to_spec_for(file)),
+            ..self.to_file()
         }
     }
 
@@ -432,7 +453,9 @@ impl Scene {
                 ),
             ));
         }
-        Scene::from_patch(&f, 0, file, &place)
+        let mut scene = Scene::from_patch(&f, 0, file, &place)?;
+        scene.reference = resolve_in(f.reference.as_ref(), file, || place.top("reference"))?;
+        Ok(scene)
     }
 
     /// Patch `i` of a version-3 file as a scene of its own: the design's
@@ -461,13 +484,24 @@ impl Scene {
         Scene::from_file_at(sf, file, &|key| place.in_patch(i, key)).map_err(named)
     }
 
-    /// RON text of this scene.
+    /// RON text of this scene ([`Scene::to_file`]).
     pub fn to_ron(&self) -> String {
-        let cfg = ron::ser::PrettyConfig::new()
-            .depth_limit(2)
-            .indentor("    ".to_string());
-        ron::ser::to_string_pretty(&self.to_file(), cfg).expect("scene serialises")
+        ron_text(&self.to_file())
     }
+
+    /// RON text of this scene as saved to `file` ([`Scene::to_file_at`]: the
+    /// reference's path relative to `file`'s folder).
+    pub fn to_ron_at(&self, file: &Path) -> String {
+        ron_text(&self.to_file_at(file))
+    }
+}
+
+/// The text of a version-2 file.
+fn ron_text(f: &SceneFile) -> String {
+    let cfg = ron::ser::PrettyConfig::new()
+        .depth_limit(2)
+        .indentor("    ".to_string());
+    ron::ser::to_string_pretty(f, cfg).expect("scene serialises")
 }
 
 /// Whether `design`'s control tangents are interpolated: `interpolate` is on

@@ -31,6 +31,7 @@ pub(crate) mod bits;
 pub mod curve;
 pub mod error;
 pub mod finetune;
+pub mod fit;
 pub mod grid;
 pub mod joins;
 pub mod levels;

@@ -5,6 +5,7 @@ pub mod ecs_rows;
 pub mod export_rows;
 pub mod loop_rows;
 pub mod patches;
+pub mod reference_rows;
 pub mod workloads;
 
 use super::input::CliError;
@@ -26,7 +27,7 @@ pub struct BenchArgs {
 }
 
 /// The single-patch rows of the workload files, in the order `bench` reports
-/// them (the several-patch and export rows follow).
+/// them (the several-patch, export and reference rows follow).
 pub fn all() -> Vec<workloads::Workload> {
     let mut rows = workloads::table1();
     rows.extend(ecs_rows::car_drag(6));
@@ -68,7 +69,8 @@ pub fn bench(a: BenchArgs) -> Result<(), CliError> {
     let rows = all()
         .into_iter()
         .chain(patches::rows())
-        .chain(export_rows::document_export_rows());
+        .chain(export_rows::document_export_rows())
+        .chain(reference_rows::rows());
     for mut w in rows {
         if a.filter.as_deref().is_some_and(|f| !w.name.contains(f)) {
             continue;

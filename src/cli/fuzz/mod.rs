@@ -328,3 +328,57 @@ pub fn cli_json(data: &[u8]) {
 fn to_vecs(a: &[[f64; 3]]) -> Vec<DVec3> {
     a.iter().map(|&p| DVec3::from_array(p)).collect()
 }
+
+/// A STEP file (any bytes): an error, or faces whose surfaces evaluate to
+/// finite points with a finite area and box, and whose fit (bounded: depth
+/// 2, a net of at most 6 × 6) is an error or a design of unit tangents.
+pub fn step(data: &[u8]) {
+    reference(streamline_reference::Format::Step, "fuzz.step", data);
+}
+
+/// An IGES file (any bytes), checked as [`step`] checks a STEP file.
+pub fn iges(data: &[u8]) {
+    reference(streamline_reference::Format::Iges, "fuzz.igs", data);
+}
+
+fn reference(format: streamline_reference::Format, name: &str, data: &[u8]) {
+    use streamline_kernel::fit::{ReferenceFitOptions, fit_reference};
+    let Ok(file) = streamline_reference::parse(Path::new(name), format, data.to_vec()) else {
+        return;
+    };
+    assert!(file.metres_per_unit.is_finite() && file.metres_per_unit > 0.0);
+    for (i, face) in file.faces.iter().enumerate() {
+        let info = &face.info;
+        assert!(
+            info.area.is_finite() && info.area >= 0.0,
+            "face {i}: area {}",
+            info.area
+        );
+        if let Some([lo, hi]) = info.bbox {
+            assert!(lo.iter().chain(&hi).all(|x| x.is_finite()), "face {i}: box");
+        }
+        let Some(surface) = &face.surface else {
+            continue;
+        };
+        let ([u0, u1], [v0, v1]) = surface.domain();
+        let mut points = Vec::new();
+        for a in 0..5 {
+            for b in 0..5 {
+                let (u, v) = (
+                    u0 + (u1 - u0) * a as f64 / 4.0,
+                    v0 + (v1 - v0) * b as f64 / 4.0,
+                );
+                points.extend(surface.derivatives(u, v));
+            }
+        }
+        finite("reference surface", &points);
+        let opts = ReferenceFitOptions {
+            depth: 2,
+            max_net: (6, 6),
+            ..Default::default()
+        };
+        if let Ok(fit) = fit_reference(surface, &opts) {
+            unit("fitted design", fit.design.net().data());
+        }
+    }
+}

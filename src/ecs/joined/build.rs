@@ -320,7 +320,9 @@ pub(crate) fn build_joined(
                         None => dk.clone(),
                     });
                 }
-                let designs: Vec<&Design> = owned.iter().collect();
+                let designs: Vec<PatchParts> = (owned.iter().zip(&members))
+                    .map(|(d, &k)| PatchParts::new(d, details(k), tuning(k)))
+                    .collect();
                 let old: Option<Vec<Stack>> = members.iter().map(|&k| g2_old[k].take()).collect();
                 match super::g2::run(&mut states[i], &designs, depth, old) {
                     Ok((stacks, changed)) => {

@@ -13,9 +13,10 @@
 //! Eq. 65, so the others keep their bits). The changes are gathered every frame ([`FirstPipeline::track`])
 //! until the stack is next brought up to date, so a frame that does not
 //! update it loses nothing. The result is bit for bit the whole build's
-//! (the incremental build equals the whole one, docs/math.md §5, and a
-//! patch with joins has no details, fine tuning nor interpolated tangents,
-//! docs/math.md §11; `tests/joined_patches.rs` compares every depth with
+//! (the incremental build equals the whole one, docs/math.md §5; a first
+//! patch with details, fine tuning or interpolated tangents is built whole
+//! by [`super::build::build_joined`] instead, docs/math.md §11.4;
+//! `tests/joined_patches.rs` compares every depth with
 //! [`crate::scene::Document::build`] after each edit).
 
 use crate::ecs::SurfaceData;

@@ -8,7 +8,7 @@
 //! builds whole.
 
 use bevy::prelude::*;
-use streamline_kernel::Design;
+use streamline_kernel::joins::PatchParts;
 use streamline_kernel::joins::g2_state::G2State;
 use streamline_kernel::joins::{JoinError, Stack};
 
@@ -20,18 +20,19 @@ pub struct G2RunState(pub Option<G2State>);
 /// Each member's stack and whether it changed.
 pub(crate) type RunBuilt = (Vec<Stack>, Vec<bool>);
 
-/// The run of `designs` (each one's seam column the previous one's last) at
+/// The run of `designs` (each one's seam column the previous one's last,
+/// with its details) at
 /// `depth`: updated in place from `state` and the members' stacks as they
 /// were (`old`, all of them, or `None`), or built whole into `state`. On an
 /// error `state` is dropped, so the next build is whole.
 pub(crate) fn run(
     state: &mut Option<G2State>,
-    designs: &[&Design],
+    designs: &[PatchParts],
     depth: u32,
     old: Option<Vec<Stack>>,
 ) -> Result<RunBuilt, JoinError> {
     if let (Some(st), Some(mut stacks)) = (state.as_mut(), old) {
-        return match st.update(designs, depth, &mut stacks) {
+        return match st.update_parts(designs, depth, &mut stacks) {
             Ok(u) => Ok((stacks, u.changed)),
             Err(e) => {
                 *state = None;
@@ -39,7 +40,7 @@ pub(crate) fn run(
             }
         };
     }
-    match G2State::build(designs, depth) {
+    match G2State::build_parts(designs, depth) {
         Ok((st, stacks)) => {
             *state = Some(st);
             Ok((stacks, vec![true; designs.len()]))

@@ -89,7 +89,7 @@ impl JoinedParts<'_, '_> {
                     r.4.0.clone(),
                     r.6,
                     r.7.map(|i| i.0.clone()),
-                    r.8.map(|f| f.clone()).unwrap_or_default(),
+                    r.8.cloned().unwrap_or_default(),
                 )
             })
         });

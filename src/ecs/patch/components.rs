@@ -13,6 +13,7 @@
 //! very bits it saved.
 
 use crate::scene::format::ViewSpec;
+use crate::scene::reference_link::ReferenceLink;
 use bevy::prelude::*;
 use std::collections::BTreeMap;
 use streamline_kernel::finetune::SurfaceTuning;
@@ -102,6 +103,12 @@ pub struct PatchTuning(pub Option<SurfaceTuning>);
 /// The camera the patch's scene opens with.
 #[derive(Component, Debug, Clone, Copy, PartialEq)]
 pub struct PatchView(pub ViewSpec);
+
+/// The reference the design was fitted to or is measured against
+/// (docs/math.md §12), `None` when there is none: the scene's, kept on the
+/// first patch so that it is saved, snapshotted for undo and recovered with it.
+#[derive(Component, Debug, Clone, Default, PartialEq, Eq)]
+pub struct PatchReference(pub Option<ReferenceLink>);
 
 /// A control tangent of the net: its cell (row = streamline, col = index
 /// along it). Its values are [`Direction`] and [`ArcParam`].

@@ -3,6 +3,7 @@
 use super::components::*;
 use crate::scene::Scene;
 use crate::scene::format::ViewSpec;
+use crate::scene::reference_link::ReferenceLink;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use streamline_kernel::Design;
@@ -17,6 +18,7 @@ type PatchData = (
     Ref<'static, PatchPlacement>,
     Ref<'static, PatchTuning>,
     &'static PatchView,
+    &'static PatchReference,
     &'static PatchIndex,
     Ref<'static, PatchKernel>,
 );
@@ -86,25 +88,31 @@ impl PatchRef<'_, '_> {
         self.patch.5.0
     }
 
+    /// The reference the design was fitted to or is measured against
+    /// (docs/math.md §12), if any.
+    pub fn reference(&self) -> Option<&ReferenceLink> {
+        self.patch.6.0.as_ref()
+    }
+
     /// Its handle entities by cell.
     pub fn index(&self) -> &PatchIndex {
-        self.patch.6
+        self.patch.7
     }
 
     /// The kernel's design, derived from the handles.
     pub fn design(&self) -> &Design {
-        &self.patch.7.design
+        &self.patch.8.design
     }
 
     /// The details, derived from the detail handles.
     pub fn details(&self) -> &Details {
-        &self.patch.7.details
+        &self.patch.8.details
     }
 
     /// Whether the derived design or details changed since the reading
     /// system last ran (some handle or patch component changed).
     pub fn design_changed(&self) -> bool {
-        self.patch.7.is_changed()
+        self.patch.8.is_changed()
     }
 
     /// The unit direction of handle `e` (of the net or the initial curve).
@@ -130,7 +138,8 @@ impl PatchRef<'_, '_> {
             &p.4,
             p.5,
             p.6,
-            Some(&p.7),
+            p.7,
+            Some(&p.8),
             |h| self.handles.get(h).ok().and_then(|x| x.0).map(|d| d.0),
             |h| self.handles.get(h).ok().and_then(|x| x.1).map(|a| a.0),
             |h| self.handles.get(h).ok().and_then(|x| x.2).map(|d| d.0),

@@ -54,6 +54,7 @@ pub fn spawn_patch(world: &mut World, scene: &Scene) -> Entity {
             placement_of(scene),
             PatchTuning(scene.tuning.clone()),
             PatchView(scene.view),
+            PatchReference(scene.reference.clone()),
             PatchKernel {
                 design: scene.design.clone(),
                 details: scene.details.clone(),
@@ -135,6 +136,7 @@ pub(crate) fn assemble_with(
     pl: &PatchPlacement,
     tuning: &PatchTuning,
     view: &PatchView,
+    reference: &PatchReference,
     index: &PatchIndex,
     kernel: Option<&PatchKernel>,
     dir: impl Fn(Entity) -> Option<DVec3>,
@@ -186,6 +188,7 @@ pub(crate) fn assemble_with(
         tuning: tuning.0.clone(),
         interpolate_tangents: st.interpolate_tangents,
         mirror: st.mirror,
+        reference: reference.0.clone(),
     })
 }
 
@@ -235,16 +238,18 @@ pub fn try_scene(world: &World) -> Result<Scene, String> {
             e.get::<PatchPlacement>()?,
             e.get::<PatchTuning>()?,
             e.get::<PatchView>()?,
+            e.get::<PatchReference>()?,
             e.get::<PatchIndex>()?,
         ))
     };
-    let (name, st, pl, tu, vw, index) = get().ok_or("the patch is not complete")?;
+    let (name, st, pl, tu, vw, rf, index) = get().ok_or("the patch is not complete")?;
     assemble_with(
         name,
         st,
         pl,
         tu,
         vw,
+        rf,
         index,
         e.get::<PatchKernel>(),
         |h| world.get::<Direction>(h).map(|d| d.0),
@@ -273,6 +278,7 @@ type PatchDataMut = (
     &'static mut PatchPlacement,
     &'static mut PatchTuning,
     &'static mut PatchView,
+    &'static mut PatchReference,
     &'static mut PatchIndex,
     &'static PatchKernel,
 );
@@ -301,7 +307,7 @@ pub(crate) struct PatchParts<'w, 's> {
 impl PatchParts<'_, '_> {
     /// The patch's scene, assembled from the entities.
     pub(crate) fn assemble(&self) -> Result<Scene, String> {
-        let (_, name, st, pl, tu, vw, index, kernel) = self
+        let (_, name, st, pl, tu, vw, rf, index, kernel) = self
             .patches
             .single()
             .map_err(|_| "the world has no patch".to_string())?;
@@ -311,6 +317,7 @@ impl PatchParts<'_, '_> {
             pl,
             tu,
             vw,
+            rf,
             index,
             Some(kernel),
             |h| {
@@ -330,7 +337,7 @@ impl PatchParts<'_, '_> {
     /// changes shape, the initial curve's when their number changes, and a
     /// detail's entity is spawned or despawned with the detail.
     pub(crate) fn write(&mut self, target: &Scene) {
-        let Ok((patch, mut name, mut st, mut pl, mut tu, mut vw, mut index, _)) =
+        let Ok((patch, mut name, mut st, mut pl, mut tu, mut vw, mut rf, mut index, _)) =
             self.patches.single_mut()
         else {
             return;
@@ -344,6 +351,9 @@ impl PatchParts<'_, '_> {
             tu.0.clone_from(&target.tuning);
         }
         vw.set_if_neq(PatchView(target.view));
+        if rf.0 != target.reference {
+            rf.0.clone_from(&target.reference);
+        }
         let (net, s) = (target.design.net(), &target.design.params().s);
         if (index.surface.rows(), index.surface.cols()) != (net.rows(), net.cols()) {
             for &e in index.surface.data() {

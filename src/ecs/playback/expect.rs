@@ -3,6 +3,7 @@
 //! what the script expects, and say so — `Ok` with what was measured, or
 //! `Err` with what is wrong ([`within`], [`Fields`]).
 
+use super::seam::Outcome;
 use crate::ecs::resources::*;
 use crate::scene::format::{Finite, OrderSpec, Point, SchemeSpec};
 use crate::scene::script::Expect;
@@ -80,6 +81,10 @@ pub(super) fn check(
         } => shifted(marks, points, mark, by, tolerance),
         // checked against the patch entities (`playback/seam.rs`)
         Expect::ExpectSeam { .. } => Err("a seam is checked by the playback's patch steps".into()),
+        // its missing reference is the step's error ([`reference_deviation`])
+        Expect::ExpectReferenceDeviation { .. } => {
+            Err("a reference deviation is checked by its own playback step".into())
+        }
     }
 }
 
@@ -415,5 +420,41 @@ fn mirror_symmetric(now: &Now, tolerance: &Finite) -> Result<String, String> {
     }));
     within(worst, tolerance, "largest asymmetry", |w| {
         format!("the surface differs from its reflection by {w}")
+    })
+}
+
+/// `ExpectReferenceDeviation`: the first patch's streamline points at the
+/// display depth (the own half when mirrored) measured against the face the
+/// design's reference names ([`crate::scene::reference_fit::measure`],
+/// docs/math.md §12): the largest distance at most `max`, and above `min`
+/// when it is given. A design without a reference, or a reference file that
+/// cannot be read, is the step's error (`Err`, which `ExpectError` can
+/// expect); a distance out of bounds fails it.
+pub(super) fn reference_deviation(
+    app: &App,
+    max: &Finite,
+    min: &Option<Finite>,
+) -> Result<Outcome, String> {
+    let w = app.world();
+    let scene = crate::ecs::patch::try_scene(w)?;
+    let link = scene.reference.as_ref().ok_or(
+        "the design has no reference to measure against; fit it to a face with a `Fit` step first, or open a scene whose `reference` names one (docs/scenes.md)",
+    )?;
+    let points = &w.resource::<SurfaceData>().points;
+    let d = crate::scene::reference_fit::measure(link, points, scene.mirror)?;
+    let named = format!("{} face {}", link.path.display(), link.face);
+    let held = within(d.max, max, "largest distance", |m| {
+        format!("the design is up to {m} from {named} (mean {:.3e})", d.mean)
+    });
+    Ok(match (held, min) {
+        (Err(m), _) => Outcome::Failed(m),
+        (Ok(_), Some(m)) if d.max <= m.0 => Outcome::Failed(format!(
+            "the design is at most {:.3e} from {named}, not more than min {}",
+            d.max, m.0
+        )),
+        (Ok(_), _) => Outcome::Done(format!(
+            "largest distance {:.2e}, mean {:.2e}, from {named}",
+            d.max, d.mean
+        )),
     })
 }

@@ -1,9 +1,12 @@
 //! Scripted playback: each step of a [`Script`] is an edit message sent to a
 //! headless app (one update per step; the patch steps too, applied by the
 //! edit stage as the editor's are) or an expectation checked against it
-//! (`playback/expect.rs`, `playback/seam.rs`).
+//! (`playback/expect.rs`, `playback/seam.rs`). A `Fit` step fits its design
+//! before it is sent, as the design that replaces the current one
+//! (`playback/fit.rs`).
 
 mod expect;
+mod fit;
 mod seam;
 
 use super::edit_error::EditError;
@@ -51,7 +54,10 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
                 .push(format!("step {at:>3}: FAIL unexpected error: {err}"));
         }
         if let Step::Expect(x) = step
-            && !matches!(x, Expect::ExpectSeam { .. })
+            && !matches!(
+                x,
+                Expect::ExpectSeam { .. } | Expect::ExpectReferenceDeviation { .. }
+            )
         {
             let res = expect::check(&app, x, &mut marks, &mut pending);
             let label = short(step);
@@ -66,7 +72,13 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
         }
         if let Step::Expect(x) = step {
             let label = short(step);
-            match seam::expect_seam(&mut app, x) {
+            let outcome = match x {
+                Expect::ExpectReferenceDeviation { max, min } => {
+                    expect::reference_deviation(&app, max, min)
+                }
+                _ => seam::expect_seam(&mut app, x),
+            };
+            match outcome {
                 Ok(seam::Outcome::Done(m)) => {
                     report.lines.push(format!("step {n:>3} {label}: ok ({m})"));
                 }
@@ -81,7 +93,7 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
             }
             continue;
         }
-        let edit = match to_edit(step, dir) {
+        let (edit, note) = match prepare(step, dir) {
             Ok(e) => e,
             Err(m) => {
                 pending = Some((n, m.clone()));
@@ -107,7 +119,8 @@ pub fn play(script: &Script, dir: &Path, scene: Scene) -> PlayReport {
             report.lines.push(format!("step {n:>3} {label}: error {e}"));
         } else {
             report.lines.push(format!(
-                "step {n:>3} {label}: ok (re-blended {}, re-integrated {}{}, {:.0} µs{})",
+                "step {n:>3} {label}: ok ({}re-blended {}, re-integrated {}{}, {:.0} µs{})",
+                note.map(|m| m + "; ").unwrap_or_default(),
                 stats.tangents_reblended,
                 stats.streamlines_reintegrated,
                 if stats.streamlines_replaced > 0 {
@@ -167,10 +180,20 @@ fn output(dir: &Path, p: &str) -> Result<PathBuf, String> {
 }
 
 /// The edit a step sends: file names resolved against the script's folder
-/// `dir` (outputs confined to it), a fine-tuning function checked, any other
-/// edit as it is.
+/// `dir` (outputs confined to it), a fine-tuning function checked, a `Fit`
+/// step's design fitted ([`fit::fitted`]), any other edit as it is.
 pub(crate) fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
-    Ok(match step {
+    prepare(step, dir).map(|(e, _)| e)
+}
+
+/// [`to_edit`], with what the step's line adds when it holds (a fit's
+/// figures).
+fn prepare(step: &Step, dir: &Path) -> Result<(Edit, Option<String>), String> {
+    if let Step::Fit(f) = step {
+        let (edit, note) = fit::fitted(f, dir)?;
+        return Ok((edit, Some(note)));
+    }
+    let edit = match step {
         Step::Load(p) => match p.strip_prefix("builtin:") {
             Some(name) => Edit::Replace(Box::new(builtin::scene(name).map_err(|e| e.to_string())?)),
             None => Edit::Load(resolve(dir, p)),
@@ -179,6 +202,7 @@ pub(crate) fn to_edit(step: &Step, dir: &Path) -> Result<Edit, String> {
         Step::Export(p) => Edit::Export(output(dir, p)?),
         Step::SetTuning(t) => Edit::SetTuning(t.as_ref().map(|t| t.to_kernel()).transpose()?),
         Step::Edit(e) => e.clone(),
-        Step::Expect(_) => return Err("not an edit".into()),
-    })
+        Step::Fit(_) | Step::Expect(_) => return Err("not an edit".into()),
+    };
+    Ok((edit, None))
 }

@@ -39,7 +39,10 @@ fn find(world: &mut World, name: &str) -> Result<Entity, String> {
     }
 }
 
-/// What a patch step that ran says: done, or (an expectation) not met.
+/// What an expectation whose subject may be missing says when it ran (a
+/// seam, `ExpectSeam`; the reference, `ExpectReferenceDeviation` in
+/// `playback/expect.rs`): done, or not met. A missing subject is the step's
+/// error instead.
 pub(super) enum Outcome {
     /// Done, with what was done.
     Done(String),

@@ -8,10 +8,12 @@
 //! A feature asks for a file with [`files::browse`]; this plugin opens the
 //! browser and hands the file picked to the feature: a scene to the model
 //! (after the unsaved-changes question; a failed open keeps the current
-//! scene), a script to the script runner, a mesh to the Loop mesh view.
+//! scene), a script to the script runner, a mesh to the Loop mesh view, a
+//! STEP, IGES or OBJ surface to the Import surface dialog.
 
 use super::super::mesh_mode::MeshView;
 use super::files::{self, Browse, FileUi, PathAction, Pending};
+use super::import::ImportForm;
 use crate::ecs::runner::ScriptRun;
 use crate::ecs::{Edit, EditMessage, Model};
 use bevy::ecs::system::SystemParam;
@@ -121,6 +123,7 @@ struct Receivers<'w> {
     exit: MessageWriter<'w, AppExit>,
     script: ResMut<'w, ScriptRun>,
     mesh: ResMut<'w, MeshView>,
+    import: ResMut<'w, ImportForm>,
 }
 
 impl Receivers<'_> {
@@ -146,6 +149,7 @@ impl Receivers<'_> {
             PathAction::ExportMeshSurface => self.mesh.export(path, false),
             PathAction::ExportMeshControl => self.mesh.export(path, true),
             PathAction::ExportMeshUsd => self.mesh.export_usd(path),
+            PathAction::ImportSurface => self.import.read(path),
         }
     }
 }

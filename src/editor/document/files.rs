@@ -63,8 +63,22 @@ pub enum Pending {
     NewDesign(Box<crate::ecs::authoring::AuthorEdit>),
     /// Open a file.
     Open(PathBuf),
+    /// Replace the scene with a design fitted to a surface (File ▸ Import
+    /// surface…, `import.rs`).
+    Import(ImportedScene),
     /// Quit the editor.
     Quit,
+}
+
+/// A fitted scene waiting to be opened: shared, so that the dialog holding
+/// it is cheap to copy; two are the same when they are the same scene.
+#[derive(Debug, Clone)]
+pub struct ImportedScene(pub std::sync::Arc<crate::scene::Scene>);
+
+impl PartialEq for ImportedScene {
+    fn eq(&self, other: &Self) -> bool {
+        std::sync::Arc::ptr_eq(&self.0, &other.0)
+    }
 }
 
 /// What a file is picked for (in the file browser, `file_browser.rs`).
@@ -86,6 +100,9 @@ pub enum PathAction {
     ExportMeshControl,
     /// Write the Loop mesh panel's control mesh as USD.
     ExportMeshUsd,
+    /// Fit a design to a face of a STEP or IGES file or an OBJ grid of
+    /// points (File ▸ Import surface…).
+    ImportSurface,
 }
 
 impl PathAction {
@@ -100,6 +117,7 @@ impl PathAction {
             PathAction::ExportMeshSurface => "Export the Loop surface (OBJ)".into(),
             PathAction::ExportMeshControl => "Export the Loop control mesh (OBJ)".into(),
             PathAction::ExportMeshUsd => "Export the Loop control mesh (USD)".into(),
+            PathAction::ImportSurface => "Import a surface (STEP, IGES or a grid of points)".into(),
         }
     }
 
@@ -119,6 +137,10 @@ impl PathAction {
             PathAction::Export(Format::Step) => ("STEP (.step, .stp)", &["step", "stp"]),
             PathAction::Export(Format::Iges) => ("IGES (.igs, .iges)", &["igs", "iges"]),
             PathAction::ExportMeshUsd => ("USD text (.usda)", &["usda"]),
+            PathAction::ImportSurface => (
+                "Surfaces (.step, .stp, .igs, .iges, .obj)",
+                &["step", "stp", "igs", "iges", "obj"],
+            ),
         }
     }
 
@@ -126,7 +148,10 @@ impl PathAction {
     pub fn opens(self) -> bool {
         matches!(
             self,
-            PathAction::Open | PathAction::RunScript | PathAction::OpenMesh
+            PathAction::Open
+                | PathAction::RunScript
+                | PathAction::OpenMesh
+                | PathAction::ImportSurface
         )
     }
 }
@@ -258,6 +283,10 @@ fn run_pending(
         }
         Pending::Open(path) => {
             edits.write(EditMessage::from(Edit::Load(path)));
+        }
+        Pending::Import(s) => {
+            let scene = Box::new((*s.0).clone());
+            edits.write(EditMessage::from(Edit::Replace(scene)));
         }
         Pending::Quit => {
             exit.write(AppExit::Success);

@@ -1,10 +1,13 @@
 //! The document: new, open, save, export and recent files with the
 //! unsaved-changes prompt (`files`), the File ▸ New ▸ New design… dialog
-//! (`new_design`), and the file browser every file is picked in
-//! (`file_browser`). Autosave and recovery read the screenshot run's
-//! request, which stands above the panels, so `autosave.rs` stands beside the
-//! editor's `mod.rs`, above every room.
+//! (`new_design`), File ▸ Import surface… (`import`: a design fitted to a
+//! STEP, IGES or OBJ face, on a thread of its own: `fit_job`), and the file
+//! browser every file is picked in (`file_browser`). Autosave and recovery
+//! read the screenshot run's request, which stands above the panels, so
+//! `autosave.rs` stands beside the editor's `mod.rs`, above every room.
 
 pub(super) mod file_browser;
 pub mod files;
+pub mod fit_job;
+pub mod import;
 pub mod new_design;

@@ -128,7 +128,8 @@ pub struct HandleLayout {
     /// patch when it names none or no patch); `None` before a placement.
     pub active: Option<Entity>,
     /// Whether that patch is a joined one (docs/math.md §11): then the edit
-    /// depth is 0 (a joined patch has no details) and the first patch's
+    /// depth is 0 (the editor turns a joined patch's base net;
+    /// docs/math.md §11.4 keeps its details) and the first patch's
     /// handles are dimmed.
     pub active_joined: bool,
 }

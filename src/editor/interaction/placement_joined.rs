@@ -6,8 +6,10 @@
 //! length `s_{r,c}`, pointing the handle's [`Direction`], drawn 0.7 of the
 //! mean control spacing long and no longer than the first patch's cap.
 //!
-//! A joined patch has no details, so only level 0 is placed, whatever the
-//! edit depth. It has no initial curve: it starts on its parent's edge. In
+//! The editor edits a joined patch's base net: only level 0 is placed,
+//! whatever the edit depth (its details, fine tuning and interpolated
+//! tangents are kept and built, docs/math.md §11.4, and are made in scripts
+//! and on the command line). It has no initial curve: it starts on its parent's edge. In
 //! a G1 or G2 chain (`edge: End`) its first column is its parent's last
 //! (one handle of both, docs/math.md §11.1): those cells are not placed, so
 //! they are neither drawn nor picked on the joined patch (turn them on the

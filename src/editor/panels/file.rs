@@ -1,4 +1,5 @@
-//! File: new (a new design, or a built-in scene), open, save, save as, export, recent files.
+//! File: new (a new design, or a built-in scene), open, import a surface,
+//! save, save as, export, recent files.
 
 use super::PanelCtx;
 use crate::ecs::runner::ScriptRun;
@@ -40,6 +41,17 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
                 .clicked()
             {
                 s.new_design.open = true;
+                ui.close();
+            }
+            if ui
+                .button("Import surface…")
+                .on_hover_text(
+                    "A design fitted to a face of a STEP or IGES file, or to an OBJ grid of points",
+                )
+                .clicked()
+            {
+                let folder = files::scene_folder(&p.model);
+                files::browse(&mut s.files, PathAction::ImportSurface, folder, None);
                 ui.close();
             }
             ui.separator();

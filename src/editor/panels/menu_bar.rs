@@ -185,6 +185,10 @@ fn file_menu(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut Sections) {
         let folder = std::env::current_dir().unwrap_or_default();
         files::browse(&mut f.files, PathAction::OpenMesh, folder, None);
     }
+    if entry(ui, "Import surface…", "", true) {
+        let folder = files::scene_folder(&p.model);
+        files::browse(&mut f.files, PathAction::ImportSurface, folder, None);
+    }
     ui.separator();
     if entry(ui, "Quit", QUIT, true) {
         files::request(

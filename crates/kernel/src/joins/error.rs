@@ -41,6 +41,8 @@ pub enum JoinError {
     NotASideEdge,
     /// A G2 chain changes `A` too: it is built as one net, not as `B` alone.
     G2IsOneNet,
+    /// A G2 run's member (by its place in the run) has fine tuning.
+    G2Tuning { member: usize },
 }
 
 impl From<KernelError> for JoinError {
@@ -110,6 +112,11 @@ impl fmt::Display for JoinError {
             G2IsOneNet => write!(
                 f,
                 "a G2 chain subdivides A and B as one net, so it changes A too; build both together (joins::merged::g2_run, or joins::join)"
+            ),
+            G2Tuning { member } => write!(
+                f,
+                "patch {} of the G2 chain has fine tuning, which scales its streamlines' speed, so the curvature across the seam becomes κ/α on each side and G2 holds only where both functions agree; turn fine tuning off on the chain, or join with G1",
+                member + 1
             ),
         }
     }

@@ -17,7 +17,10 @@
 use crate::bits::bits;
 use crate::grid::Grid;
 use crate::joins::error::JoinError;
-use crate::joins::merged::{MergedRun, cut, cut_row_from, cuts, merge_g2};
+use crate::joins::merged::{
+    MergedRun, check_no_tuning, cut, cut_row_from, cuts, merge_g2, merged_details,
+};
+use crate::joins::parts::PatchParts;
 use crate::joins::stack::Stack;
 use crate::levels::design::Design;
 use crate::levels::dirty_window::{DirtyWindow, Span};
@@ -31,6 +34,8 @@ use glam::DVec3;
 #[derive(Debug, Clone)]
 pub struct G2State {
     run: MergedRun,
+    /// The members' details at their merged places ([`merged_details`]).
+    details: Details,
     levels: Vec<LevelState>,
     /// Each level's row starts on the initial curve (Eq. 65's origins).
     origins: Vec<Vec<DVec3>>,
@@ -64,11 +69,25 @@ impl G2State {
     /// The run of `patches` built whole to `depth`, and each patch's stack
     /// (bit for bit [`super::merged::g2_run`]'s).
     pub fn build(patches: &[&Design], depth: u32) -> Result<(Self, Vec<Stack>), JoinError> {
-        let run = merge_g2(patches)?;
-        let levels = build_levels(&run.design, &Details::new(), depth)?;
+        let parts: Vec<PatchParts> = patches.iter().map(|&d| d.into()).collect();
+        Self::build_parts(&parts, depth)
+    }
+
+    /// [`Self::build`] of patches with their details (bit for bit
+    /// [`super::merged::g2_run_parts`]'s); fine tuning is refused.
+    pub fn build_parts(
+        patches: &[PatchParts],
+        depth: u32,
+    ) -> Result<(Self, Vec<Stack>), JoinError> {
+        check_no_tuning(patches)?;
+        let designs: Vec<&Design> = patches.iter().map(|p| p.design).collect();
+        let run = merge_g2(&designs)?;
+        let details = merged_details(&run, patches, depth);
+        let levels = build_levels(&run.design, &details, depth)?;
         let origins: Vec<Vec<DVec3>> = levels.iter().map(|l| origins(&run.design, l)).collect();
         let me = G2State {
             run,
+            details,
             levels,
             origins,
         };
@@ -123,9 +142,24 @@ impl G2State {
         depth: u32,
         stacks: &mut Vec<Stack>,
     ) -> Result<G2Update, JoinError> {
-        let run = merge_g2(patches)?;
+        let parts: Vec<PatchParts> = patches.iter().map(|&d| d.into()).collect();
+        self.update_parts(&parts, depth, stacks)
+    }
+
+    /// [`Self::update`] of patches with their details: when the details
+    /// changed the run is built whole.
+    pub fn update_parts(
+        &mut self,
+        patches: &[PatchParts],
+        depth: u32,
+        stacks: &mut Vec<Stack>,
+    ) -> Result<G2Update, JoinError> {
+        check_no_tuning(patches)?;
+        let designs: Vec<&Design> = patches.iter().map(|p| p.design).collect();
+        let run = merge_g2(&designs)?;
         let n = patches.len();
-        let fits = self.fits(&run, depth) && self.cut_as(stacks, n);
+        let same_details = merged_details(&run, patches, depth) == self.details;
+        let fits = same_details && self.fits(&run, depth) && self.cut_as(stacks, n);
         let seed = if fits { self.seed(&run) } else { None };
         let Some(seed) = seed else {
             return self.rebuild(patches, depth, stacks);
@@ -137,7 +171,7 @@ impl G2State {
         let (mut reblended, mut params) = (0, false);
         if let Some(w) = seed {
             let mut refs: Vec<&mut LevelState> = self.levels.iter_mut().collect();
-            match propagate(&self.run.design, &Details::new(), &mut refs, &[Some(w)]) {
+            match propagate(&self.run.design, &self.details, &mut refs, &[Some(w)]) {
                 Ok(p) => {
                     reblended = p.reblended;
                     params = p.params;
@@ -241,11 +275,11 @@ impl G2State {
     /// Builds the run whole into `self` and `stacks` (every patch changed).
     fn rebuild(
         &mut self,
-        patches: &[&Design],
+        patches: &[PatchParts],
         depth: u32,
         stacks: &mut Vec<Stack>,
     ) -> Result<G2Update, JoinError> {
-        let (me, built) = match G2State::build(patches, depth) {
+        let (me, built) = match G2State::build_parts(patches, depth) {
             Ok(b) => b,
             Err(e) => {
                 // half-written by a failed update: built whole next time

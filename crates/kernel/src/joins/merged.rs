@@ -10,9 +10,11 @@ use crate::grid::Grid;
 use crate::joins::chain::check_chain;
 use crate::joins::error::JoinError;
 use crate::joins::kinds::Continuity;
+use crate::joins::parts::PatchParts;
 use crate::joins::stack::Stack;
 use crate::levels::design::{Design, Level};
 use crate::levels::incremental::LevelState;
+use crate::levels::multires::Details;
 use crate::levels::params::ParamGrid;
 use crate::levels::surface::SurfaceScheme;
 use glam::DVec3;
@@ -67,6 +69,72 @@ pub fn merge_g2(patches: &[&Design]) -> Result<MergedRun, JoinError> {
     Ok(MergedRun { design, seams })
 }
 
+/// A G2 run's members carry no fine tuning (module documentation).
+pub(crate) fn check_no_tuning(patches: &[PatchParts]) -> Result<(), JoinError> {
+    match patches.iter().position(|p| p.tuning.is_some()) {
+        Some(member) => Err(JoinError::G2Tuning { member }),
+        None => Ok(()),
+    }
+}
+
+/// The members' details as details of the merged net, at every depth up to
+/// `depth`: member `p`'s detail `(d, r, c)` at merged column `cuts[p] + c`
+/// of depth `d` (Eq. 69), so a detail is applied in the frame of the
+/// merged level, as the build subdivides it. A later member's column 0 is
+/// the seam, the previous member's last column (one handle): a detail
+/// there is the previous member's, and is skipped here (the file's checks
+/// refuse it).
+pub fn merged_details(run: &MergedRun, patches: &[PatchParts], depth: u32) -> Details {
+    let scheme = run.design.scheme();
+    let curve = scheme.curve();
+    let mut out = Details::new();
+    let mut cols = run.design.net().cols();
+    for d in 1..=depth {
+        cols = curve.refined_len(cols);
+        let cuts = cuts(scheme, &run.seams, d, cols);
+        for (p, part) in patches.iter().enumerate() {
+            let Some(details) = part.details else {
+                continue;
+            };
+            for (&(_, r, c), &local) in details.range((d, 0, 0)..=(d, usize::MAX, usize::MAX)) {
+                if (p > 0 && c == 0) || cuts[p] + c > cuts[p + 1] {
+                    continue;
+                }
+                out.insert((d, r, cuts[p] + c), local);
+            }
+        }
+    }
+    out
+}
+
+/// The frame of member `p`'s details of level `d ≥ 1` (docs/math.md §5):
+/// the run's merged level `d` as subdivided from its level `d − 1` (built
+/// with every member's details), before level `d`'s details, and the merged
+/// column of the member's column 0 (Eq. 69). A detail of the member at
+/// `(r, c)` is [`crate::levels::multires::to_local`] of this grid at
+/// `(r, offset + c)`.
+pub fn g2_detail_base(
+    patches: &[PatchParts],
+    p: usize,
+    d: u32,
+) -> Result<(Grid<DVec3>, usize), JoinError> {
+    let designs: Vec<&Design> = patches.iter().map(|p| p.design).collect();
+    let merged = merge_g2(&designs)?;
+    if d == 0 || p >= patches.len() {
+        return Err(JoinError::EmptyRun);
+    }
+    let details = merged_details(&merged, patches, d - 1);
+    let prev = crate::joins::stack::levels_with(&merged.design, Some(&details), d - 1, |_, _| {
+        Ok::<(), JoinError>(())
+    })?;
+    let base = merged
+        .design
+        .refine(prev.last().expect("level 0"), d)?
+        .tangents;
+    let cuts = cuts(merged.design.scheme(), &merged.seams, d, base.cols());
+    Ok((base, cuts[p]))
+}
+
 /// The merged column at depth `depth` where a seam at merged control column
 /// `col` (`≥ 1`) is cut (Eq. 69): `2^d col` for Kobbelt, which keeps the
 /// control column at even indices; `2^d (col − 1) + 1` for Catmull–Clark (the
@@ -85,8 +153,20 @@ pub fn seam_column(scheme: SurfaceScheme, col: usize, depth: u32) -> usize {
 /// 69–70). Patch `p ≥ 1` keeps the merged `s` (its own plus the Eq. 68
 /// offset) and its `σ` is its first column's `s`.
 pub fn g2_run(patches: &[&Design], depth: u32) -> Result<Vec<Stack>, JoinError> {
-    let merged = merge_g2(patches)?;
-    let whole = Stack::build(&merged.design, depth)?;
+    let parts: Vec<PatchParts> = patches.iter().map(|&d| d.into()).collect();
+    g2_run_parts(&parts, depth)
+}
+
+/// [`g2_run`] of patches with their details: the merged net is subdivided
+/// with every member's details at their merged places ([`merged_details`]).
+/// A G2 run's patches have no fine tuning (it would scale each side's
+/// curvature by its own `1/α`, docs/math.md §11.1): refused.
+pub fn g2_run_parts(patches: &[PatchParts], depth: u32) -> Result<Vec<Stack>, JoinError> {
+    check_no_tuning(patches)?;
+    let designs: Vec<&Design> = patches.iter().map(|p| p.design).collect();
+    let merged = merge_g2(&designs)?;
+    let details = merged_details(&merged, patches, depth);
+    let whole = Stack::build_parts(PatchParts::new(&merged.design, Some(&details), None), depth)?;
     let scheme = merged.design.scheme();
     let mut out: Vec<Stack> = (0..patches.len())
         .map(|_| Stack {

@@ -76,6 +76,14 @@ pub(crate) fn apply_window(
     level: u32,
     win: DirtyWindow,
 ) -> usize {
+    // a window outside the grid (a detail past its level) writes nothing
+    if win.rows.lo > win.rows.hi
+        || win.cols.lo > win.cols.hi
+        || win.rows.hi >= base.rows()
+        || win.cols.hi >= base.cols()
+    {
+        return 0;
+    }
     for r in win.rows.iter() {
         let (lo, hi) = (win.cols.lo, win.cols.hi);
         tangents.row_mut(r)[lo..=hi].copy_from_slice(&base.row(r)[lo..=hi]);

@@ -11,6 +11,7 @@ pub mod error;
 pub mod fit;
 pub mod knots;
 mod lsq;
+pub mod rational;
 pub mod samples;
 pub mod shell;
 pub mod surface;

@@ -1,0 +1,779 @@
+//! The fit of a reference (`docs/math.md §12`, "Growing the net"): from the
+//! smallest net, one column or one row at a time where the design is
+//! furthest from the reference, until the design's mesh at the fit depth is
+//! within the tolerance both ways, or the net reaches its cap.
+//!
+//! **Measuring** (eq. 12.6): every point of the mesh at the fit depth is
+//! expected where its row's `t` and its arc length say (the fraction of the
+//! row's length); Gauss–Newton from there finds the closest point of the
+//! reference. Both ways (eq. 12.7): the reference sampled at the same places
+//! and at the cells' centres (twice the mesh's points), each to the mesh's
+//! triangles around where it is expected.
+//!
+//! **Where to grow**: the position error a row gathers is the integral of
+//! its tangent error, so the fit localises by the tangent error instead:
+//! each level tangent's angle to the reference's tangent at its arc length,
+//! times its interval `ds`, summed over a cell of the node grid (one
+//! interval between node rows × one between node columns). In the worst
+//! cell, if the error on the node rows bounding it is at least half of the
+//! error between them, the rows are already as good as the columns let them
+//! be: a column is inserted at the middle of the cell's column interval;
+//! otherwise a row in the middle of its row interval. After an insertion a
+//! neighbouring interval more than twice as long is halved too, so that the
+//! positions stay graded (the 4-point rule keeps them increasing).
+
+use super::closest::{Distances, mesh_distance_near, refine_closest};
+use super::construct::{
+    BuildFailure, Nodes, Sampler, Setup, anchor_fraction, build_design, initial_nodes, phantoms,
+};
+use super::error::ReferenceFitError;
+use super::initial::fit_initial;
+use super::options::{Along, MAX_FIT_DEPTH, MAX_NET_SIDE, ReferenceFitOptions, Tolerance};
+use super::reference::{AnchorCurve, Frame, ReferenceSurface, RowTable, Swapped};
+use crate::error::KernelError;
+use crate::levels::builder::Builder;
+use crate::levels::design::{Design, Level};
+use crate::streamline::integrate::point_arclength;
+use glam::DVec3;
+use std::time::Instant;
+
+/// A design fitted to a reference, and how well it fits.
+#[derive(Debug, Clone)]
+pub struct ReferenceFit {
+    /// The design (the best reached when not within the tolerance).
+    pub design: Design,
+    /// Its control net, `(rows, columns)`.
+    pub net: (usize, usize),
+    /// The fit depth it was measured at.
+    pub depth: u32,
+    /// The absolute tolerance used.
+    pub tolerance: f64,
+    /// From every point of the design's mesh at the fit depth to the reference.
+    pub to_reference: Distances,
+    /// From the reference (twice as densely sampled as the mesh) to the mesh.
+    pub from_reference: Distances,
+    /// Whether both are within the tolerance.
+    pub within: bool,
+    /// Why not, when not.
+    pub why: Option<String>,
+    /// The initial curve's largest distance to the reference's anchor curve.
+    pub initial_deviation: f64,
+    /// Its control tangents.
+    pub initial_tangents: usize,
+    /// Nets built and measured.
+    pub steps: usize,
+    /// Wall-clock seconds the fit took.
+    pub seconds: f64,
+}
+
+/// What to insert: a column in a column interval, or a row in a row interval.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Insert {
+    Column(usize),
+    Row(usize),
+}
+
+/// The measurements of one mesh row.
+struct RowResult {
+    dist: Vec<f64>,
+    /// Of each measured point, the position error its row's tangent error
+    /// explains: the angle × interval summed from the anchor to the point
+    /// (a bound on the gap that the tangents alone open).
+    explained: Vec<f64>,
+    /// Angle × interval of each level tangent.
+    contrib: Vec<f64>,
+    /// Fraction of the row's length at each level tangent.
+    frac: Vec<f64>,
+    table: RowTable,
+}
+
+/// The measurement of a whole mesh.
+struct Measure {
+    dist: Vec<f64>,
+    /// The furthest measured point: its row's `t / L_t`, its distance, and
+    /// the part of it that its row's tangent error explains.
+    worst: (f64, f64, f64),
+    /// Cell scores on node rows and between them, `rows − 1` × `cols − 1`.
+    on_nodes: Vec<Vec<f64>>,
+    between: Vec<Vec<f64>>,
+    tables: Vec<RowTable>,
+}
+
+fn angle(a: DVec3, b: DVec3) -> f64 {
+    a.cross(b).length().atan2(a.dot(b))
+}
+
+/// The interval of increasing `xs` holding `x` (clamped to the first and last).
+fn interval(xs: &[f64], x: f64) -> usize {
+    xs.partition_point(|&v| v <= x)
+        .saturating_sub(1)
+        .min(xs.len().saturating_sub(2))
+}
+
+/// Runs `work` on every row index, on two threads.
+fn rows_parallel<T: Send>(
+    rows: usize,
+    work: &(dyn Fn(usize) -> Result<T, ReferenceFitError> + Sync),
+) -> Result<Vec<T>, ReferenceFitError> {
+    let h = rows / 2;
+    let mut first: Vec<Result<T, ReferenceFitError>> = Vec::new();
+    let mut second: Vec<Result<T, ReferenceFitError>> = Vec::new();
+    crate::parallel::join(
+        || first = (0..h).map(work).collect(),
+        || second = (h..rows).map(work).collect(),
+    );
+    first.into_iter().chain(second).collect()
+}
+
+/// Measures a built mesh against the reference (eq. 12.6) and scores the cells.
+#[allow(clippy::too_many_arguments)]
+fn measure(
+    f: &Frame<'_>,
+    anchor: &AnchorCurve,
+    nodes: &Nodes,
+    lt: f64,
+    level: &Level,
+    points: &[DVec3],
+    stride: usize,
+    stop: f64,
+    anchor_fraction: f64,
+) -> Result<Measure, ReferenceFitError> {
+    let (rows, cols) = (level.tangents.rows(), level.tangents.cols());
+    let width = cols + 1;
+    // the rows measured: every `stride`-th and the last
+    let picked: Vec<usize> = (0..rows)
+        .filter(|r| r % stride == 0 || r + 1 == rows)
+        .collect();
+    let work = |i: usize| -> Result<RowResult, ReferenceFitError> {
+        let r = picked[i];
+        let v = anchor.v_at(level.params.t[r]);
+        let table = RowTable::new(f, v)?;
+        let s = level.params.s.row(r);
+        let (s0, span) = (s[0], s[cols - 1] - s[0]);
+        let span = if span > 0.0 { span } else { 1.0 };
+        let mut contrib = Vec::with_capacity(cols);
+        let mut frac = Vec::with_capacity(cols);
+        for k in (0..cols).step_by(stride) {
+            let x = (s[k] - s0) / span;
+            let d = f.r.derivatives(table.u_at(x), v)[1];
+            let ds = 0.5 * (s[(k + stride).min(cols - 1)] - s[k.saturating_sub(stride)]);
+            let a = d
+                .try_normalize()
+                .map_or(0.0, |t| angle(level.tangents.get(r, k), t));
+            contrib.push(a * ds);
+            frac.push(x);
+        }
+        // the tangent error summed from the anchor's fraction
+        let mut prefix = Vec::with_capacity(contrib.len() + 1);
+        prefix.push(0.0);
+        for c in &contrib {
+            prefix.push(prefix.last().copied().unwrap_or(0.0) + c);
+        }
+        let upto = |x: f64| prefix[frac.partition_point(|&y| y <= x)];
+        let at_anchor = upto(anchor_fraction);
+        let mut dist = Vec::with_capacity(width);
+        let mut explained = Vec::with_capacity(width);
+        for k in (0..width).filter(|k| k % stride == 0 || k + 1 == width) {
+            let x = (point_arclength(s, k) - s0) / span;
+            let u = table.u_at(x);
+            dist.push(refine_closest(f.r, points[r * width + k], u, v, f.du, f.dv, stop).0);
+            explained.push((upto(x) - at_anchor).abs());
+        }
+        Ok(RowResult {
+            dist,
+            explained,
+            contrib,
+            frac,
+            table,
+        })
+    };
+    let results = rows_parallel(picked.len(), &work)?;
+    let (cb, rb) = (breaks(&nodes.cols), breaks(&nodes.rows));
+    let (nc, nr) = (cb.len() - 1, rb.len() - 1);
+    let mut on_nodes = vec![vec![0.0f64; nc]; nr];
+    let mut between = vec![vec![0.0f64; nc]; nr];
+    let psi: Vec<f64> = level.params.t.iter().map(|t| t / lt).collect();
+    // the mesh row nearest each node row
+    let node_rows: Vec<usize> = rb
+        .iter()
+        .map(|&y| {
+            picked
+                .iter()
+                .copied()
+                .min_by(|&a, &b| (psi[a] - y).abs().total_cmp(&(psi[b] - y).abs()))
+                .unwrap_or(0)
+        })
+        .collect();
+    let mut dist = Vec::with_capacity(rows * width);
+    let mut tables = Vec::with_capacity(rows);
+    let mut sums = vec![0.0f64; nc];
+    let mut worst = (0.0, 0.0, 0.0);
+    for (&r, res) in picked.iter().zip(results) {
+        for (d, e) in res.dist.iter().zip(&res.explained) {
+            if *d > worst.1 {
+                worst = (psi[r], *d, *e);
+            }
+        }
+        sums.iter_mut().for_each(|x| *x = 0.0);
+        for (c, x) in res.contrib.iter().zip(&res.frac) {
+            sums[interval(&cb, *x)] += c;
+        }
+        let mut on_node = false;
+        for (j, &nr_j) in node_rows.iter().enumerate() {
+            if nr_j == r {
+                on_node = true;
+                for a in [j.wrapping_sub(1), j] {
+                    if a < nr {
+                        for (cell, s) in on_nodes[a].iter_mut().zip(&sums) {
+                            *cell = cell.max(*s);
+                        }
+                    }
+                }
+            }
+        }
+        if !on_node {
+            let a = interval(&rb, psi[r]);
+            for (cell, s) in between[a].iter_mut().zip(&sums) {
+                *cell = cell.max(*s);
+            }
+        }
+        dist.extend(res.dist);
+        tables.push(res.table);
+    }
+    Ok(Measure {
+        dist,
+        worst,
+        on_nodes,
+        between,
+        tables,
+    })
+}
+
+/// The reference, sampled where the mesh's points and its cells' centres
+/// are expected, to the mesh (eq. 12.7).
+fn from_reference(
+    f: &Frame<'_>,
+    anchor: &AnchorCurve,
+    level: &Level,
+    points: &[DVec3],
+    tables: &[RowTable],
+) -> Result<(Vec<f64>, (usize, usize)), ReferenceFitError> {
+    let (rows, cols) = (level.tangents.rows(), level.tangents.cols());
+    let width = cols + 1;
+    let work = |r: usize| -> Result<Vec<f64>, ReferenceFitError> {
+        let s = level.params.s.row(r);
+        let (s0, span) = (s[0], s[cols - 1] - s[0]);
+        let span = if span > 0.0 { span } else { 1.0 };
+        let table = tables
+            .get(r)
+            .ok_or(ReferenceFitError::NonFinite { what: "row" })?;
+        let mut out = Vec::with_capacity(2 * width);
+        for k in 0..width {
+            let x = (point_arclength(s, k) - s0) / span;
+            let p = f.r.point(table.u_at(x), table.v);
+            out.push(mesh_distance_near(points, rows, width, p, r, k, 1));
+        }
+        if r + 1 < rows {
+            let t = 0.5 * (level.params.t[r] + level.params.t[r + 1]);
+            let mid = RowTable::new(f, anchor.v_at(t))?;
+            for k in 0..width - 1 {
+                let a = 0.5 * (point_arclength(s, k) + point_arclength(s, k + 1));
+                let p = f.r.point(mid.u_at((a - s0) / span), mid.v);
+                out.push(mesh_distance_near(points, rows, width, p, r, k, 1));
+            }
+        }
+        Ok(out)
+    };
+    let per_row = rows_parallel(rows, &work)?;
+    // the worst sample's mesh cell: a point's or a cell centre's
+    let mut worst = (0.0f64, (0, 0));
+    for (r, d) in per_row.iter().enumerate() {
+        for (i, &x) in d.iter().enumerate() {
+            if x > worst.0 {
+                worst = (x, (r, if i < width { i } else { i - width }));
+            }
+        }
+    }
+    Ok((per_row.into_iter().flatten().collect(), worst.1))
+}
+
+/// Where the reference is furthest from the mesh, the insertion that
+/// refines the mesh's coarser direction there: across the rows if the
+/// mesh bends more between rows than along them (its chords are further
+/// from the surface that way), else along them.
+fn chord_insert(
+    nodes: &Nodes,
+    lt: f64,
+    level: &Level,
+    points: &[DVec3],
+    at: (usize, usize),
+) -> Insert {
+    let (rows, cols) = (level.tangents.rows(), level.tangents.cols());
+    let width = cols + 1;
+    let (r, k) = (
+        at.0.clamp(1, rows.saturating_sub(2).max(1)),
+        at.1.clamp(1, width - 2),
+    );
+    let p = |i: usize, j: usize| points[(i.min(rows - 1)) * width + j.min(width - 1)];
+    let across = if rows >= 3 {
+        (p(r + 1, k) - 2.0 * p(r, k) + p(r - 1, k)).length()
+    } else {
+        0.0
+    };
+    let along = (p(r, k + 1) - 2.0 * p(r, k) + p(r, k - 1)).length();
+    if across > along {
+        let psi = level.params.t[at.0.min(rows - 1)] / lt;
+        Insert::Row(interval(&breaks(&nodes.rows), psi))
+    } else {
+        let s = level.params.s.row(at.0.min(rows - 1));
+        let span = (s[cols - 1] - s[0]).max(f64::MIN_POSITIVE);
+        let x = (point_arclength(s, at.1.min(cols)) - s[0]) / span;
+        Insert::Column(interval(&breaks(&nodes.cols), x))
+    }
+}
+
+/// The insertion the scores suggest, among intervals not blocked and
+/// directions not at their cap.
+fn choose(
+    m: &Measure,
+    blocked: &[Insert],
+    col_full: bool,
+    row_full: bool,
+    flip: bool,
+) -> Option<Insert> {
+    let mut cells: Vec<(f64, usize, usize)> = Vec::new();
+    for (a, (on, bt)) in m.on_nodes.iter().zip(&m.between).enumerate() {
+        for (b, (x, y)) in on.iter().zip(bt).enumerate() {
+            cells.push((x.max(*y), a, b));
+        }
+    }
+    cells.sort_by(|p, q| q.0.total_cmp(&p.0));
+    for (_, a, b) in cells {
+        let (on, bt) = (m.on_nodes[a][b], m.between[a][b]);
+        let prefer_row = (bt > 2.0 * on) != flip;
+        let order = if prefer_row {
+            [Insert::Row(a), Insert::Column(b)]
+        } else {
+            [Insert::Column(b), Insert::Row(a)]
+        };
+        for ins in order {
+            let full = match ins {
+                Insert::Column(_) => col_full,
+                Insert::Row(_) => row_full,
+            };
+            if !full && !blocked.contains(&ins) {
+                return Some(ins);
+            }
+        }
+    }
+    None
+}
+
+/// Halves interval `i` of `xs`, then any neighbour more than twice as long
+/// as the interval next to it, while the count stays within `cap`.
+fn insert_graded(xs: &mut Vec<f64>, i: usize, cap: usize) {
+    if i + 1 >= xs.len() || xs.len() >= cap {
+        return;
+    }
+    xs.insert(i + 1, 0.5 * (xs[i] + xs[i + 1]));
+    for _ in 0..4 * MAX_NET_SIDE {
+        if xs.len() >= cap {
+            return;
+        }
+        let split = (0..xs.len().saturating_sub(2)).find_map(|k| {
+            let (l, r) = (xs[k + 1] - xs[k], xs[k + 2] - xs[k + 1]);
+            if l > 2.0 * r {
+                Some(k)
+            } else if r > 2.0 * l {
+                Some(k + 1)
+            } else {
+                None
+            }
+        });
+        match split {
+            Some(k) => xs.insert(k + 1, 0.5 * (xs[k] + xs[k + 1])),
+            None => return,
+        }
+    }
+}
+
+/// The best design met so far.
+struct Best {
+    design: Design,
+    nodes: Nodes,
+    key: f64,
+    to: Distances,
+    from: Option<Distances>,
+    /// Whether `to` was measured at every point.
+    full: bool,
+}
+
+/// Meshes with more points than this are measured at every other row and
+/// column while the net grows (every point once within the tolerance).
+const STRIDE_FROM: usize = 40_000;
+
+/// The fit stops when this many nets in a row come no closer (by 1 %) than
+/// the best one.
+const STALL_NETS: usize = 24;
+
+/// [`fit_reference_with`] without a progress hook.
+pub fn fit_reference(
+    reference: &dyn ReferenceSurface,
+    opts: &ReferenceFitOptions,
+) -> Result<ReferenceFit, ReferenceFitError> {
+    fit_reference_with(reference, opts, &mut |_| true)
+}
+
+fn check_options(opts: &ReferenceFitOptions) -> Result<(), ReferenceFitError> {
+    if !(1..=MAX_FIT_DEPTH).contains(&opts.depth) {
+        return Err(ReferenceFitError::BadOption {
+            what: "depth",
+            value: opts.depth.to_string(),
+            accepted: "a fit depth from 1 to 7 (5 by default)",
+        });
+    }
+    opts.scheme.validate()?;
+    let nodes = initial_nodes(opts.scheme, opts.anchor);
+    let ph = 2 * phantoms(opts.scheme);
+    let (rows, cols) = opts.max_net;
+    let (min_r, min_c) = (nodes.rows.len() + ph, nodes.cols.len() + ph);
+    if !(min_r..=MAX_NET_SIDE).contains(&rows) || !(min_c..=MAX_NET_SIDE).contains(&cols) {
+        return Err(ReferenceFitError::BadOption {
+            what: "largest net",
+            value: format!("{rows} × {cols}"),
+            accepted: "at least the smallest net of the scheme (4 × 4, 4 × 5 anchored in the middle) and at most 64 × 64",
+        });
+    }
+    Ok(())
+}
+
+/// Checks the reference's edges and a grid of points for zero-length rows
+/// and poles.
+fn check_reference(f: &Frame<'_>) -> Result<(), ReferenceFitError> {
+    for &v in [f.dv[0], f.dv[1]].iter() {
+        let fastest = f
+            .panels_u
+            .iter()
+            .map(|&u| f.r.derivatives(u, v)[1].length())
+            .fold(0.0, f64::max);
+        if fastest.is_nan() || fastest < f.min_speed {
+            return Err(ReferenceFitError::ZeroLengthRow {
+                edge: f.row_name(v),
+                along: f.along(),
+            });
+        }
+    }
+    for &v in &f.panels_v {
+        for &u in &f.panels_u {
+            let [p, du, dv] = f.r.derivatives(u, v);
+            if !(p.is_finite() && du.is_finite() && dv.is_finite()) {
+                return Err(ReferenceFitError::NonFinite { what: "derivative" });
+            }
+            if du.length().is_nan() || du.length() < f.min_speed {
+                return Err(f.pole(u, v));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Fits a streamline design to `reference` (`docs/math.md §12`).
+/// `progress` is called after every net measured with a rough fraction done
+/// in `[0, 1]`; returning `false` cancels the fit
+/// ([`ReferenceFitError::Cancelled`]). Ends after at most one net per
+/// column and row the cap allows.
+pub fn fit_reference_with(
+    reference: &dyn ReferenceSurface,
+    opts: &ReferenceFitOptions,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<ReferenceFit, ReferenceFitError> {
+    let start = Instant::now();
+    check_options(opts)?;
+    let swapped = Swapped(reference);
+    let r: &dyn ReferenceSurface = match opts.along {
+        Along::U => reference,
+        Along::V => &swapped,
+    };
+    let f = Frame::new(r, opts.along == Along::V)?;
+    let tol = match opts.tolerance {
+        Tolerance::Relative(x) => {
+            if !(x.is_finite() && x > 0.0) {
+                return Err(ReferenceFitError::BadTolerance { value: x });
+            }
+            x * f.diag
+        }
+        Tolerance::Absolute(a) => a,
+    };
+    if !(tol.is_finite() && tol > 0.0) {
+        return Err(ReferenceFitError::BadTolerance { value: tol });
+    }
+    if f.closed_along() {
+        return Err(ReferenceFitError::Closed { along: f.along() });
+    }
+    check_reference(&f)?;
+    let fraction = anchor_fraction(opts.scheme, opts.anchor);
+    let anchor = AnchorCurve::new(&f, fraction)?;
+    let initial = fit_initial(&f, &anchor, 0.25 * tol)?;
+    let lt = anchor.length();
+    let setup = Setup {
+        scheme: opts.scheme,
+        order: opts.order,
+        depth: opts.depth,
+        anchor_fraction: fraction,
+        initial: &initial.curve,
+        length: lt,
+        angle_tolerance: 1e-3 * tol / lt.max(f.diag),
+    };
+    let ph = 2 * phantoms(opts.scheme);
+    let (cap_rows, cap_cols) = (opts.max_net.0 - ph, opts.max_net.1 - ph);
+    let stop = 1e-3 * tol;
+    let mut sampler = Sampler::new(&f, &anchor);
+    let mut nodes = initial_nodes(opts.scheme, opts.anchor);
+    let mut builder = Builder::new();
+    let mut best: Option<Best> = None;
+    let mut blocked: Vec<Insert> = Vec::new();
+    let mut last: Option<(Nodes, Measure, Insert)> = None;
+    let mut steps = 0;
+    let mut best_step = 0;
+    let mut prev_key: Option<f64> = None;
+    let mut flip_used = false;
+    let mut last_across = false;
+    let mut done = 0.0f64;
+    let mut first_max = None;
+    let why: Option<String>;
+    loop {
+        // build and measure the current nodes; on a net that cannot be
+        // built, go back to the last one and block that insertion
+        let built = match build_design(&mut sampler, &nodes, &setup) {
+            Ok(d) => builder.build(&d, opts.depth).map(|_| d).map_err(Some),
+            Err(BuildFailure::Error(e)) => return Err(e),
+            Err(_) => Err(None),
+        };
+        let design = match built {
+            Ok(d) => d,
+            Err(e) => {
+                let size = matches!(
+                    e,
+                    Some(KernelError::DepthTooLarge { .. } | KernelError::TooManyTangents { .. })
+                );
+                let uneven = matches!(e, None | Some(KernelError::ParamsNotIncreasing { .. }));
+                match last.take() {
+                    Some(_) if size => {
+                        why = Some(format!(
+                            "a net of {} × {} control tangents would pass the kernel's size cap at depth {}; loosen the tolerance or fit at a lower depth",
+                            nodes.rows.len() + ph,
+                            nodes.cols.len() + ph,
+                            opts.depth
+                        ));
+                        break;
+                    }
+                    Some((prev, m, ins)) if uneven => {
+                        // back to the last net; that insertion is blocked
+                        blocked.push(ins);
+                        nodes = prev;
+                        let next = choose(
+                            &m,
+                            &blocked,
+                            nodes.cols.len() >= cap_cols,
+                            nodes.rows.len() >= cap_rows,
+                            false,
+                        );
+                        let Some(ins) = next else {
+                            why = Some(
+                                "no row or column can be inserted any more without making the parameters uneven; loosen the tolerance"
+                                    .to_string(),
+                            );
+                            break;
+                        };
+                        let before = nodes.clone();
+                        apply(&mut nodes, ins, cap_rows, cap_cols);
+                        last = Some((before, m, ins));
+                        continue;
+                    }
+                    _ => {
+                        return Err(match e {
+                            Some(e) => e.into(),
+                            None => ReferenceFitError::BadOption {
+                                what: "scheme",
+                                value: opts.scheme.name().to_string(),
+                                accepted: "a scheme whose smallest net can be built at this depth",
+                            },
+                        });
+                    }
+                }
+            }
+        };
+        steps += 1;
+        let Some(level) = builder.level() else {
+            return Err(ReferenceFitError::NonFinite { what: "mesh" });
+        };
+        let points = &builder.mesh().positions;
+        // strided while far, every point once close
+        let (rows_d, cols_d) = (level.tangents.rows(), level.tangents.cols());
+        let mut stride = if rows_d * cols_d > STRIDE_FROM { 2 } else { 1 };
+        let mut m = measure(
+            &f, &anchor, &nodes, lt, level, points, stride, stop, fraction,
+        )?;
+        let mut to = Distances::of(&m.dist);
+        if to.max <= tol && stride > 1 {
+            stride = 1;
+            m = measure(&f, &anchor, &nodes, lt, level, points, 1, stop, fraction)?;
+            to = Distances::of(&m.dist);
+        }
+        let mut from = None;
+        let mut chord = None;
+        if to.max <= tol {
+            let (d, at) = from_reference(&f, &anchor, level, points, &m.tables)?;
+            from = Some(Distances::of(&d));
+            chord = Some(chord_insert(&nodes, lt, level, points, at));
+        }
+        let key = from.map_or(to.max, |d| d.max.max(to.max));
+        // with an approximating scheme (whose node rows are not mesh rows,
+        // so that the scores tell the directions apart less well), an
+        // insertion that brought the design no closer sends the next one
+        // the other way in the worst cell
+        let no_gain = prev_key.is_some_and(|p| key > 0.99 * p);
+        let flip = ph > 0 && no_gain && !flip_used;
+        flip_used = flip;
+        prev_key = Some(key);
+        if best.as_ref().is_none_or(|b| key < 0.99 * b.key) {
+            best_step = steps;
+        }
+        if best.as_ref().is_none_or(|b| key < b.key) {
+            best = Some(Best {
+                design: design.clone(),
+                nodes: nodes.clone(),
+                key,
+                to,
+                from,
+                full: stride == 1,
+            });
+        }
+        if from.is_some_and(|d| d.max <= tol) {
+            why = None;
+            break;
+        }
+        let fm = *first_max.get_or_insert(key);
+        if fm > tol && key > 0.0 {
+            let p = 1.0 - ((key / tol).ln() / (fm / tol).ln()).clamp(0.0, 1.0);
+            done = done.max(0.95 * p);
+        }
+        if !progress(done) {
+            return Err(ReferenceFitError::Cancelled);
+        }
+        if steps - best_step >= STALL_NETS {
+            why = Some(format!(
+                "the deviation stopped falling: {STALL_NETS} nets in a row came no closer than {:.3e} (over the tolerance {:.3e}); the face may have a crease or a degenerate edge: loosen the tolerance or split the face",
+                best.as_ref().map_or(key, |b| b.key),
+                tol
+            ));
+            break;
+        }
+        let (col_full, row_full) = (nodes.cols.len() >= cap_cols, nodes.rows.len() >= cap_rows);
+        // a point much further than its row's tangent error explains is
+        // off because its row is (its start, its length: what is blended
+        // across the rows): a row there
+        let (psi_w, d_w, e_w) = m.worst;
+        // (not again right after such a row brought the design no closer)
+        // (for the interpolating scheme, whose node rows are mesh rows)
+        let across = (ph == 0 && chord.is_none() && d_w > tol && e_w < 0.5 * d_w)
+            .then(|| Insert::Row(interval(&breaks(&nodes.rows), psi_w)))
+            .filter(|_| !(no_gain && last_across));
+        last_across = across.is_some();
+        let next = match chord.or(across) {
+            Some(ins @ Insert::Row(_)) if !row_full && !blocked.contains(&ins) => Some(ins),
+            Some(ins @ Insert::Column(_)) if !col_full && !blocked.contains(&ins) => Some(ins),
+            _ => choose(&m, &blocked, col_full, row_full, flip),
+        };
+        let Some(ins) = next else {
+            why = Some(format!(
+                "the net reached its cap of {} × {} control tangents with the design at best {:.3e} from the reference, over the tolerance {:.3e}; raise the cap, loosen the tolerance or split the face",
+                opts.max_net.0,
+                opts.max_net.1,
+                best.as_ref().map_or(key, |b| b.key),
+                tol
+            ));
+            break;
+        };
+        let before = nodes.clone();
+        apply(&mut nodes, ins, cap_rows, cap_cols);
+        if nodes == before {
+            blocked.push(ins);
+        }
+        last = Some((before, m, ins));
+    }
+    let Some(mut b) = best else {
+        return Err(ReferenceFitError::NonFinite { what: "design" });
+    };
+    if b.from.is_none() || !b.full {
+        builder.build(&b.design, opts.depth)?;
+        if let Some(level) = builder.level() {
+            let points = &builder.mesh().positions;
+            let m = measure(&f, &anchor, &b.nodes, lt, level, points, 1, stop, fraction)?;
+            b.to = Distances::of(&m.dist);
+            b.from = Some(Distances::of(
+                &from_reference(&f, &anchor, level, points, &m.tables)?.0,
+            ));
+        }
+    }
+    let from = b.from.unwrap_or_default();
+    let within = b.to.max <= tol && from.max <= tol;
+    let why = if within {
+        None
+    } else {
+        why.or_else(|| {
+            Some(format!(
+                "the design came within {:.3e} of the reference, over the tolerance {:.3e}",
+                b.to.max.max(from.max),
+                tol
+            ))
+        })
+    };
+    let _ = progress(1.0);
+    Ok(ReferenceFit {
+        net: (b.design.net().rows(), b.design.net().cols()),
+        design: b.design,
+        depth: opts.depth,
+        tolerance: tol,
+        to_reference: b.to,
+        from_reference: from,
+        within,
+        why,
+        initial_deviation: initial.deviation,
+        initial_tangents: initial.curve.qi().tangents().len(),
+        steps,
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// The cells' bounds in one direction: the nodes, and 0 and 1 where the
+/// nodes stop short of them (Doo–Sabin's), so that the border can grow too.
+fn breaks(xs: &[f64]) -> Vec<f64> {
+    let mut b = Vec::with_capacity(xs.len() + 2);
+    if xs.first().is_some_and(|&x| x > 0.0) {
+        b.push(0.0);
+    }
+    b.extend_from_slice(xs);
+    if xs.last().is_some_and(|&x| x < 1.0) {
+        b.push(1.0);
+    }
+    b
+}
+
+/// Inserts a row or column node in cell `ins` (graded).
+fn apply(nodes: &mut Nodes, ins: Insert, cap_rows: usize, cap_cols: usize) {
+    let (xs, cell, cap) = match ins {
+        Insert::Column(b) => (&mut nodes.cols, b, cap_cols),
+        Insert::Row(a) => (&mut nodes.rows, a, cap_rows),
+    };
+    let mut full = breaks(xs);
+    let ends = full.len() - xs.len();
+    insert_graded(&mut full, cell, cap + ends);
+    if xs.first().is_some_and(|&x| x > 0.0) {
+        full.remove(0);
+    }
+    if xs.last().is_some_and(|&x| x < 1.0) {
+        full.pop();
+    }
+    *xs = full;
+}

@@ -1,0 +1,1333 @@
+//! IGES (5.3, fixed-format ASCII): the rational B-spline surfaces (entity
+//! 128) of a file as references.
+//!
+//! No maintained Rust crate reads IGES, and the part needed is small, so the
+//! reader is written here:
+//!
+//! - lines of 80 columns, the section letter in column 73 (`S`tart,
+//!   `G`lobal, `D`irectory, `P`arameter, `T`erminate, in that order) and
+//!   the sequence number in 74–80; a file without line breaks is read as
+//!   80-byte records. Compressed and binary IGES are refused;
+//! - the global section (columns 1–72 of its lines, run together): its
+//!   parameter and record delimiters (fields 1 and 2, `,` and `;` when
+//!   empty), Hollerith strings `nH…`, the model space scale (field 13, 1
+//!   when empty), the unit flag (field 14: 1 inch, 2 millimetre, 4 foot,
+//!   5 mile, 6 metre, 7 kilometre, 8 mil, 9 micrometre, 10 centimetre,
+//!   11 microinch, 3 the unit named in field 15). Model space coordinates
+//!   are divided by the scale ("ratio of model space to real world"), so
+//!   `metres_per_unit` is the unit's metres over the scale;
+//! - directory entries, two lines of nine 8-column fields each: entity
+//!   type, parameter data pointer, transformation matrix (entity 124,
+//!   applied to the poles, through its own matrix in turn), parameter line
+//!   count;
+//! - parameter data (columns 1–64 of its lines, run together) of entity
+//!   128: `K1 K2 M1 M2 PROP1..PROP5`, the `u` knots, the `v` knots, the
+//!   weights and the control points (`u` index fastest, as the kernel's
+//!   grid holds them: one row per `v` index), `U0 U1 V0 V1`. Weights all
+//!   equal, or `PROP3 = 1` (polynomial), give a non-rational surface;
+//!   closed is `PROP1`/`PROP2`; periodic, as for STEP, is a knot vector
+//!   that is not clamped (`PROP4`/`PROP5` are not used).
+//!
+//! The faces, in directory order: every trimmed surface (144), bounded
+//! surface (143) and face (510), and every 128 that none of them has as
+//! its surface. A face is untrimmed when:
+//!
+//! - a 144 has no inner boundary and either no outer one (`N1 = 0`: the
+//!   surface's own boundary) or an outer curve on a parametric surface
+//!   (142) whose parameter-space curve is made of lines (110), B-spline
+//!   curves (126) or composites (102) of them that each lie along one side
+//!   of the surface's domain (all their points within 1e-6 of the domain's
+//!   diagonal from it);
+//! - a 143 has one boundary (141) whose parameter-space curves (each
+//!   model-space curve having at least one) all lie along the domain's
+//!   sides, as for a 144;
+//! - a 510 has one loop (508) of at most four edges whose vertices (502)
+//!   all lie on the surface's corners (the STEP rule);
+//! - a lone 128 is untrimmed;
+//!
+//! and in every case `U0 U1 V0 V1` of the 128 cover its whole knot domain.
+//! Anything else is trimmed. A face on another surface is a plane (108, 190:
+//! no area or box is computed) or `Other`, and reported trimmed.
+//!
+//! Errors name the file line and column of the value at fault in the
+//! parameter section, or of the field of its directory entry.
+
+use crate::error::{MAX_FILE_POLES, MAX_POLES, ReferenceError};
+use crate::geom::{self, Bbox};
+use crate::{FaceData, SurfaceKind};
+use std::cell::Cell;
+use std::path::Path;
+use streamline_kernel::DVec3;
+use streamline_kernel::grid::Grid;
+use streamline_kernel::nurbs::rational::{MAX_DEGREE, NurbsError, NurbsSurface};
+
+/// What an IGES file gives: its length unit and its faces.
+pub(crate) struct IgesFile {
+    pub unit: String,
+    pub metres_per_unit: f64,
+    pub faces: Vec<FaceData>,
+}
+
+const REEXPORT: &str =
+    "the file is damaged or does not follow IGES 5.3: re-export it from the CAD system";
+
+/// The deepest chain of composite curves or transformation matrices
+/// followed (a cycle would otherwise never end).
+const MAX_CHAIN: usize = 16;
+
+/// One line of the file (its line end removed) and its 1-based number.
+#[derive(Clone, Copy)]
+struct Line<'a> {
+    text: &'a [u8],
+    number: usize,
+}
+
+/// Some columns of consecutive lines of one section, run together.
+struct Text<'a> {
+    bytes: Vec<u8>,
+    width: usize,
+    lines: &'a [Line<'a>],
+}
+
+impl<'a> Text<'a> {
+    fn new(lines: &'a [Line<'a>], width: usize) -> Self {
+        let mut bytes = Vec::with_capacity(lines.len() * width);
+        for l in lines {
+            bytes.extend_from_slice(&l.text[..width]);
+        }
+        Text {
+            bytes,
+            width,
+            lines,
+        }
+    }
+
+    /// The file line and column of byte `off`.
+    fn pos(&self, off: usize) -> (usize, usize) {
+        if self.lines.is_empty() {
+            return (0, 0);
+        }
+        let k = (off / self.width).min(self.lines.len() - 1);
+        (self.lines[k].number, off - k * self.width + 1)
+    }
+}
+
+/// One field of free-format data: its byte range, and whether it is a
+/// Hollerith string.
+#[derive(Clone, Copy)]
+struct Tok {
+    start: usize,
+    end: usize,
+    hollerith: bool,
+}
+
+/// The fields from byte `from` up to the record delimiter, and the
+/// delimiter's offset.
+fn tokenize(
+    path: &Path,
+    t: &Text,
+    from: usize,
+    pd: u8,
+    rd: u8,
+    whose: &str,
+) -> Result<(Vec<Tok>, usize), ReferenceError> {
+    let b = &t.bytes;
+    let n = b.len();
+    let mut toks = Vec::new();
+    let mut i = from;
+    let unterminated = |at: usize| {
+        let (l, c) = t.pos(at);
+        ReferenceError::at(
+            path,
+            l,
+            c,
+            format!(
+                "{whose} end without the record delimiter '{}'; {REEXPORT}",
+                rd as char
+            ),
+        )
+    };
+    loop {
+        let mut j = i;
+        while j < n && b[j] == b' ' {
+            j += 1;
+        }
+        let digits = b[j.min(n)..]
+            .iter()
+            .take_while(|c| c.is_ascii_digit())
+            .count();
+        if digits > 0 && matches!(b.get(j + digits), Some(b'H' | b'h')) {
+            let count = std::str::from_utf8(&b[j..j + digits])
+                .ok()
+                .and_then(|s| s.parse::<usize>().ok())
+                .unwrap_or(usize::MAX);
+            let s = j + digits + 1;
+            if count > n - s {
+                let (l, c) = t.pos(j);
+                return Err(ReferenceError::at(
+                    path,
+                    l,
+                    c,
+                    format!(
+                        "a string of {} characters runs past the end of {whose}; {REEXPORT}",
+                        String::from_utf8_lossy(&b[j..j + digits])
+                    ),
+                ));
+            }
+            toks.push(Tok {
+                start: s,
+                end: s + count,
+                hollerith: true,
+            });
+            i = s + count;
+            while i < n && b[i] == b' ' {
+                i += 1;
+            }
+            if i >= n {
+                return Err(unterminated(n.saturating_sub(1)));
+            }
+            if b[i] == rd {
+                return Ok((toks, i));
+            }
+            if b[i] != pd {
+                let (l, c) = t.pos(i);
+                return Err(ReferenceError::at(
+                    path,
+                    l,
+                    c,
+                    format!(
+                        "'{}' follows a string where the delimiter '{}' or '{}' should; {REEXPORT}",
+                        b[i] as char, pd as char, rd as char
+                    ),
+                ));
+            }
+            i += 1;
+        } else {
+            let mut e = i;
+            while e < n && b[e] != pd && b[e] != rd {
+                e += 1;
+            }
+            if e >= n {
+                return Err(unterminated(n.saturating_sub(1)));
+            }
+            toks.push(Tok {
+                start: i,
+                end: e,
+                hollerith: false,
+            });
+            if b[e] == rd {
+                return Ok((toks, e));
+            }
+            i = e + 1;
+        }
+    }
+}
+
+/// A number field as text, blanks removed.
+fn field_text(t: &Text, tok: &Tok) -> String {
+    t.bytes[tok.start..tok.end]
+        .iter()
+        .filter(|c| **c != b' ')
+        .map(|&c| c as char)
+        .collect()
+}
+
+/// A real: digits, sign, point and an `E` or `D` exponent only (so no
+/// `NaN` or `inf`), finite. `None` for an empty field.
+fn parse_real(s: &str) -> Result<Option<f64>, String> {
+    if s.is_empty() {
+        return Ok(None);
+    }
+    if !s.bytes().any(|c| c.is_ascii_digit())
+        || !s.bytes().all(|c| {
+            c.is_ascii_digit() || matches!(c, b'+' | b'-' | b'.' | b'E' | b'e' | b'D' | b'd')
+        })
+    {
+        return Err(format!("'{}' is not a number", clip(s)));
+    }
+    let x: f64 = s
+        .replace(['D', 'd'], "E")
+        .parse()
+        .map_err(|_| format!("'{}' is not a number", clip(s)))?;
+    if !x.is_finite() {
+        return Err(format!("'{}' is not a finite number", clip(s)));
+    }
+    Ok(Some(x))
+}
+
+/// An integer (a real with an integral value is accepted). `None` for an
+/// empty field.
+fn parse_int(s: &str) -> Result<Option<i64>, String> {
+    if s.is_empty() {
+        return Ok(None);
+    }
+    if let Ok(i) = s.parse::<i64>() {
+        return Ok(Some(i));
+    }
+    match parse_real(s)? {
+        Some(x) if x.fract() == 0.0 && x.abs() < 1e15 => Ok(Some(x as i64)),
+        _ => Err(format!("'{}' is not an integer", clip(s))),
+    }
+}
+
+fn clip(s: &str) -> String {
+    s.chars().take(24).collect()
+}
+
+/// The global section's values this reader uses.
+struct Global {
+    pd: u8,
+    rd: u8,
+    unit: String,
+    metres_per_unit: f64,
+}
+
+/// A directory entry.
+struct De {
+    /// Its number: the sequence number of its first line (odd).
+    number: usize,
+    etype: i64,
+    /// First parameter line (1-based within the P section).
+    pstart: i64,
+    transform: i64,
+    pcount: i64,
+    /// The file line of its first line.
+    line: usize,
+}
+
+/// The parameters of one entity, read with located errors.
+struct Params<'a> {
+    path: &'a Path,
+    t: Text<'a>,
+    toks: Vec<Tok>,
+    end: usize,
+    who: String,
+}
+
+impl Params<'_> {
+    fn len(&self) -> usize {
+        self.toks.len()
+    }
+
+    fn err(&self, k: usize, msg: impl AsRef<str>) -> ReferenceError {
+        let off = self.toks.get(k).map_or(self.end, |t| t.start);
+        let (l, c) = self.t.pos(off);
+        ReferenceError::at(self.path, l, c, format!("{}: {}", self.who, msg.as_ref()))
+    }
+
+    fn text(&self, k: usize, what: &str) -> Result<String, ReferenceError> {
+        let tok = self.toks.get(k).ok_or_else(|| {
+            self.err(
+                k,
+                format!(
+                    "it has {} parameters, its {what} (parameter {k}) is missing; {REEXPORT}",
+                    self.toks.len().saturating_sub(1)
+                ),
+            )
+        })?;
+        if tok.hollerith {
+            return Err(self.err(
+                k,
+                format!("its {what} (parameter {k}) is a string, not a number; {REEXPORT}"),
+            ));
+        }
+        Ok(field_text(&self.t, tok))
+    }
+
+    fn int(&self, k: usize, what: &str) -> Result<i64, ReferenceError> {
+        let s = self.text(k, what)?;
+        parse_int(&s)
+            .map(|v| v.unwrap_or(0))
+            .map_err(|e| self.err(k, format!("its {what} (parameter {k}): {e}; {REEXPORT}")))
+    }
+
+    /// An integer from `lo` to `hi`.
+    fn count(&self, k: usize, what: &str, lo: i64, hi: usize) -> Result<usize, ReferenceError> {
+        let v = self.int(k, what)?;
+        if v < lo || v > hi as i64 {
+            return Err(self.err(
+                k,
+                format!("its {what} (parameter {k}) is {v}, outside {lo} to {hi}; {REEXPORT}"),
+            ));
+        }
+        Ok(v as usize)
+    }
+
+    fn real(&self, k: usize, what: &str) -> Result<f64, ReferenceError> {
+        let s = self.text(k, what)?;
+        match parse_real(&s) {
+            Ok(Some(x)) => Ok(x),
+            Ok(None) => Err(self.err(
+                k,
+                format!("its {what} (parameter {k}) is empty; {REEXPORT}"),
+            )),
+            Err(e) => Err(self.err(k, format!("its {what} (parameter {k}): {e}; {REEXPORT}"))),
+        }
+    }
+
+    /// That parameters `k..k + n` exist.
+    fn need(&self, k: usize, n: usize, what: &str) -> Result<(), ReferenceError> {
+        if k.saturating_add(n) > self.toks.len() {
+            return Err(self.err(
+                self.toks.len(),
+                format!(
+                    "it has {} parameters, its counts need {} ({what}); {REEXPORT}",
+                    self.toks.len().saturating_sub(1),
+                    k.saturating_add(n).saturating_sub(1)
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Reads the faces of an IGES file.
+pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<IgesFile, ReferenceError> {
+    let lines = split_lines(bytes);
+    let (g, d, p) = sections(path, &lines)?;
+    let global = global(path, &g)?;
+    let file = File {
+        path,
+        global: &global,
+        des: directory(path, &d)?,
+        p: &p,
+        poles_read: Cell::new(0),
+    };
+    let faces = file.faces()?;
+    Ok(IgesFile {
+        unit: global.unit.clone(),
+        metres_per_unit: global.metres_per_unit,
+        faces,
+    })
+}
+
+/// The file's lines: split at line feeds (a carriage return before one
+/// dropped), or 80-byte records when there is no line feed; blank lines
+/// are skipped.
+fn split_lines(bytes: &[u8]) -> Vec<Line<'_>> {
+    let raw: Vec<&[u8]> = if bytes.contains(&b'\n') {
+        bytes.split(|&c| c == b'\n').collect()
+    } else {
+        bytes.chunks(80).collect()
+    };
+    raw.into_iter()
+        .enumerate()
+        .map(|(i, l)| Line {
+            text: l.strip_suffix(b"\r").unwrap_or(l),
+            number: i + 1,
+        })
+        .filter(|l| !l.text.iter().all(u8::is_ascii_whitespace))
+        .collect()
+}
+
+/// The G, D and P sections' lines, checked for the fixed layout.
+#[allow(clippy::type_complexity)]
+fn sections<'a>(
+    path: &Path,
+    lines: &[Line<'a>],
+) -> Result<(Vec<Line<'a>>, Vec<Line<'a>>, Vec<Line<'a>>), ReferenceError> {
+    if lines.is_empty() {
+        return Err(ReferenceError::whole(
+            path,
+            "the file is empty; export the reference again from the CAD system",
+        ));
+    }
+    let (mut g, mut d, mut p) = (Vec::new(), Vec::new(), Vec::new());
+    let mut last = 0usize;
+    for l in lines {
+        if l.text.len() < 73 {
+            return Err(ReferenceError::at(
+                path,
+                l.number,
+                l.text.len().max(1),
+                format!(
+                    "the line has {} columns; an IGES line has 80, its section letter (S, G, D, P or T) in column 73: the file's lines were wrapped, trimmed or changed, re-export it",
+                    l.text.len()
+                ),
+            ));
+        }
+        let letter = l.text[72];
+        let order = match letter {
+            b'S' => 1,
+            b'G' => 2,
+            b'D' => 3,
+            b'P' => 4,
+            b'T' => 5,
+            b'C' => {
+                return Err(ReferenceError::at(
+                    path,
+                    l.number,
+                    73,
+                    "the file is compressed IGES (C in column 73), which is not read; export it as fixed-format ASCII IGES",
+                ));
+            }
+            b'B' if l.number == 1 => {
+                return Err(ReferenceError::at(
+                    path,
+                    l.number,
+                    73,
+                    "the file is binary IGES, which is not read; export it as fixed-format ASCII IGES",
+                ));
+            }
+            c => {
+                return Err(ReferenceError::at(
+                    path,
+                    l.number,
+                    73,
+                    format!(
+                        "column 73 holds '{}', not a section letter (S, G, D, P or T); an IGES line has fixed columns: the file was changed (tabs or spaces added or removed), re-export it",
+                        (c as char).escape_default()
+                    ),
+                ));
+            }
+        };
+        if order < last {
+            return Err(ReferenceError::at(
+                path,
+                l.number,
+                73,
+                format!(
+                    "a {} line after the {} section; the sections come in the order S, G, D, P, T: {REEXPORT}",
+                    letter as char,
+                    ["", "S", "G", "D", "P", "T"][last]
+                ),
+            ));
+        }
+        last = order;
+        match order {
+            2 => g.push(*l),
+            3 => d.push(*l),
+            4 => p.push(*l),
+            _ => {}
+        }
+    }
+    let missing = if g.is_empty() {
+        Some("global (G)")
+    } else if d.is_empty() {
+        Some("directory (D)")
+    } else if p.is_empty() {
+        Some("parameter (P)")
+    } else {
+        None
+    };
+    if let Some(m) = missing {
+        return Err(ReferenceError::whole(
+            path,
+            format!("the file has no {m} section, so it holds no entity; {REEXPORT}"),
+        ));
+    }
+    Ok((g, d, p))
+}
+
+/// The global section's delimiters and length unit.
+fn global(path: &Path, lines: &[Line]) -> Result<Global, ReferenceError> {
+    let t = Text::new(lines, 72);
+    let b = &t.bytes;
+    let at = |i: usize, msg: String| {
+        let (l, c) = t.pos(i);
+        ReferenceError::at(path, l, c, msg)
+    };
+    // fields 1 and 2: `1Hx` or empty (`,` and `;`)
+    let mut i = 0usize;
+    let skip = |mut i: usize| {
+        while i < b.len() && b[i] == b' ' {
+            i += 1;
+        }
+        i
+    };
+    let delim = |i: &mut usize, default: u8, pd: u8| -> Result<(u8, bool), ReferenceError> {
+        *i = skip(*i);
+        if b.get(*i..*i + 2) == Some(b"1H") || b.get(*i..*i + 2) == Some(b"1h") {
+            let Some(&c) = b.get(*i + 2) else {
+                return Err(at(
+                    *i,
+                    format!("the global section ends inside a delimiter; {REEXPORT}"),
+                ));
+            };
+            *i = skip(*i + 3);
+            Ok((c, false))
+        } else if b.get(*i) == Some(&pd) || b.get(*i) == Some(&b';') {
+            Ok((default, false))
+        } else {
+            Err(at(
+                *i,
+                format!(
+                    "the global section starts with neither a delimiter `1Hx` nor an empty field; {REEXPORT}"
+                ),
+            ))
+        }
+    };
+    let (pd, _) = delim(&mut i, b',', b',')?;
+    // after field 1: the parameter delimiter (or the record delimiter)
+    if b.get(i) == Some(&b';') && pd != b';' {
+        return Ok(Global {
+            pd,
+            rd: b';',
+            unit: "inch".into(),
+            metres_per_unit: 0.0254,
+        });
+    }
+    if b.get(i) != Some(&pd) {
+        return Err(at(
+            i,
+            format!(
+                "the parameter delimiter '{}' should follow the global section's first field; {REEXPORT}",
+                pd as char
+            ),
+        ));
+    }
+    i += 1;
+    let (rd, _) = delim(&mut i, b';', pd)?;
+    if pd == rd || pd == b' ' || rd == b' ' {
+        return Err(at(
+            0,
+            format!(
+                "the global section's delimiters are '{}' and '{}'; they must differ and not be blanks: {REEXPORT}",
+                pd as char, rd as char
+            ),
+        ));
+    }
+    let toks = if b.get(i) == Some(&rd) {
+        Vec::new()
+    } else if b.get(i) == Some(&pd) {
+        tokenize(path, &t, i + 1, pd, rd, "the global section")?.0
+    } else {
+        return Err(at(
+            i,
+            format!(
+                "the parameter delimiter '{}' should follow the global section's second field; {REEXPORT}",
+                pd as char
+            ),
+        ));
+    };
+    // field k (1-based) is toks[k - 3]
+    let field = |k: usize| toks.get(k - 3);
+    let number = |k: usize, what: &str| -> Result<Option<f64>, ReferenceError> {
+        match field(k) {
+            None => Ok(None),
+            Some(tok) if tok.hollerith => Err(at(
+                tok.start,
+                format!(
+                    "the global section's {what} (field {k}) is a string, not a number; {REEXPORT}"
+                ),
+            )),
+            Some(tok) => parse_real(&field_text(&t, tok)).map_err(|e| {
+                at(
+                    tok.start,
+                    format!("the global section's {what} (field {k}): {e}; {REEXPORT}"),
+                )
+            }),
+        }
+    };
+    let scale = number(13, "model space scale")?.unwrap_or(1.0);
+    if scale <= 0.0 {
+        let off = field(13).map_or(0, |t| t.start);
+        return Err(at(
+            off,
+            format!("the model space scale (global field 13) is {scale}, not positive; {REEXPORT}"),
+        ));
+    }
+    let flag = number(14, "unit flag")?.unwrap_or(1.0);
+    let name = field(15)
+        .filter(|t| t.hollerith)
+        .map(|tok| {
+            String::from_utf8_lossy(&b[tok.start..tok.end])
+                .trim()
+                .to_uppercase()
+        })
+        .unwrap_or_default();
+    let flag_at = field(14).map_or(0, |t| t.start);
+    let by_flag = |f: f64| -> Option<(&'static str, f64)> {
+        Some(match f as i64 {
+            1 => ("inch", 0.0254),
+            2 => ("millimetre", 0.001),
+            4 => ("foot", 0.3048),
+            5 => ("mile", 1609.344),
+            6 => ("metre", 1.0),
+            7 => ("kilometre", 1000.0),
+            8 => ("mil", 2.54e-5),
+            9 => ("micrometre", 1e-6),
+            10 => ("centimetre", 0.01),
+            11 => ("microinch", 2.54e-8),
+            _ => return None,
+        })
+    };
+    let (unit, metres) = if flag == 3.0 {
+        let f = match name.as_str() {
+            "IN" | "INCH" => 1.0,
+            "MM" => 2.0,
+            "FT" => 4.0,
+            "MI" => 5.0,
+            "M" => 6.0,
+            "KM" => 7.0,
+            "MIL" => 8.0,
+            "UM" => 9.0,
+            "CM" => 10.0,
+            "UIN" => 11.0,
+            _ => {
+                let off = field(15).map_or(flag_at, |t| t.start);
+                return Err(at(
+                    off,
+                    format!(
+                        "the unit flag is 3 (named unit) but the unit name '{}' is none of IGES's (IN, MM, FT, MI, M, KM, MIL, UM, CM, UIN); re-export the file in millimetres or metres",
+                        clip(&name)
+                    ),
+                ));
+            }
+        };
+        by_flag(f).unwrap_or(("inch", 0.0254))
+    } else if flag.fract() != 0.0 {
+        return Err(at(
+            flag_at,
+            format!("the unit flag (global field 14) is {flag}, not an integer; {REEXPORT}"),
+        ));
+    } else {
+        by_flag(flag).ok_or_else(|| {
+            at(flag_at, format!("the unit flag (global field 14) is {flag}, not one of IGES's 1 to 11; re-export the file in millimetres or metres"))
+        })?
+    };
+    Ok(Global {
+        pd,
+        rd,
+        unit: unit.to_string(),
+        metres_per_unit: metres / scale,
+    })
+}
+
+/// The directory entries.
+fn directory(path: &Path, lines: &[Line]) -> Result<Vec<De>, ReferenceError> {
+    if !lines.len().is_multiple_of(2) {
+        let l = lines[lines.len() - 1];
+        return Err(ReferenceError::at(
+            path,
+            l.number,
+            1,
+            format!(
+                "the directory section has {} lines; each entry takes two: {REEXPORT}",
+                lines.len()
+            ),
+        ));
+    }
+    let field = |l: &Line, k: usize, what: &str| -> Result<i64, ReferenceError> {
+        let s: String = l.text[8 * k..8 * k + 8]
+            .iter()
+            .filter(|c| **c != b' ')
+            .map(|&c| c as char)
+            .collect();
+        match s.parse::<i64>() {
+            Ok(v) => Ok(v),
+            Err(_) if s.is_empty() => Ok(0),
+            Err(_) => Err(ReferenceError::at(
+                path,
+                l.number,
+                8 * k + 1,
+                format!(
+                    "the directory entry's {what} (columns {}–{}) is '{}', not an integer; {REEXPORT}",
+                    8 * k + 1,
+                    8 * k + 8,
+                    clip(&s)
+                ),
+            )),
+        }
+    };
+    let mut des = Vec::with_capacity(lines.len() / 2);
+    for (k, pair) in lines.chunks(2).enumerate() {
+        let (a, b) = (&pair[0], &pair[1]);
+        des.push(De {
+            number: 2 * k + 1,
+            etype: field(a, 0, "entity type")?,
+            pstart: field(a, 1, "parameter data pointer")?,
+            transform: field(a, 6, "transformation matrix pointer")?,
+            pcount: field(b, 3, "parameter line count")?,
+            line: a.number,
+        });
+    }
+    Ok(des)
+}
+
+/// How a face's base surface reads.
+enum Base {
+    /// A 128, in metres, with its closed flags and whether `U0 U1 V0 V1`
+    /// leave part of its knot domain out.
+    BSpline(NurbsSurface, [bool; 2], bool),
+    Plane,
+    Other,
+}
+
+/// What makes a directory entry a face.
+enum Source {
+    /// A 144: base surface, N1, N2, outer boundary (142) when N1 ≠ 0.
+    Trimmed {
+        surf: usize,
+        n1: i64,
+        n2: i64,
+        outer: Option<usize>,
+    },
+    /// A 143: base surface and its boundaries (141).
+    Bounded { surf: usize, bounds: Vec<usize> },
+    /// A 510: base surface and its loops (508).
+    Face { surf: usize, loops: Vec<usize> },
+    /// A 128 that no face has as its surface.
+    Lone,
+}
+
+struct File<'a> {
+    path: &'a Path,
+    global: &'a Global,
+    des: Vec<De>,
+    p: &'a [Line<'a>],
+    /// The poles of the faces read so far (at most [`MAX_FILE_POLES`]).
+    poles_read: Cell<usize>,
+}
+
+impl<'a> File<'a> {
+    fn who(de: &De) -> String {
+        format!("DE {} ({})", de.number, de.etype)
+    }
+
+    /// An error at a field of directory entry `de`.
+    fn de_err(&self, de: &De, col: usize, msg: impl AsRef<str>) -> ReferenceError {
+        ReferenceError::at(
+            self.path,
+            de.line,
+            col,
+            format!("{}: {}", Self::who(de), msg.as_ref()),
+        )
+    }
+
+    /// The parameters of entry `k` (index into `des`).
+    fn params(&self, k: usize) -> Result<Params<'a>, ReferenceError> {
+        let de = &self.des[k];
+        let count = de.pcount.max(1);
+        let start = de.pstart;
+        if start < 1 || start.saturating_add(count) - 1 > self.p.len() as i64 {
+            return Err(self.de_err(
+                de,
+                9,
+                format!(
+                    "its parameter data (P line {start}, {count} lines) lies outside the parameter section's {} lines; {REEXPORT}",
+                    self.p.len()
+                ),
+            ));
+        }
+        let lines = &self.p[(start - 1) as usize..(start - 1 + count) as usize];
+        let t = Text::new(lines, 64);
+        let who = Self::who(de);
+        let (toks, end) = tokenize(
+            self.path,
+            &t,
+            0,
+            self.global.pd,
+            self.global.rd,
+            &format!("the parameters of {who}"),
+        )?;
+        let p = Params {
+            path: self.path,
+            t,
+            toks,
+            end,
+            who,
+        };
+        let ty = p.int(0, "entity type")?;
+        if ty != de.etype {
+            return Err(p.err(
+                0,
+                format!(
+                    "its parameters start with entity type {ty}, its directory entry says {}; {REEXPORT}",
+                    de.etype
+                ),
+            ));
+        }
+        Ok(p)
+    }
+
+    /// The entry a pointer parameter names (its index into `des`); 0 →
+    /// `None`.
+    fn ptr(&self, p: &Params, k: usize, what: &str) -> Result<Option<usize>, ReferenceError> {
+        let v = p.int(k, what)?;
+        if v == 0 {
+            return Ok(None);
+        }
+        let v = v.unsigned_abs() as usize;
+        if v.is_multiple_of(2) || v / 2 >= self.des.len() {
+            return Err(p.err(
+                k,
+                format!(
+                    "its {what} (parameter {k}) points to DE {v}, which is not a directory entry (the file has {}, odd numbers 1 to {}); {REEXPORT}",
+                    self.des.len(),
+                    2 * self.des.len() - 1
+                ),
+            ));
+        }
+        Ok(Some(v / 2))
+    }
+
+    fn need_ptr(&self, p: &Params, k: usize, what: &str) -> Result<usize, ReferenceError> {
+        self.ptr(p, k, what)?.ok_or_else(|| {
+            p.err(
+                k,
+                format!("its {what} (parameter {k}) is 0, no entity; {REEXPORT}"),
+            )
+        })
+    }
+
+    fn faces(&self) -> Result<Vec<FaceData>, ReferenceError> {
+        let mut sources: Vec<(usize, Source)> = Vec::new();
+        let mut is_base = vec![false; self.des.len()];
+        for k in 0..self.des.len() {
+            let src = match self.des[k].etype {
+                144 => {
+                    let p = self.params(k)?;
+                    let surf = self.need_ptr(&p, 1, "surface")?;
+                    let n1 = p.int(2, "outer boundary flag N1")?;
+                    let n2 = p.int(3, "number of inner boundaries N2")?;
+                    let outer = if n1 != 0 {
+                        self.ptr(&p, 4, "outer boundary")?
+                    } else {
+                        None
+                    };
+                    Source::Trimmed {
+                        surf,
+                        n1,
+                        n2,
+                        outer,
+                    }
+                }
+                143 => {
+                    let p = self.params(k)?;
+                    let surf = self.need_ptr(&p, 2, "surface")?;
+                    let n = p.count(3, "number of boundaries", 0, p.len())?;
+                    let mut bounds = Vec::with_capacity(n);
+                    for i in 0..n {
+                        bounds.push(self.need_ptr(&p, 4 + i, "boundary")?);
+                    }
+                    Source::Bounded { surf, bounds }
+                }
+                510 => {
+                    let p = self.params(k)?;
+                    let surf = self.need_ptr(&p, 1, "surface")?;
+                    let n = p.count(2, "number of loops", 0, p.len())?;
+                    let mut loops = Vec::with_capacity(n);
+                    for i in 0..n {
+                        loops.push(self.need_ptr(&p, 4 + i, "loop")?);
+                    }
+                    Source::Face { surf, loops }
+                }
+                _ => continue,
+            };
+            match &src {
+                Source::Trimmed { surf, .. }
+                | Source::Bounded { surf, .. }
+                | Source::Face { surf, .. } => {
+                    is_base[*surf] = true;
+                }
+                Source::Lone => {}
+            }
+            sources.push((k, src));
+        }
+        for (k, (de, base)) in self.des.iter().zip(&is_base).enumerate() {
+            if de.etype == 128 && !base {
+                sources.push((k, Source::Lone));
+            }
+        }
+        sources.sort_by_key(|s| s.0);
+        if sources.is_empty() {
+            return Err(ReferenceError::whole(
+                self.path,
+                "the file has no face: no rational B-spline surface (entity 128), trimmed surface (144), bounded surface (143) or face (510); export the reference as surfaces, not as curves, points or a mesh",
+            ));
+        }
+        let mut faces = Vec::with_capacity(sources.len());
+        for (k, src) in sources {
+            faces.push(self.face(k, src)?);
+        }
+        Ok(faces)
+    }
+
+    fn face(&self, k: usize, src: Source) -> Result<FaceData, ReferenceError> {
+        let s = match &src {
+            Source::Trimmed { surf, .. }
+            | Source::Bounded { surf, .. }
+            | Source::Face { surf, .. } => *surf,
+            Source::Lone => k,
+        };
+        let sde = &self.des[s];
+        let entity = Self::who(sde);
+        let line = self
+            .p
+            .get((sde.pstart.max(1) - 1) as usize)
+            .map_or(sde.line, |l| l.number);
+        let base = match sde.etype {
+            128 => self.surface(s)?,
+            108 | 190 => Base::Plane,
+            _ => Base::Other,
+        };
+        let (surface, closed, sub) = match base {
+            Base::BSpline(surface, closed, sub) => (surface, closed, sub),
+            other => {
+                let kind = if matches!(other, Base::Plane) {
+                    SurfaceKind::Plane
+                } else {
+                    SurfaceKind::Other
+                };
+                return Ok(FaceData {
+                    kind,
+                    entity,
+                    line,
+                    surface: None,
+                    closed: [false; 2],
+                    trimmed: true,
+                    area: 0.0,
+                    bbox: None,
+                });
+            }
+        };
+        let (area, bbox) = geom::area_and_bbox(&surface);
+        let ([u0, u1], [v0, v1]) = surface.domain();
+        let dom = [[u0, v0], [u1, v1]];
+        let untrimmed = !sub
+            && match &src {
+                Source::Lone => true,
+                Source::Trimmed { n1, n2, outer, .. } => {
+                    *n2 == 0
+                        && (*n1 == 0
+                            || match outer {
+                                Some(o) => self.outer_on_sides(*o, dom)?,
+                                None => false,
+                            })
+                }
+                Source::Bounded { bounds, .. } => match bounds.as_slice() {
+                    [b] => self.boundary_on_sides(*b, dom)?,
+                    _ => false,
+                },
+                Source::Face { loops, .. } => match loops.as_slice() {
+                    [l] => self.loop_on_corners(*l, &surface, bbox)?,
+                    _ => false,
+                },
+            };
+        let kind = if surface.is_rational() {
+            SurfaceKind::Rational
+        } else {
+            SurfaceKind::BSpline
+        };
+        Ok(FaceData {
+            kind,
+            entity,
+            line,
+            surface: Some(surface),
+            closed,
+            trimmed: !untrimmed,
+            area,
+            bbox: Some(bbox),
+        })
+    }
+
+    /// Entity 128 at index `k`, in metres.
+    fn surface(&self, k: usize) -> Result<Base, ReferenceError> {
+        let p = self.params(k)?;
+        let k1 = p.count(1, "K1 (u poles − 1)", 0, MAX_POLES - 1)?;
+        let k2 = p.count(2, "K2 (v poles − 1)", 0, MAX_POLES - 1)?;
+        let m1 = p.count(3, "M1 (u degree)", 1, MAX_DEGREE)?;
+        let m2 = p.count(4, "M2 (v degree)", 1, MAX_DEGREE)?;
+        let (nu, nv) = (k1 + 1, k2 + 1);
+        if nu * nv > MAX_POLES {
+            return Err(p.err(
+                1,
+                format!("it has {nu} × {nv} poles, more than the {MAX_POLES} read; simplify the surface (fewer poles) or export a smaller one"),
+            ));
+        }
+        let total = self.poles_read.get() + nu * nv;
+        if total > MAX_FILE_POLES {
+            return Err(p.err(
+                1,
+                format!("the faces up to this one have {total} poles, more than the {MAX_FILE_POLES} read from one file; export only the faces you need"),
+            ));
+        }
+        self.poles_read.set(total);
+        let closed = [
+            p.int(5, "PROP1 (closed in u)")? == 1,
+            p.int(6, "PROP2 (closed in v)")? == 1,
+        ];
+        let polynomial = p.int(7, "PROP3 (polynomial)")? == 1;
+        let (na, nb) = (nu + m1 + 1, nv + m2 + 1);
+        let ku0 = 10;
+        let kv0 = ku0 + na;
+        let w0 = kv0 + nb;
+        let p0 = w0 + nu * nv;
+        let d0 = p0 + 3 * nu * nv;
+        p.need(0, d0 + 4, "knots, weights, poles and U0 U1 V0 V1")?;
+        let reals = |from: usize, n: usize, what: &str| -> Result<Vec<f64>, ReferenceError> {
+            (from..from + n).map(|i| p.real(i, what)).collect()
+        };
+        let ku = reals(ku0, na, "u knot")?;
+        let kv = reals(kv0, nb, "v knot")?;
+        let w = reals(w0, nu * nv, "weight")?;
+        let xyz = reals(p0, 3 * nu * nv, "control point coordinate")?;
+        let range = reals(d0, 4, "parameter range U0 U1 V0 V1")?;
+        let transform = self.transform(k, 0)?;
+        let scale = self.global.metres_per_unit;
+        let mut poles = Vec::with_capacity(nu * nv);
+        for (i, c) in xyz.chunks(3).enumerate() {
+            let mut x = DVec3::new(c[0], c[1], c[2]);
+            if let Some(m) = &transform {
+                x = apply(m, x);
+            }
+            let x = x * scale;
+            if !x.is_finite() {
+                return Err(p.err(
+                    p0 + 3 * i,
+                    format!(
+                        "control point {} is not finite in metres; {REEXPORT}",
+                        i + 1
+                    ),
+                ));
+            }
+            poles.push(x);
+        }
+        let rational = !polynomial && w.iter().any(|&x| x != w[0]);
+        let weights = if rational {
+            Some(Grid::new(nv, nu, w).map_err(|e| p.err(w0, e.to_string()))?)
+        } else if !polynomial && w[0] <= 0.0 {
+            return Err(p.err(
+                w0,
+                format!("the weights are all {}, not positive; {REEXPORT}", w[0]),
+            ));
+        } else {
+            None
+        };
+        let poles = Grid::new(nv, nu, poles).map_err(|e| p.err(p0, e.to_string()))?;
+        let surface = NurbsSurface::new(m1, m2, ku, kv, poles, weights).map_err(|e| {
+            let at = match &e {
+                NurbsError::KnotsDecrease {
+                    direction: 'u',
+                    index,
+                }
+                | NurbsError::KnotMultiplicity {
+                    direction: 'u',
+                    index,
+                    ..
+                } => ku0 + index,
+                NurbsError::KnotsDecrease { index, .. }
+                | NurbsError::KnotMultiplicity { index, .. } => kv0 + index,
+                NurbsError::EmptyDomain { direction: 'u' } => ku0,
+                NurbsError::EmptyDomain { .. } => kv0,
+                NurbsError::NonPositiveWeight { row, col, .. } => w0 + row * nu + col,
+                _ => 1,
+            };
+            p.err(at, e.to_string())
+        })?;
+        let ([u0, u1], [v0, v1]) = surface.domain();
+        let sub = |a: f64, b: f64, lo: f64, hi: f64| {
+            let tol = 1e-9 * (hi - lo);
+            a < b && a >= lo - tol && b <= hi + tol && (a > lo + tol || b < hi - tol)
+        };
+        let sub = sub(range[0], range[1], u0, u1) || sub(range[2], range[3], v0, v1);
+        Ok(Base::BSpline(surface, closed, sub))
+    }
+
+    /// The matrix `[R | T]` of entry `k`'s transformation (entity 124),
+    /// composed with the matrix of that entity in turn; `None` for none.
+    fn transform(&self, k: usize, depth: usize) -> Result<Option<[[f64; 4]; 3]>, ReferenceError> {
+        let de = &self.des[k];
+        if de.transform == 0 {
+            return Ok(None);
+        }
+        let t = de.transform.unsigned_abs() as usize;
+        if t.is_multiple_of(2) || t / 2 >= self.des.len() || self.des[t / 2].etype != 124 {
+            return Err(self.de_err(
+                de,
+                49,
+                format!("its transformation matrix pointer {t} is not the DE of a transformation matrix (124); {REEXPORT}"),
+            ));
+        }
+        if depth >= MAX_CHAIN {
+            return Err(self.de_err(
+                de,
+                49,
+                format!("its transformation matrices chain more than {MAX_CHAIN} deep (a cycle?); {REEXPORT}"),
+            ));
+        }
+        let p = self.params(t / 2)?;
+        let mut m = [[0.0; 4]; 3];
+        for (r, row) in m.iter_mut().enumerate() {
+            for (c, x) in row.iter_mut().enumerate() {
+                *x = p.real(1 + 4 * r + c, "matrix entry")?;
+            }
+        }
+        Ok(Some(match self.transform(t / 2, depth + 1)? {
+            None => m,
+            Some(parent) => compose(&parent, &m),
+        }))
+    }
+
+    /// Whether a 142's parameter-space curve runs along the domain's sides.
+    fn outer_on_sides(&self, k: usize, dom: [[f64; 2]; 2]) -> Result<bool, ReferenceError> {
+        if self.des[k].etype != 142 {
+            return Ok(false);
+        }
+        let p = self.params(k)?;
+        match self.ptr(&p, 3, "parameter-space curve")? {
+            Some(c) => self.curve_on_sides(c, dom, 0),
+            None => Ok(false),
+        }
+    }
+
+    /// Whether a 141's parameter-space curves all run along the domain's
+    /// sides.
+    fn boundary_on_sides(&self, k: usize, dom: [[f64; 2]; 2]) -> Result<bool, ReferenceError> {
+        if self.des[k].etype != 141 {
+            return Ok(false);
+        }
+        let p = self.params(k)?;
+        let n = p.count(4, "number of curves", 0, p.len())?;
+        let mut i = 5;
+        for _ in 0..n {
+            let kk = p.count(i + 2, "number of parameter-space curves", 0, p.len())?;
+            if kk == 0 {
+                return Ok(false);
+            }
+            for j in 0..kk {
+                let c = self.need_ptr(&p, i + 3 + j, "parameter-space curve")?;
+                if !self.curve_on_sides(c, dom, 0)? {
+                    return Ok(false);
+                }
+            }
+            i += 3 + kk;
+        }
+        Ok(n > 0)
+    }
+
+    /// Whether a parameter-space curve (110, 126, or a 102 of them) lies
+    /// along the domain's sides, each piece along one side.
+    fn curve_on_sides(
+        &self,
+        k: usize,
+        dom: [[f64; 2]; 2],
+        depth: usize,
+    ) -> Result<bool, ReferenceError> {
+        let tol = 1e-6 * ((dom[1][0] - dom[0][0]).hypot(dom[1][1] - dom[0][1]));
+        let on_one_side = |pts: &[[f64; 2]]| {
+            (0..2).any(|axis| {
+                [dom[0][axis], dom[1][axis]]
+                    .iter()
+                    .any(|side| pts.iter().all(|q| (q[axis] - side).abs() <= tol))
+            })
+        };
+        match self.des[k].etype {
+            110 => {
+                let p = self.params(k)?;
+                let a = [p.real(1, "X1")?, p.real(2, "Y1")?];
+                let b = [p.real(4, "X2")?, p.real(5, "Y2")?];
+                Ok(on_one_side(&[a, b]))
+            }
+            126 => {
+                let p = self.params(k)?;
+                let kk = p.count(1, "K (poles − 1)", 0, MAX_POLES - 1)?;
+                let m = p.count(2, "M (degree)", 1, MAX_DEGREE)?;
+                let p0 = 7 + (kk + m + 2) + (kk + 1);
+                p.need(p0, 3 * (kk + 1), "control points")?;
+                let mut pts = Vec::with_capacity(kk + 1);
+                for i in 0..=kk {
+                    pts.push([p.real(p0 + 3 * i, "X")?, p.real(p0 + 3 * i + 1, "Y")?]);
+                }
+                Ok(on_one_side(&pts))
+            }
+            102 => {
+                if depth >= MAX_CHAIN {
+                    return Err(self.de_err(&self.des[k], 1, format!("composite curves nest more than {MAX_CHAIN} deep (a cycle?); {REEXPORT}")));
+                }
+                let p = self.params(k)?;
+                let n = p.count(1, "number of curves", 0, p.len())?;
+                for i in 0..n {
+                    let c = self.need_ptr(&p, 2 + i, "curve")?;
+                    if !self.curve_on_sides(c, dom, depth + 1)? {
+                        return Ok(false);
+                    }
+                }
+                Ok(n > 0)
+            }
+            _ => Ok(false),
+        }
+    }
+
+    /// Whether a 508 loop has at most four edges, every vertex on one of
+    /// the surface's corners.
+    fn loop_on_corners(
+        &self,
+        k: usize,
+        s: &NurbsSurface,
+        bbox: Bbox,
+    ) -> Result<bool, ReferenceError> {
+        if self.des[k].etype != 508 {
+            return Ok(false);
+        }
+        let p = self.params(k)?;
+        let n = p.count(1, "number of edges", 0, p.len())?;
+        if n == 0 || n > 4 {
+            return Ok(false);
+        }
+        let corners = geom::corners(s);
+        let tol = geom::corner_tolerance(bbox);
+        let on_corner = |x: DVec3| corners.iter().any(|c| c.distance(x) <= tol);
+        let mut i = 2;
+        for _ in 0..n {
+            let ty = p.int(i, "edge type")?;
+            let list = self.need_ptr(&p, i + 1, "edge or vertex list")?;
+            let ndx = p.count(i + 2, "list index", 1, p.len())?;
+            let kk = p.count(i + 4, "number of parameter-space curves", 0, p.len())?;
+            let verts = if ty == 1 {
+                vec![(list, ndx)]
+            } else {
+                if self.des[list].etype != 504 {
+                    return Ok(false);
+                }
+                let e = self.params(list)?;
+                let at = 2 + 5 * (ndx - 1);
+                e.need(at, 5, "edge")?;
+                let sv = self.need_ptr(&e, at + 1, "start vertex list")?;
+                let si = e.count(at + 2, "start vertex index", 1, MAX_POLES)?;
+                let tv = self.need_ptr(&e, at + 3, "end vertex list")?;
+                let ti = e.count(at + 4, "end vertex index", 1, MAX_POLES)?;
+                vec![(sv, si), (tv, ti)]
+            };
+            for (vl, vi) in verts {
+                if self.des[vl].etype != 502 {
+                    return Ok(false);
+                }
+                let v = self.params(vl)?;
+                let at = 2 + 3 * (vi - 1);
+                let x = DVec3::new(
+                    v.real(at, "vertex X")?,
+                    v.real(at + 1, "vertex Y")?,
+                    v.real(at + 2, "vertex Z")?,
+                ) * self.global.metres_per_unit;
+                if !on_corner(x) {
+                    return Ok(false);
+                }
+            }
+            i += 5 + 2 * kk;
+        }
+        Ok(true)
+    }
+}
+
+/// `m x` for the matrix `[R | T]`.
+fn apply(m: &[[f64; 4]; 3], x: DVec3) -> DVec3 {
+    let r = |i: usize| m[i][0] * x.x + m[i][1] * x.y + m[i][2] * x.z + m[i][3];
+    DVec3::new(r(0), r(1), r(2))
+}
+
+/// `a ∘ b` (first `b`, then `a`) for matrices `[R | T]`.
+fn compose(a: &[[f64; 4]; 3], b: &[[f64; 4]; 3]) -> [[f64; 4]; 3] {
+    let mut out = [[0.0; 4]; 3];
+    for i in 0..3 {
+        for j in 0..4 {
+            let mut s: f64 = (0..3).map(|k| a[i][k] * b[k][j]).sum();
+            if j == 3 {
+                s += a[i][3];
+            }
+            out[i][j] = s;
+        }
+    }
+    out
+}
