@@ -1,4 +1,4 @@
-//! `fit FILE --out DESIGN.ron`: a streamline design fitted to a face of a
+//! `fit FILE --out design.ron`: a streamline design fitted to a face of a
 //! STEP or IGES file within a tolerance (`docs/math.md §12`), saved as a
 //! scene, with the deviation measured both ways.
 //!
