@@ -101,6 +101,8 @@ shot analysis-comb car1 --panel analysis --comb
 # docs/cad.md: the deviation map, and File ▸ CAD export after a script's
 # Export (run from a folder of its own: the section proposes a path there)
 shot analysis-deviation car1 --panel analysis --analysis deviation
+# docs/editor.md, docs/fit.md: the map to the reference of a fitted design
+shot analysis-reference scenes/references/hood.ron --panel analysis --analysis reference
 mkdir -p "$T/cad"
 echo '(steps: [Export("car1.step")])' > "$T/cad/export.ron"
 cd "$T/cad"

@@ -58,7 +58,7 @@ pub struct ScreenshotArgs {
     /// Open only this panel section: file, patches, subdivision, structure, selection, display, tuning, analysis, mesh, stats, initial, curvature.
     #[arg(long)]
     panel: Option<String>,
-    /// Surface display: shaded, gaussian, mean, zebra, deviation (from the fitted B-spline surface).
+    /// Surface display: shaded, gaussian, mean, zebra, deviation (from the fitted B-spline surface), reference (distance to the design's reference).
     #[arg(long)]
     analysis: Option<String>,
     /// Draw curvature combs.
@@ -119,7 +119,7 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
         None => None,
         Some(m) => Some(SurfaceMode::parse(m).ok_or_else(|| {
             CliError::Usage(format!(
-                "--analysis '{m}': choose shaded, gaussian, mean, zebra or deviation"
+                "--analysis '{m}': choose shaded, gaussian, mean, zebra, deviation or reference"
             ))
         })?),
     };

@@ -37,6 +37,7 @@ pub use panels::{PanelName, UiState};
 pub use screenshot::ScreenshotRequest;
 use std::path::PathBuf;
 pub use surface::analysis::{AnalysisSettings, SurfaceMode};
+pub use surface::reference_map::{ReferenceField, ReferenceMapPlugin};
 
 /// How to open the editor.
 pub struct EditorOptions {
@@ -88,6 +89,7 @@ impl Plugin for EditorPlugin {
             document::import::ImportPlugin,
             surface::patches::PatchSurfacesPlugin,
             surface::patch_maps::PatchMapsPlugin,
+            surface::reference_map::ReferenceMapPlugin,
             seams::SeamsPlugin,
         ));
     }

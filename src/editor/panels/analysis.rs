@@ -1,9 +1,10 @@
 //! Analysis: curvature comb, Gaussian and mean curvature maps (with legend and
-//! range), zebra stripes, the deviation map (with its fit's figures), and
-//! the seams of a design of several patches (`seam_table`).
+//! range), zebra stripes, the deviation map (with its fit's figures), the
+//! map to the reference (with its largest and mean distance), and the seams of a design of several patches (`seam_table`).
 
 use crate::editor::surface::analysis::{AnalysisSettings, CurvatureField, SurfaceMode, diverging};
 use crate::editor::surface::deviation::{BANDS, DeviationField, FRAME_BUDGET_S};
+use crate::editor::surface::reference_map::{LIVE_POINTS, ReferenceField, TOLERANCE_SHARE};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::egui;
@@ -14,13 +15,14 @@ pub struct AnalysisSection<'w> {
     pub settings: ResMut<'w, AnalysisSettings>,
     pub field: Res<'w, CurvatureField>,
     pub deviation: Res<'w, DeviationField>,
+    pub reference: Res<'w, ReferenceField>,
     pub seams: Res<'w, crate::editor::seams::Seams>,
 }
 
 pub fn show(ui: &mut egui::Ui, p: &mut AnalysisSection) {
     // the widgets edit a copy; the settings are written only when it differs
     let mut a = p.settings.clone();
-    widgets(ui, &mut a, &p.field, &p.deviation);
+    widgets(ui, &mut a, &p.field, &p.deviation, &p.reference);
     p.settings.set_if_neq(a);
     super::seam_table::show(ui, &p.seams);
 }
@@ -30,6 +32,7 @@ fn widgets(
     a: &mut AnalysisSettings,
     field: &CurvatureField,
     deviation: &DeviationField,
+    reference: &ReferenceField,
 ) {
     ui.horizontal_wrapped(|ui| {
         for (m, tip) in [
@@ -41,6 +44,7 @@ fn widgets(
         ] {
             ui.radio_value(&mut a.mode, m, m.name()).on_hover_text(tip);
         }
+        reference_radio(ui, a, reference.has_reference);
     });
     match a.mode {
         SurfaceMode::Gaussian | SurfaceMode::Mean => {
@@ -72,6 +76,7 @@ fn widgets(
                 .on_hover_text("Number of light stripes over the half circle of directions");
         }
         SurfaceMode::Deviation => deviation_legend(ui, deviation),
+        SurfaceMode::Reference => reference_legend(ui, reference),
         SurfaceMode::Shaded => {}
     }
     ui.separator();
@@ -249,4 +254,73 @@ fn deviation_legend(ui: &mut egui::Ui, d: &DeviationField) {
     };
     ui.label(egui::RichText::new(when).weak())
         .on_hover_text("The fit at the display depth, timed; under a frame it follows the mouse");
+}
+
+/// The "to reference" choice: enabled only when the design has a reference.
+pub(super) fn reference_radio(ui: &mut egui::Ui, a: &mut AnalysisSettings, has: bool) {
+    let r = ui.add_enabled(
+        has,
+        egui::RadioButton::new(a.mode == SurfaceMode::Reference, "to reference"),
+    );
+    let r = if has {
+        r.on_hover_text("Distance of each shown point of the first patch to the reference the design was fitted to: green at 0, red at the tolerance and beyond")
+    } else {
+        r.on_disabled_hover_text("no reference: File ▸ Import surface…")
+    };
+    if r.clicked() {
+        a.mode = SurfaceMode::Reference;
+    }
+}
+
+/// The map to the reference: its ramp, tolerance, largest and mean distance.
+fn reference_legend(ui: &mut egui::Ui, r: &ReferenceField) {
+    if !r.has_reference {
+        ui.label("no reference: File ▸ Import surface…");
+        return;
+    }
+    if let Some(e) = &r.error {
+        ui.colored_label(
+            egui::Color32::from_rgb(210, 60, 50),
+            format!("reference not read: {e}"),
+        );
+        return;
+    }
+    let (rect, _) = ui.allocate_exact_size(
+        egui::vec2(ui.available_width().min(240.0), 14.0),
+        egui::Sense::hover(),
+    );
+    let painter = ui.painter_at(rect);
+    let n = 64;
+    for i in 0..n {
+        let [cr, cg, cb] =
+            crate::editor::surface::analysis::reference_ramp(i as f64 / (n - 1) as f64);
+        let x0 = rect.left() + rect.width() * i as f32 / n as f32;
+        let x1 = rect.left() + rect.width() * (i + 1) as f32 / n as f32;
+        painter.rect_filled(
+            egui::Rect::from_min_max(
+                egui::pos2(x0, rect.top()),
+                egui::pos2(x1 + 0.5, rect.bottom()),
+            ),
+            0.0,
+            egui::Color32::from_rgb(cr, cg, cb),
+        );
+    }
+    ui.label(format!("0 … ≥ {} (the tolerance)", short(r.tolerance)))
+        .on_hover_text(format!(
+            "{TOLERANCE_SHARE:e} of the reference face's bounding-box diagonal"
+        ));
+    if r.values.is_some() {
+        ui.label(format!(
+            "largest {}, mean {}",
+            short(r.distances.max),
+            short(r.distances.mean)
+        ));
+        ui.label(
+            egui::RichText::new(format!(
+                "measured in {:.1} ms (live during a drag up to {LIVE_POINTS} points, else when it ends)",
+                r.seconds * 1e3
+            ))
+            .weak(),
+        );
+    }
 }

@@ -257,6 +257,7 @@ fn view_menu(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut Sections) {
     ] {
         ui.radio_value(&mut a.mode, m, title);
     }
+    super::analysis::reference_radio(ui, &mut a, s.analysis.reference.has_reference);
     ui.checkbox(&mut a.comb, "Curvature comb");
     s.analysis.settings.set_if_neq(a);
     ui.separator();

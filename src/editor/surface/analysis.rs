@@ -1,6 +1,7 @@
 //! Curvature displays: the curvature comb along streamlines, Gaussian and mean
-//! curvature colour maps with a legend, zebra stripes, and the deviation map
-//! ([`super::deviation`]). The numbers come from
+//! curvature colour maps with a legend, zebra stripes, the deviation map
+//! ([`super::deviation`]) and the map to the reference
+//! ([`super::reference_map`], which measures; the colours are put on here). The numbers come from
 //! the kernel ([`streamline_kernel::analysis`]); the GPU only looks a value up
 //! in a texture through the vertex's `u` coordinate, so stripes and colour bands
 //! stay crisp inside large triangles.
@@ -8,6 +9,7 @@
 use super::super::coords::to_view;
 use super::super::interaction::{Drag, EditorSet, MainCamera, OrbitCamera, SceneBounds};
 use super::deviation::{BANDS, DeviationField, band_u};
+use super::reference_map::{ReferenceField, ReferenceMeasure};
 use super::shaded::{ShadedMaterial, SurfaceEntity};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::exchange::ExportSettings;
@@ -37,16 +39,20 @@ pub enum SurfaceMode {
     /// Distance to the fitted B-spline surface (docs/cad.md): green within
     /// the export tolerance, yellow up to twice it, red beyond.
     Deviation,
+    /// Distance to the design's reference (docs/math.md §12,
+    /// [`super::reference_map`]): green at 0 to red at the tolerance.
+    Reference,
 }
 
 impl SurfaceMode {
     /// All modes, for the panel.
-    pub const ALL: [SurfaceMode; 5] = [
+    pub const ALL: [SurfaceMode; 6] = [
         SurfaceMode::Shaded,
         SurfaceMode::Gaussian,
         SurfaceMode::Mean,
         SurfaceMode::Zebra,
         SurfaceMode::Deviation,
+        SurfaceMode::Reference,
     ];
 
     /// Its name in the panel and on the command line.
@@ -57,6 +63,7 @@ impl SurfaceMode {
             SurfaceMode::Mean => "mean",
             SurfaceMode::Zebra => "zebra",
             SurfaceMode::Deviation => "deviation",
+            SurfaceMode::Reference => "reference",
         }
     }
 
@@ -125,6 +132,8 @@ pub(super) struct AnalysisMaterials {
     pub zebra: Handle<StandardMaterial>,
     /// The deviation map's bands.
     pub bands: Handle<StandardMaterial>,
+    /// The reference map's ramp, green (0) to red (the tolerance).
+    pub ramp: Handle<StandardMaterial>,
 }
 
 pub struct AnalysisPlugin;
@@ -134,8 +143,17 @@ impl Plugin for AnalysisPlugin {
         app.init_resource::<AnalysisSettings>()
             .init_resource::<CurvatureField>()
             .init_resource::<DeviationField>()
+            .init_resource::<ReferenceField>()
             .add_systems(Startup, setup)
-            .add_systems(Update, (apply_mode, draw_combs).in_set(EditorSet::Present))
+            .add_systems(
+                Update,
+                (
+                    apply_mode.after(ReferenceMeasure),
+                    draw_combs,
+                    show_reference.before(ReferenceMeasure),
+                )
+                    .in_set(EditorSet::Present),
+            )
             .add_systems(
                 Update,
                 defer_normals.after(EditorSet::Drag).before(ModelSet::Edit),
@@ -153,6 +171,19 @@ pub fn diverging(u: f64) -> [u8; 3] {
         (mid, hi, (u - 0.5) * 2.0)
     };
     let c = |i: usize| ((a[i] + (b[i] - a[i]) * t) * 255.0).round() as u8;
+    [c(0), c(1), c(2)]
+}
+
+/// The reference map's ramp: green (0) through yellow to red (1), the
+/// deviation map's three colours ([`BANDS`]) blended.
+pub fn reference_ramp(u: f64) -> [u8; 3] {
+    let u = u.clamp(0.0, 1.0);
+    let (a, b, t) = if u < 0.5 {
+        (BANDS[0], BANDS[1], u * 2.0)
+    } else {
+        (BANDS[1], BANDS[2], (u - 0.5) * 2.0)
+    };
+    let c = |i: usize| (a[i] as f64 + (b[i] as f64 - a[i] as f64) * t).round() as u8;
     [c(0), c(1), c(2)]
 }
 
@@ -220,7 +251,20 @@ fn setup(
         colormap: materials.add(material(images.add(ramp))),
         zebra: materials.add(material(images.add(stripes))),
         bands: materials.add(material(images.add(bands))),
+        ramp: materials.add(material(images.add(texture(
+            (0..256).map(|i| reference_ramp(i as f64 / 255.0)).collect(),
+            false,
+        )))),
     });
+}
+
+/// Tells the map to the reference whether it is shown
+/// ([`super::reference_map`]).
+fn show_reference(settings: Res<AnalysisSettings>, mut field: ResMut<ReferenceField>) {
+    let shown = settings.mode == SurfaceMode::Reference;
+    if field.shown != shown {
+        field.shown = shown;
+    }
 }
 
 /// Lets the mesh stage leave the surface's `f64` normals behind
@@ -265,6 +309,7 @@ pub(super) fn apply_mode(
         ResMut<ExportSettings>,
         Res<ButtonInput<MouseButton>>,
     ),
+    reference: Res<ReferenceField>,
     (joined, rebuilt, mut removed): (
         crate::ecs::joined::JoinedRead,
         Query<(), Changed<PatchSurface>>,
@@ -273,7 +318,7 @@ pub(super) fn apply_mode(
     mut meshes: ResMut<Assets<Mesh>>,
     surface: Single<(&Mesh3d, &mut MeshMaterial3d<StandardMaterial>), With<SurfaceEntity>>,
     camera: Query<&OrbitCamera, With<MainCamera>>,
-    mut last: Local<Option<(AnalysisSettings, Option<DVec3>)>>,
+    mut last: Local<Option<(AnalysisSettings, Option<DVec3>, u64)>>,
 ) {
     let _meter = meter.start();
     let surface_changed = changes.take().any();
@@ -297,6 +342,8 @@ pub(super) fn apply_mode(
             &shaded.0
         }
         SurfaceMode::Deviation => &mats.bands,
+        SurfaceMode::Reference if reference.values.is_none() => &shaded.0,
+        SurfaceMode::Reference => &mats.ramp,
     };
     if material.0 != *want {
         material.0 = want.clone();
@@ -304,7 +351,12 @@ pub(super) fn apply_mode(
     let eye = eye_point(&camera);
     let zebra = settings.mode == SurfaceMode::Zebra;
     // zebra stripes are reflections: they move with the eye
-    let key = (settings.clone(), zebra.then_some(eye));
+    let measured = (settings.mode == SurfaceMode::Reference).then_some(reference.generation);
+    let key = (
+        settings.clone(),
+        zebra.then_some(eye),
+        measured.unwrap_or(0),
+    );
     // a fit slower than a frame waits for the drag to end (docs/cad.md)
     let deferred = settings.mode == SurfaceMode::Deviation
         && deviation.stale
@@ -381,6 +433,12 @@ pub(super) fn apply_mode(
                 .map(|&d| [band_u(d, deviation.tolerance), 0.5])
                 .collect()
         }
+        SurfaceMode::Reference => {
+            let Some(v) = reference.values.as_ref() else {
+                return;
+            };
+            ramp_uv(v, reference.tolerance)
+        }
         SurfaceMode::Shaded => return,
     };
     // the colours the map shows, for a glTF export's COLOR_0 (docs/cad.md)
@@ -409,6 +467,7 @@ fn vertex_color(mode: SurfaceMode, u: f32) -> [f32; 4] {
             }
         }
         SurfaceMode::Deviation => BANDS[((u * 3.0) as usize).min(2)],
+        SurfaceMode::Reference => reference_ramp(u as f64),
         SurfaceMode::Shaded => [255, 255, 255],
     };
     let linear = |c: u8| {
@@ -431,6 +490,16 @@ pub(super) fn colormap_uv(values: &[f64], limit: f64) -> Vec<[f32; 2]> {
     values
         .iter()
         .map(|&x| [(0.5 + 0.5 * (x / limit).clamp(-1.0, 1.0)) as f32, 0.5])
+        .collect()
+}
+
+/// The reference map's `u` of distances: `[0, tolerance]` onto the ramp,
+/// clamped beyond.
+pub(super) fn ramp_uv(distances: &[f64], tolerance: f64) -> Vec<[f32; 2]> {
+    let t = tolerance.max(f64::MIN_POSITIVE);
+    distances
+        .iter()
+        .map(|&d| [(d / t).clamp(0.0, 1.0) as f32, 0.5])
         .collect()
 }
 

@@ -12,7 +12,9 @@
 //! curves more saturates). A patch's coordinates are made again only when
 //! its surface was rebuilt, its mesh was made afresh, or the mode, the
 //! limit, the stripes or (for zebra) the eye moved, and only while it is
-//! shown (a hidden patch gets its map when shown again). The deviation map
+//! shown (a hidden patch gets its map when shown again). The map to the
+//! reference is the first patch's only (the others stay shaded: a later
+//! patch is a surface of its own, not on the reference). The deviation map
 //! colours each patch by its distance to its own face of the STEP shell,
 //! within that face's tolerance ([`DeviationField::joined`]); a patch
 //! without distances (the fit was refused) stays shaded.
@@ -90,7 +92,8 @@ fn patch_uv(
             let (d, tolerance) = deviation?;
             Some(d.iter().map(|&d| [band_u(d, *tolerance), 0.5]).collect())
         }
-        SurfaceMode::Shaded => None,
+        // only the first patch is measured against the reference
+        SurfaceMode::Shaded | SurfaceMode::Reference => None,
     }
 }
 
@@ -120,7 +123,7 @@ fn color_patch_maps(
         SurfaceMode::Gaussian | SurfaceMode::Mean => &mats.colormap,
         SurfaceMode::Zebra => &mats.zebra,
         SurfaceMode::Deviation => &mats.bands,
-        SurfaceMode::Shaded => &shaded.0,
+        SurfaceMode::Shaded | SurfaceMode::Reference => &shaded.0,
     };
     let key = MapKey {
         mode,
@@ -219,7 +222,8 @@ mod tests {
             )
             .add_plugins((PatchSurfacesPlugin, PatchMapsPlugin));
         let mut mats = app.world_mut().resource_mut::<Assets<StandardMaterial>>();
-        let (shaded, colormap, zebra, bands) = (
+        let (shaded, colormap, zebra, bands, ramp) = (
+            mats.add(StandardMaterial::default()),
             mats.add(StandardMaterial::default()),
             mats.add(StandardMaterial::default()),
             mats.add(StandardMaterial::default()),
@@ -230,6 +234,7 @@ mod tests {
                 colormap,
                 zebra,
                 bands,
+                ramp,
             });
         app.world_mut().resource_mut::<CurvatureField>().limit = limit;
         app.world_mut()

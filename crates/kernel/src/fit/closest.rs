@@ -209,11 +209,28 @@ impl KdTree {
     }
 }
 
+/// The reference a [`ClosestPoints`] measures against: borrowed (a fit, a
+/// measurement that ends with the caller) or shared (an index kept while the
+/// design changes, as the editor's map keeps it).
+enum Held<'a> {
+    Borrowed(&'a dyn ReferenceSurface),
+    Shared(std::sync::Arc<dyn ReferenceSurface + Send>),
+}
+
+impl Held<'_> {
+    fn get(&self) -> &dyn ReferenceSurface {
+        match self {
+            Held::Borrowed(r) => *r,
+            Held::Shared(r) => r.as_ref(),
+        }
+    }
+}
+
 /// The closest points of a reference: a dense sample in a k-d tree, then
 /// Gauss–Newton (eq. 12.6). Build once, query often (the editor's
 /// deviation map).
 pub struct ClosestPoints<'a> {
-    reference: &'a dyn ReferenceSurface,
+    reference: Held<'a>,
     du: [f64; 2],
     dv: [f64; 2],
     params: Vec<(f64, f64)>,
@@ -243,6 +260,11 @@ impl<'a> ClosestPoints<'a> {
     /// spans). A domain that is empty or not finite, or a non-finite point,
     /// is an error.
     pub fn new(reference: &'a dyn ReferenceSurface) -> Result<Self, ReferenceFitError> {
+        Self::build(Held::Borrowed(reference))
+    }
+
+    fn build(held: Held<'a>) -> Result<Self, ReferenceFitError> {
+        let reference = held.get();
         let (du, dv) = reference.domain();
         for (direction, d) in [('u', du), ('v', dv)] {
             if !(d[0].is_finite() && d[1].is_finite() && d[1] > d[0]) {
@@ -268,13 +290,21 @@ impl<'a> ClosestPoints<'a> {
             |(lo, hi), p| (lo.min(*p), hi.max(*p)),
         );
         Ok(ClosestPoints {
-            reference,
+            reference: held,
             du,
             dv,
             params,
             tree: KdTree::new(&points),
             stop: NEWTON_STOP * (hi - lo).length(),
         })
+    }
+
+    /// [`Self::new`] on a reference it keeps, for an index that outlives
+    /// the caller's borrow (the editor keeps one in a resource).
+    pub fn shared(
+        reference: std::sync::Arc<dyn ReferenceSurface + Send>,
+    ) -> Result<ClosestPoints<'static>, ReferenceFitError> {
+        ClosestPoints::build(Held::Shared(reference))
     }
 
     /// Number of samples.
@@ -294,7 +324,8 @@ impl<'a> ClosestPoints<'a> {
             .get(i)
             .copied()
             .unwrap_or((self.du[0], self.dv[0]));
-        let (d, nu, nv) = refine_closest(self.reference, p, u, v, self.du, self.dv, self.stop);
+        let (d, nu, nv) =
+            refine_closest(self.reference.get(), p, u, v, self.du, self.dv, self.stop);
         if d <= d2.sqrt() {
             (d, nu, nv)
         } else {
