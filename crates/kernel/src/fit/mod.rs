@@ -11,6 +11,8 @@
 //! * [`construct`]: a control net from row and column positions (tangent
 //!   samples, arc lengths, phantom rows and columns of the approximating
 //!   schemes);
+//! * `measure`: a built mesh measured against the reference both ways, and
+//!   the cells' scores that say where the net grows;
 //! * [`closest`]: closest points on the reference (Newton from the nearest
 //!   sample) and the distance from the reference to a design's mesh;
 //! * [`grow`]: the greedy growth of the net and the [`ReferenceFit`] it
@@ -22,6 +24,7 @@ pub mod construct;
 pub mod error;
 pub mod grow;
 pub mod initial;
+mod measure;
 pub mod options;
 pub mod reference;
 
