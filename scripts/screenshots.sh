@@ -190,6 +190,19 @@ gui dialog-new-design "${XVFB[@]}" bash tests/gui/authoring.sh "$BIN" "$T/new/di
 # File ▸ Import surface… with hood.step picked in the file browser
 # (docs/editor.md, docs/fit.md)
 gui dialog-import-surface env SHOT_ARGS="--msaa 4" "${XVFB[@]}" bash tests/gui/import.sh "$BIN" "$T/new/dialog-import-surface.png" "$T/i.json" dialog "$ROOT/scenes/references/hood.step"
+# the walk-through of docs/fit.md (tests/gui/reference.sh, which
+# tests/editor_gui_reference.rs checks): the import dialog, the fitted hood
+# with its map to the reference, a handle dragged (red), undone (green)
+walk() { gui "fit-walk-$1" "${XVFB[@]}" bash tests/gui/reference.sh "$BIN" "$T/new/fit-walk-$1.png" "$T/w$1.json" "$2" "$ROOT/scenes/references/hood.step"; }
+walk 1-import dialog
+walk 2-fitted fitted
+walk 3-dragged dragged
+walk 4-undone undone
+# View ▸ Reference: the reference as a ghost over the hood with two tangents
+# turned (streamlines and sphere view off); File ▸ Reference… with
+# roof.step picked, its face drawn in the preview colour (docs/editor.md)
+gui reference-ghost env SHOT_ARGS="--msaa 4" ZOOM=2 GHOST_ENTRY="95 298 95 340 95 361" "${XVFB[@]}" bash tests/gui/ghost.sh "$BIN" "$T/new/reference-ghost.png" "$T/g.json" ghost
+gui dialog-reference env SHOT_ARGS="--msaa 4" REFERENCE_ENTRY="52 273" "${XVFB[@]}" bash tests/gui/ghost.sh "$BIN" "$T/new/dialog-reference.png" "$T/r.json" dialog "$ROOT/scenes/references/roof.step"
 cp "$T/2-insert.ron" "$T/menu.ron"
 gui menu-arrow "${XVFB[@]}" bash tests/gui/authoring.sh "$BIN" "$T/new/menu-arrow.png" "$T/m.json" menu "$T/menu.ron"
 # the menu bar and the file browser (docs/editor.md): a folder of designs,

@@ -1,5 +1,5 @@
 //! The bad-input catalogue (docs/math.md §8, docs/reliability.md): every broken
-//! scene, script, OBJ, STEP and IGES file in `tests/bad/` and the exact message it must
+//! scene, script, OBJ, STEP, IGES and STL file in `tests/bad/` and the exact message it must
 //! produce, from `tests/bad/catalogue.txt` (blocks of two lines: the file, its
 //! message). Each message names the file, the line and column (the whole file
 //! only where no line is at fault), what is wrong and, after a `;`, what to do.
@@ -16,9 +16,11 @@ const CATALOGUE: &str = "tests/bad/catalogue.txt";
 
 /// Messages that may name the whole file rather than a line: the fault is
 /// the absence of something, which sits on no line.
-const WHOLE_FILE: [&str; 2] = [
+const WHOLE_FILE: [&str; 3] = [
     "tests/bad/meshes/empty.obj",
     "tests/bad/meshes/no-faces.obj",
+    // a binary file has no lines: the message names the bytes
+    "tests/bad/references/truncated-binary.stl",
 ];
 
 fn inputs() -> Vec<PathBuf> {

@@ -1,9 +1,11 @@
 //! File ▸ Import surface… without a window: the dialog's job under
 //! `MinimalPlugins` (the model, the File feature's state and the import
 //! plugin; the egui window is not drawn). A file read, a face fitted on the
-//! job's thread, the design opened through the unsaved-changes rules of
-//! File ▸ New with its `reference` naming the file and face; Cancel and a
-//! file that cannot be read leave the design as it was.
+//! job's thread, the design imported in one undo step (as a new design,
+//! its `reference` naming the file and face; or as a new patch of the
+//! current design, unjoined, the first patch untouched), and one Undo
+//! bringing back the design before it bit for bit; Cancel and a file that
+//! cannot be read leave the design as it was.
 
 mod common;
 
@@ -11,10 +13,13 @@ use bevy::prelude::*;
 use common::headless_editor::{app, frame};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
+use streamline_studio::ecs::joined::DocState;
+use streamline_studio::ecs::joined::world_io::doc_state;
 use streamline_studio::ecs::patch::scene;
 use streamline_studio::ecs::{Edit, EditMessage, Model};
-use streamline_studio::editor::document::files::{Dialog, FileUi, Pending};
+use streamline_studio::editor::document::files::FileUi;
 use streamline_studio::editor::document::import::{ImportForm, ImportPlugin, JobEnd};
+use streamline_studio::editor::document::reference::ReferencePlugin;
 
 fn reference(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -25,7 +30,8 @@ fn reference(name: &str) -> PathBuf {
 /// The headless editor (the car) with the File state and the import plugin.
 fn editor() -> App {
     let mut a = app();
-    a.init_resource::<FileUi>().add_plugins(ImportPlugin);
+    a.init_resource::<FileUi>()
+        .add_plugins((ImportPlugin, ReferencePlugin));
     frame(&mut a);
     a
 }
@@ -55,10 +61,23 @@ fn net_of(app: &App) -> (String, usize, usize) {
     (s.name, s.design.net().rows(), s.design.net().cols())
 }
 
+/// The whole document, to compare bit for bit.
+fn doc(app: &App) -> DocState {
+    doc_state(app.world()).expect("the document is read")
+}
+
+/// Undo, one frame.
+fn undo(app: &mut App) {
+    app.world_mut().write_message(EditMessage::from(Edit::Undo));
+    frame(app);
+}
+
 #[test]
 fn a_fitted_face_replaces_the_design_with_its_reference() {
     let mut app = editor();
     let before = net_of(&app);
+    let before_doc = doc(&app);
+    let steps = common::headless_editor::undo_steps(&app);
     let hood = reference("hood.step");
     form(&mut app).read(hood.clone());
     {
@@ -96,28 +115,107 @@ fn a_fitted_face_replaces_the_design_with_its_reference() {
     assert_eq!(model.path, None);
     assert!(model.unsaved, "an imported design is unsaved");
     assert!(app.world().resource::<FileUi>().errors.is_empty());
+    assert_eq!(
+        common::headless_editor::undo_steps(&app),
+        steps + 1,
+        "one undo step"
+    );
+    // one Undo: the design before the import, bit for bit
+    undo(&mut app);
+    assert!(doc(&app).same(&before_doc), "undo brings the car back");
+    assert_eq!(net_of(&app), before);
+    assert!(scene(app.world()).reference.is_none());
 }
 
 #[test]
-fn unsaved_changes_are_asked_about_before_the_import() {
+fn a_fitted_face_as_a_new_patch_keeps_the_first_patch() {
+    let mut app = editor();
+    let before = doc(&app);
+    assert_eq!(before.len(), 1);
+    let steps = common::headless_editor::undo_steps(&app);
+    let roof = reference("roof.step");
+    form(&mut app).read(roof.clone());
+    form(&mut app).as_patch = true;
+    assert!(form(&mut app).start());
+    until_done(&mut app);
+    let f = app.world().resource::<ImportForm>();
+    let Some(JobEnd::Fitted(fitted)) = &f.last else {
+        panic!("the fit ended as {:?}", f.last);
+    };
+    assert!(fitted.fit.within, "{:?}", fitted.fit.why);
+    let fitted_net = fitted.fit.net;
+    let errors = &app.world().resource::<FileUi>().errors;
+    assert!(errors.is_empty(), "{errors:?}");
+    let after = doc(&app);
+    assert_eq!(after.len(), before.len() + 1, "one more patch");
+    assert_eq!(after.name(1), "roof");
+    assert_eq!(
+        (after.design(1).net().rows(), after.design(1).net().cols()),
+        fitted_net
+    );
+    // unjoined: it starts on its own initial curve
+    assert!(matches!(
+        after.joined[0].start,
+        streamline_studio::ecs::joined::StartState::Curve(_)
+    ));
+    // the first patch's surface is unchanged, bit for bit
+    assert!(streamline_studio::ecs::joined::same_design(
+        &before.first.design,
+        &after.first.design
+    ));
+    let mut first = after.first.clone();
+    first.reference = None;
+    assert!(
+        first.to_file() == before.first.to_file(),
+        "only the reference is new"
+    );
+    // the car had no reference: it takes the imported face
+    let link = after.first.reference.clone().expect("the imported face");
+    assert_eq!(
+        link.path.canonicalize().unwrap(),
+        roof.canonicalize().unwrap()
+    );
+    assert_eq!(common::headless_editor::undo_steps(&app), steps + 1);
+    assert!(app.world().resource::<Model>().unsaved);
+    // saved as a design of two patches, and read back so
+    let dir = std::env::temp_dir().join(format!("import-patch-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("car-and-roof.ron");
+    app.world_mut()
+        .write_message(EditMessage::from(Edit::Save(file.clone())));
+    frame(&mut app);
+    frame(&mut app);
+    let back = streamline_studio::scene::document_io::load(&file).expect("read back");
+    assert_eq!(back.patches.len(), 2);
+    assert!(matches!(
+        back.patches[1].start,
+        streamline_studio::scene::document::Start::Curve(_)
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    undo(&mut app);
+    assert!(
+        doc(&app).same(&before),
+        "undo: the design before, bit for bit"
+    );
+}
+
+#[test]
+fn unsaved_changes_stay_one_undo_away() {
     let mut app = editor();
     app.world_mut()
         .write_message(EditMessage::from(Edit::SetDisplayDepth(1)));
     frame(&mut app);
     assert!(app.world().resource::<Model>().unsaved);
-    let before = net_of(&app);
+    let before = doc(&app);
     form(&mut app).read(reference("roof.step"));
     assert!(form(&mut app).start());
     until_done(&mut app);
-    assert!(
-        matches!(
-            &app.world().resource::<FileUi>().dialog,
-            Some(Dialog::Unsaved(Pending::Import(_)))
-        ),
-        "the unsaved-changes question waits: {:?}",
-        app.world().resource::<FileUi>().dialog
-    );
-    assert_eq!(net_of(&app), before, "nothing replaced before the answer");
+    // no question: the import is one undo step, nothing is lost
+    assert!(app.world().resource::<FileUi>().dialog.is_none());
+    assert_eq!(scene(app.world()).name, "roof");
+    undo(&mut app);
+    assert!(doc(&app).same(&before), "the edited design, bit for bit");
+    assert_eq!(scene(app.world()).display_depth, 1);
 }
 
 #[test]

@@ -3,7 +3,9 @@
 //! plugin; no renderer). On the fitted hood the largest distance is the
 //! closest-point distance of the shown points and within the tolerance; a
 //! turned tangent takes the surface off the reference, and undo brings it
-//! back. A design without a reference has the mode disabled.
+//! back. An edit is measured again only where it moved the surface, and
+//! the map is then bit for bit the full measure (plain and mirrored). A
+//! design without a reference has the mode disabled.
 
 mod common;
 
@@ -33,9 +35,13 @@ fn editor(scene: streamline_studio::scene::Scene) -> App {
 }
 
 fn hood() -> App {
+    editor(hood_scene())
+}
+
+fn hood_scene() -> streamline_studio::scene::Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/references/hood.ron");
     let doc = streamline_studio::scene::document_io::load(&path).unwrap();
-    editor(doc.patch_scene(0))
+    doc.patch_scene(0)
 }
 
 /// The shown points of the first patch.
@@ -126,4 +132,83 @@ fn a_missing_reference_file_is_an_error_not_a_panic() {
     assert_eq!(field.values, None);
     let e = field.error.as_deref().expect("the read error is kept");
     assert!(e.contains("no-such-hood"), "{e}");
+}
+
+/// The map's distances and largest and mean distance, as bits.
+fn bits(app: &App) -> (Vec<u64>, u64, u64) {
+    let field = app.world().resource::<ReferenceField>();
+    let v = field.values.as_ref().expect("measured");
+    (
+        v.iter().map(|d| d.to_bits()).collect(),
+        field.distances.max.to_bits(),
+        field.distances.mean.to_bits(),
+    )
+}
+
+/// An edit is measured again in the window of points it moved, and the
+/// map is then the full measure bit for bit: each value, the largest and
+/// the mean. The values from before the edit are not (the negative
+/// control: a map that kept them would fail the comparison).
+fn incremental_equals_full(mirror: bool) {
+    let mut scene = hood_scene();
+    scene.mirror = mirror;
+    let mut app = editor(scene);
+    let (before, _, _) = bits(&app);
+    let total = shown(&app).len();
+    // the last as a frame of the bench's drag (`reference-deviation/hood/d5/drag-row`)
+    let turns = [
+        (4, 3, DVec3::Z, 8.0),
+        (1, 6, DVec3::Z, -5.0),
+        (7, 1, DVec3::Z, 3.0),
+        (4, 3, DVec3::Y, f64::to_degrees(-0.01)),
+    ];
+    for (row, col, axis, degrees) in turns {
+        apply(
+            &mut app,
+            Edit::Rotate {
+                row,
+                col,
+                axis,
+                radians: f64::to_radians(degrees),
+            },
+        )
+        .unwrap();
+        frame(&mut app);
+        let field = app.world().resource::<ReferenceField>();
+        let window = field
+            .window
+            .expect("a tangent's edit is measured in its window");
+        let measured = field.measured;
+        assert!(measured < total, "{measured} of {total} points measured");
+        eprintln!(
+            "mirror {mirror}: tangent ({row}, {col}): rows {}..={} × cols {}..={} measured, {measured} of {total} points",
+            window.rows.lo, window.rows.hi, window.cols.lo, window.cols.hi
+        );
+        let incremental = bits(&app);
+        app.world_mut()
+            .resource_mut::<ReferenceField>()
+            .remeasure_all();
+        frame(&mut app);
+        let field = app.world().resource::<ReferenceField>();
+        assert_eq!(field.window, None, "measured whole");
+        assert!(field.measured >= measured, "every measured point");
+        let full = bits(&app);
+        assert!(incremental.0 == full.0, "each value as the full measure's");
+        assert_eq!(incremental.1, full.1, "the largest distance");
+        assert_eq!(incremental.2, full.2, "the mean distance");
+        // negative control: the values from before the edits are not the map
+        let moved = before.iter().zip(&full.0).filter(|(a, b)| a != b).count();
+        assert!(moved > 0, "the edit moved the surface");
+        eprintln!("  {moved} of {total} values differ from before the edits");
+    }
+}
+
+#[test]
+fn an_edit_is_measured_where_it_moved_the_surface_and_equals_a_full_measure() {
+    incremental_equals_full(false);
+}
+
+#[test]
+fn a_mirrored_edit_is_measured_where_it_moved_the_surface_and_equals_a_full_measure() {
+    incremental_equals_full(true);
 }

@@ -11,7 +11,7 @@ use streamline_studio::fuzz;
 /// A fuzz target: any bytes in, a panic only when an invariant breaks.
 type Target = fn(&[u8]);
 
-const TARGETS: [(&str, Target); 7] = [
+const TARGETS: [(&str, Target); 9] = [
     ("scene", fuzz::scene),
     ("script", fuzz::script),
     ("obj", fuzz::obj),
@@ -19,6 +19,8 @@ const TARGETS: [(&str, Target); 7] = [
     ("kernel", fuzz::kernel),
     ("step", fuzz::step),
     ("iges", fuzz::iges),
+    ("reference_obj", fuzz::reference_obj),
+    ("stl", fuzz::stl),
 ];
 
 /// Pieces that break parsers and geometry: numbers at the edges, brackets,
@@ -215,6 +217,16 @@ fn fuzz_step_short() {
 #[test]
 fn fuzz_iges_short() {
     run_target("iges", fuzz::iges);
+}
+
+#[test]
+fn fuzz_reference_obj_short() {
+    run_target("reference_obj", fuzz::reference_obj);
+}
+
+#[test]
+fn fuzz_stl_short() {
+    run_target("stl", fuzz::stl);
 }
 
 /// Every seed (whole, however large) and every input the long runs found

@@ -1,5 +1,8 @@
 //! `faces FILE [--json]`: the faces of a STEP or IGES file that a design can
-//! be fitted to (`docs/math.md §12`), one per line or as one JSON object.
+//! be fitted to (`docs/math.md §12`), the surface of an OBJ point grid, or
+//! the triangle mesh of an OBJ or STL file (kind `mesh`, with its triangle
+//! and vertex counts: measured against, never fitted), one per line or as
+//! one JSON object.
 
 use super::input::{CliError, write_stdout};
 use clap::Args;
@@ -10,7 +13,7 @@ use streamline_reference::{FaceInfo, ReferenceFile};
 /// Arguments of `faces`.
 #[derive(Debug, Args)]
 pub struct FacesArgs {
-    /// A STEP (.step, .stp) or IGES (.igs, .iges) file.
+    /// A STEP (.step, .stp), IGES (.igs, .iges), OBJ or STL file.
     file: PathBuf,
     /// Print one JSON object instead of a table.
     #[arg(long)]
@@ -66,6 +69,9 @@ fn describe(f: &FaceInfo) -> String {
     if let (Some([p, q]), Some([m, n])) = (f.degrees, f.poles) {
         s += &format!(", degrees {p} × {q}, {m} × {n} poles");
     }
+    if let (Some(t), Some(v)) = (f.triangles, f.vertices) {
+        s += &format!(", {t} triangles, {v} vertices (for measuring only, not fitted)");
+    }
     for (closed, periodic, dir) in [
         (f.closed[0], f.periodic[0], "u"),
         (f.closed[1], f.periodic[1], "v"),
@@ -88,6 +94,13 @@ fn describe(f: &FaceInfo) -> String {
             hi[2] - lo[2]
         );
     }
-    s += &format!(" ({}, line {})", f.entity, f.line);
+    if f.triangles.is_some() {
+        // a mesh's entity says its counts, given above
+        if f.line > 0 {
+            s += &format!(" (line {})", f.line);
+        }
+    } else {
+        s += &format!(" ({}, line {})", f.entity, f.line);
+    }
     s
 }

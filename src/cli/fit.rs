@@ -51,7 +51,9 @@ pub enum SchemeArg {
 /// Arguments of `fit`.
 #[derive(Debug, Args)]
 pub struct FitArgs {
-    /// A STEP (.step, .stp) or IGES (.igs, .iges) file.
+    /// A STEP (.step, .stp) or IGES (.igs, .iges) file, or an OBJ grid of
+    /// points (a triangle mesh, OBJ or STL, is refused: it is measured
+    /// against, never fitted).
     file: PathBuf,
     /// Which face (`faces FILE` lists them).
     #[arg(long, default_value_t = 0)]

@@ -145,6 +145,8 @@ fn is_document_edit(edit: &Edit) -> bool {
             | Edit::Save(_)
             | Edit::Export(_)
             | Edit::Patch(_)
+            | Edit::Import { .. }
+            | Edit::SetReference(_)
             | Edit::Author(crate::scene::edit::AuthorEdit::NewDesign { .. })
     )
 }
@@ -193,6 +195,14 @@ fn apply_doc(ctx: &mut EditCtx, work: &mut DocWork, edit: &Edit) -> Result<Strin
             ctx.model.path = origin.clone();
             ctx.model.unsaved = true;
             return Ok(format!("recovered {}", document.name));
+        }
+        Edit::Import { scene, as_patch } => return import(ctx, work, scene, *as_patch),
+        Edit::SetReference(link) => {
+            work.state.first.reference.clone_from(link);
+            return Ok(match link {
+                Some(l) => format!("reference {} face {}", l.path.display(), l.face),
+                None => "reference detached".into(),
+            });
         }
         Edit::Author(a @ crate::scene::edit::AuthorEdit::NewDesign { .. }) => {
             let (msg, effect) = super::authoring::apply(&mut work.state.first, a)?;
@@ -577,6 +587,8 @@ fn apply(ctx: &mut EditCtx, scene: &mut Scene, edit: &Edit) -> Result<String, Ed
         | Edit::Load(_)
         | Edit::Replace(_)
         | Edit::Recover { .. }
+        | Edit::Import { .. }
+        | Edit::SetReference(_)
         | Edit::Patch(_) => Ok(String::new()),
     }
 }
@@ -742,6 +754,75 @@ fn set_length(scene: &mut Scene, row: usize, col: usize, k: f64) -> Result<Strin
     check_design(&d, scene.max_depth(), scene.mirror).map_err(refused)?;
     scene.design = d;
     Ok(format!("length coefficient {k} at ({row}, {col})"))
+}
+
+/// File ▸ Import surface… (`Edit::Import`, one undo step): `scene` as the
+/// design, or its surface as a new patch on its own initial curve, named
+/// after the scene (`-2`, `-3`… when taken), the design's reference kept
+/// (the scene's when it has none). A patch the file's checks would refuse
+/// is refused, the document as it was.
+fn import(
+    ctx: &mut EditCtx,
+    work: &mut DocWork,
+    scene: &Scene,
+    as_patch: bool,
+) -> Result<String, EditError> {
+    if !as_patch {
+        work.state = super::edit_state::DocState::of_scene(scene.clone());
+        work.active = 0;
+        // the imported design is in no file yet: Save asks for one
+        ctx.model.path = None;
+        return Ok(format!("imported {} as a new design", scene.name));
+    }
+    let name = import_patch_name(&work.state, &scene.name);
+    let before = work.state.clone();
+    work.state.joined.push(super::edit_state::JoinedState {
+        name: name.clone(),
+        start: super::edit_state::StartState::Curve(scene.initial.clone()),
+        design: scene.design.clone(),
+        details: scene.details.clone(),
+        tuning: scene.tuning.clone(),
+        interpolate_tangents: scene.interpolate_tangents,
+        hidden: false,
+    });
+    if work.state.first.reference.is_none() {
+        work.state.first.reference.clone_from(&scene.reference);
+    }
+    if let Err(m) = patch_ops::check(&work.state) {
+        work.state = before;
+        return Err(EditError::Patch(format!(
+            "importing `{}` as a new patch refused: {m}",
+            scene.name
+        )));
+    }
+    Ok(format!("imported {} as patch `{name}`", scene.name))
+}
+
+/// A patch name for an imported scene named `scene`: its letters, digits,
+/// `-` and `_` (32 at most; `imported` when none), with `-2`, `-3`… when
+/// the document has a patch of that name.
+fn import_patch_name(state: &super::edit_state::DocState, scene: &str) -> String {
+    let mut base: String = scene
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .take(28)
+        .collect();
+    if base.is_empty() {
+        base = "imported".into();
+    }
+    if state.index(&base).is_none() {
+        return base;
+    }
+    (2..)
+        .map(|k| format!("{base}-{k}"))
+        .find(|n| state.index(n).is_none())
+        .unwrap_or(base)
 }
 
 /// A document from elsewhere (a file, a new design, a recovery) replaces

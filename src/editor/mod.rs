@@ -37,6 +37,7 @@ pub use panels::{PanelName, UiState};
 pub use screenshot::ScreenshotRequest;
 use std::path::PathBuf;
 pub use surface::analysis::{AnalysisSettings, SurfaceMode};
+pub use surface::reference_ghost::{GHOST_SAMPLES, ReferenceGhost, ReferenceGhostPlugin};
 pub use surface::reference_map::{ReferenceField, ReferenceMapPlugin};
 
 /// How to open the editor.
@@ -87,9 +88,11 @@ impl Plugin for EditorPlugin {
             handles::box_select::BoxSelectPlugin,
             document::file_browser::FileBrowserPlugin,
             document::import::ImportPlugin,
+            document::reference::ReferencePlugin,
             surface::patches::PatchSurfacesPlugin,
             surface::patch_maps::PatchMapsPlugin,
             surface::reference_map::ReferenceMapPlugin,
+            surface::reference_ghost::ReferenceGhostPlugin,
             seams::SeamsPlugin,
         ));
     }

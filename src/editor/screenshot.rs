@@ -45,6 +45,10 @@ pub struct ScreenshotRequest {
     pub mesh_boundary: Option<streamline_kernel::loop_subdiv::subdivide::BoundaryRule>,
     /// Start running this script (the picture does not wait for it).
     pub script: Option<PathBuf>,
+    /// Keep `REPORT.at` up to date (rewritten, whole, whenever the selected
+    /// handle moves on screen: another design opened, the view framed)
+    /// instead of writing it once; from `STREAMLINE_STUDIO_SHOT_FOLLOW`.
+    pub follow: bool,
 }
 
 impl ScreenshotRequest {
@@ -66,6 +70,7 @@ impl ScreenshotRequest {
             mesh: None,
             mesh_boundary: None,
             script: None,
+            follow: std::env::var_os("STREAMLINE_STUDIO_SHOT_FOLLOW").is_some(),
         }
     }
 }
@@ -76,6 +81,8 @@ struct ShotProgress {
     requested: bool,
     captured: Option<u32>,
     position_written: bool,
+    /// What `REPORT.at` holds ([`ScreenshotRequest::follow`]).
+    position_text: String,
     /// `REPORT.patches` is written.
     patches_written: bool,
     held: u32,
@@ -233,6 +240,22 @@ struct Report {
     /// The seams as drawn: A, B, edge, continuity, verdict, gap, angle (°),
     /// curvature deviation (`NaN` when not measured).
     seams: Vec<SeamShown>,
+    /// The map to the reference (Analysis ▸ to reference), once measured.
+    reference: Option<ReferenceShown>,
+}
+
+/// The map to the reference in the report: its largest and mean distance,
+/// its tolerance, and its last measurement's points, whether it was made
+/// during a drag, and how many there were
+/// ([`super::surface::reference_map::ReferenceField`]).
+#[derive(serde::Serialize)]
+struct ReferenceShown {
+    max: f64,
+    mean: f64,
+    tolerance: f64,
+    measured: usize,
+    live: bool,
+    generation: u64,
 }
 
 /// A seam in the report: A, B, edge, continuity, verdict, gap, angle (°),
@@ -293,13 +316,15 @@ fn write_patch_positions(
     std::fs::write(at, text).is_ok()
 }
 
-/// Writes `REPORT.at`: the selected handle's shaft midpoint in window pixels.
+/// Writes `REPORT.at`: the selected handle's shaft midpoint in window
+/// pixels, unless it holds that already (`last`, what it holds).
 fn write_handle_position(
     req: &ScreenshotRequest,
     selection: &Selection,
     arrows: &HandleQuery,
     camera: &Query<(&Camera, &GlobalTransform), With<MainCamera>>,
     sphere: &Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
+    last: &mut String,
 ) -> bool {
     let (Some(report), Some(h)) = (&req.report, selection.primary()) else {
         return true;
@@ -327,7 +352,17 @@ fn write_handle_position(
         q.x.round(),
         q.y.round()
     );
-    std::fs::write(at, text).is_ok()
+    if text == *last {
+        return true;
+    }
+    // whole or not at all: a script may be reading it
+    let mut tmp = at.clone();
+    tmp.push(".tmp");
+    let ok = std::fs::write(&tmp, &text).is_ok() && std::fs::rename(&tmp, &at).is_ok();
+    if ok {
+        *last = text;
+    }
+    ok
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -345,7 +380,10 @@ fn drive(
     arrows: HandleQuery,
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
     sphere: Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
-    mesh: Res<super::mesh_mode::MeshView>,
+    (mesh, reference): (
+        Res<super::mesh_mode::MeshView>,
+        Res<super::surface::reference_map::ReferenceField>,
+    ),
     pending: Res<PendingPipelines>,
     patch_report: PatchReport,
 ) {
@@ -368,8 +406,11 @@ fn drive(
     if !shown.built {
         return; // not built yet
     }
-    if !p.position_written && p.frame >= 10 {
-        p.position_written = write_handle_position(&req, &selection, &arrows, &camera, &sphere);
+    if (!p.position_written || req.follow) && p.frame >= 10 {
+        let mut text = std::mem::take(&mut p.position_text);
+        let written = write_handle_position(&req, &selection, &arrows, &camera, &sphere, &mut text);
+        p.position_written |= written;
+        p.position_text = text;
     }
     if !p.patches_written && p.frame >= 10 {
         p.patches_written = write_patch_positions(&req, &patch_report, &camera);
@@ -475,6 +516,14 @@ fn drive(
                             )
                         })
                         .collect(),
+                    reference: reference.values.as_ref().map(|_| ReferenceShown {
+                        max: reference.distances.max,
+                        mean: reference.distances.mean,
+                        tolerance: reference.tolerance,
+                        measured: reference.measured,
+                        live: reference.live,
+                        generation: reference.generation,
+                    }),
                 },
             );
         }

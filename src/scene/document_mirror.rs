@@ -24,7 +24,7 @@ use streamline_kernel::DVec3;
 use streamline_kernel::grid::Grid;
 use streamline_kernel::joins::{Edge, Stack};
 use streamline_kernel::levels::design::Level;
-use streamline_kernel::nurbs::{PatchGrid, Samples, ShellFit, ShellSeam, deviation};
+use streamline_kernel::nurbs::{PatchGrid, Samples, ShellFit, ShellSeam, deviation_within};
 use streamline_kernel::plane::MirrorPlane;
 
 /// How far (in the face's diagonal) a first streamline's poles may be from
@@ -151,7 +151,7 @@ pub fn mirror_shell(shell: &ShellFit, patches: &[PatchGrid], plane: &MirrorPlane
             u: check.u.clone(),
             v: f.v.1.clone(),
         };
-        r.deviation = deviation(&r.surface, &reflected);
+        r.deviation = deviation_within(&r.surface, &reflected, r.tolerance);
         faces.push(r);
     }
     let mut seams = shell.seams.clone();

@@ -131,6 +131,24 @@ pub enum Edit {
     /// variant directly (`SetPatch("tail")`).
     #[serde(skip)]
     Patch(PatchEdit),
+    /// File ▸ Import surface…: a design fitted to a reference, one undo
+    /// step. `as_patch: false` makes `scene` the design (every patch
+    /// replaced, its reference the imported face; the design has no file
+    /// until saved); `true` adds its surface as a new patch of the current
+    /// design on its own initial curve (joined to none), named after the
+    /// scene, and keeps the design's reference (the imported face when it
+    /// has none).
+    #[serde(skip)]
+    Import {
+        /// The fitted scene (`scene::reference_fit::fitted_scene`).
+        scene: Box<Scene>,
+        /// Add it as a new patch instead of replacing the design.
+        as_patch: bool,
+    },
+    /// Attaches a reference (File ▸ Reference…) or, with `None`, detaches
+    /// it (one undo step).
+    #[serde(skip)]
+    SetReference(Option<super::reference_link::ReferenceLink>),
 }
 
 impl Edit {
@@ -179,6 +197,18 @@ impl Edit {
             ),
             Edit::Author(a) => a.label(),
             Edit::Patch(p) => p.label(),
+            Edit::Import {
+                scene,
+                as_patch: false,
+            } => format!("import {} as a new design", scene.name),
+            Edit::Import {
+                scene,
+                as_patch: true,
+            } => format!("import {} as a new patch", scene.name),
+            Edit::SetReference(Some(r)) => {
+                format!("reference {} face {}", r.path.display(), r.face)
+            }
+            Edit::SetReference(None) => "detach the reference".into(),
         }
     }
 

@@ -3,7 +3,8 @@
 //! for the `fit` command and a script's `Fit` step, which reads and fits the
 //! file by [`fit_file`]), and the distance from a design's streamline
 //! points to the face its `reference` names ([`measure`], for a script's
-//! `ExpectReferenceDeviation` and the `"reference"` of `build --json`).
+//! `ExpectReferenceDeviation` and the `"reference"` of `build --json`), a
+//! B-spline face or a triangle mesh (OBJ, STL: measured, never fitted).
 //!
 //! What is measured is the first patch's streamline points at the depth
 //! shown ([`measured_points`]): the points a fit makes lie on the face, and
@@ -16,7 +17,8 @@ use super::Scene;
 use super::reference_link::ReferenceLink;
 use std::path::Path;
 use streamline_kernel::fit::{
-    Distances, ReferenceFit, ReferenceFitOptions, distances_to_reference, fit_reference,
+    ClosestPoints, Distances, MeshIndex, ReferenceFit, ReferenceFitOptions, ReferenceIndex,
+    fit_reference,
 };
 use streamline_kernel::{DVec3, Grid, KernelError};
 
@@ -45,7 +47,8 @@ pub fn fitted_name(path: &Path) -> String {
 /// the fit (within the tolerance or not: [`ReferenceFit::within`] says)
 /// and its scene ([`fitted_scene`], named by [`fitted_name`]). Refused,
 /// with the file named, when the file cannot be read, has no such face, the
-/// face is not a B-spline surface or the fit refuses it.
+/// face is not a B-spline surface (a triangle mesh is refused at its line:
+/// it is for display and measuring only) or the fit refuses it.
 pub fn fit_file(
     link: &ReferenceLink,
     opts: &ReferenceFitOptions,
@@ -69,15 +72,27 @@ pub fn measured_points(points: &Grid<DVec3>, mirror: bool) -> &[DVec3] {
     &points.data()[first * points.cols()..]
 }
 
-/// The distance from each of `points` to the face of `link`, read from its
-/// file (docs/math.md §12, eq. 12.6: the closest point of the face, by
-/// Gauss–Newton from the nearest of a dense sample). Refused, with the
-/// file named, when the file cannot be read or the face is not there.
-pub fn distances(link: &ReferenceLink, points: &[DVec3]) -> Result<Vec<f64>, String> {
+/// The index that measures against the face of `link`, read from its file
+/// (docs/math.md §12): a surface's closest points (eq. 12.6: Gauss–Newton
+/// from the nearest of a dense sample) or, for a triangle mesh (OBJ or
+/// STL), the closest point of its triangles (eq. 12.8). Refused, with the
+/// file named, when the file cannot be read, the face is not there or is
+/// neither a B-spline surface nor a mesh.
+pub fn reference_index(link: &ReferenceLink) -> Result<ReferenceIndex, String> {
     let file = streamline_reference::read(&link.path).map_err(|e| e.to_string())?;
+    if let Some(mesh) = file.mesh(link.face).map_err(|e| e.to_string())? {
+        return Ok(ReferenceIndex::Mesh(MeshIndex::new(mesh.clone())));
+    }
     let surface = file.surface(link.face).map_err(|e| e.to_string())?;
-    distances_to_reference(surface, points)
+    ClosestPoints::shared(std::sync::Arc::new(surface.clone()))
+        .map(ReferenceIndex::Surface)
         .map_err(|e| format!("{}: face {}: {e}", link.path.display(), link.face))
+}
+
+/// The distance from each of `points` to the face of `link`
+/// ([`reference_index`]).
+pub fn distances(link: &ReferenceLink, points: &[DVec3]) -> Result<Vec<f64>, String> {
+    Ok(reference_index(link)?.distances(points))
 }
 
 /// The largest and mean distance from the measured points of the first

@@ -4,11 +4,13 @@
 # reports where its arrow is, drags that arrow upwards, optionally presses Esc
 # before letting go, and waits for the run to end.
 # With `sphere` it drags the handle's point on the Gaussian sphere view instead.
-# Usage: [SCENE=FILE.ron] [SELECT=ROW,COL] [MOVES=10 STEP_PX=9 PAUSE=0.25] [MSAA=N] drag.sh BIN OUT.png REPORT.json [esc|sphere]
+# SHOT_ARGS adds options to the screenshot run (`--panel analysis --analysis
+# reference`: the map to the reference shown while dragging).
+# Usage: [SCENE=FILE.ron] [SELECT=ROW,COL] [MOVES=10 STEP_PX=9 PAUSE=0.25] [MSAA=N] [SHOT_ARGS=…] drag.sh BIN OUT.png REPORT.json [esc|sphere]
 set -euo pipefail
 BIN=$1; OUT=$2; REPORT=$3; ESC=${4:-}
 STREAMLINE_STUDIO_SHOT_WAIT="$REPORT.done" STREAMLINE_STUDIO_SHOT_FRAMES=${FRAMES:-30} "$BIN" screenshot "${SCENE:-car1}" --out "$OUT" \
-  --select "${SELECT:-0,8}" --report "$REPORT" --size "${SIZE:-900x600}" ${MSAA:+--msaa "$MSAA"} 2>"$REPORT.log" &
+  --select "${SELECT:-0,8}" --report "$REPORT" --size "${SIZE:-900x600}" ${MSAA:+--msaa "$MSAA"} ${SHOT_ARGS:-} 2>"$REPORT.log" &
 PID=$!
 for _ in $(seq 1 600); do
   [ -s "$REPORT.at" ] && break

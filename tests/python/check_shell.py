@@ -61,6 +61,16 @@ def points(path):
 
 def normal(face, surf, p):
     proj = GeomAPI_ProjectPointOnSurf(p, surf)
+    if proj.NbPoints() == 0 or proj.LowerDistance() > 1e-9:
+        # the default extrema can settle on a far local minimum of a curved
+        # face (a side seam's point read 0.015 m off a face it lies on):
+        # the tree algorithm, whichever is nearer
+        tree = GeomAPI_ProjectPointOnSurf()
+        u0, u1, v0, v1 = surf.Bounds()
+        tree.Init(surf, u0, u1, v0, v1, Extrema_ExtAlgo_Tree)
+        tree.Perform(p)
+        if tree.NbPoints() > 0 and (proj.NbPoints() == 0 or tree.LowerDistance() < proj.LowerDistance()):
+            proj = tree
     u, v = proj.LowerDistanceParameters()
     props = GeomLProp_SLProps(surf, u, v, 1, 1e-12)
     assert props.IsNormalDefined(), "no normal at a seam point"

@@ -706,3 +706,75 @@ fn a_torus_whose_error_is_across_the_rows_fits_by_inserting_rows() {
     .unwrap();
     assert!(!small.within && small.to_reference.max > f.tolerance);
 }
+
+/// With one direction at its cap, the growth stops a few nets after the
+/// other stopped helping, and says which direction ran out and what to do
+/// (it used to grow the other direction to its cap for nothing).
+#[test]
+fn a_net_full_in_one_direction_stops_early_and_says_which() {
+    let reference = wavy(0.3, 0.3);
+    let capped = |max_net| {
+        fit_reference(
+            &reference,
+            &ReferenceFitOptions {
+                max_net,
+                ..Default::default()
+            },
+        )
+        .unwrap()
+    };
+    let few_columns = capped((64, 6));
+    show("typical face, columns capped at 6", &few_columns);
+    assert!(!few_columns.within);
+    let why = few_columns.why.clone().unwrap();
+    assert!(
+        why.contains("columns reached their cap of 6")
+            && why.contains("run the streamlines along v"),
+        "{why}"
+    );
+    // early: not the 60 rows the cap would allow
+    assert!(few_columns.steps < 20, "{} nets", few_columns.steps);
+    assert!(few_columns.net.0 < 30, "{:?}", few_columns.net);
+    // negative control: the same face with room in both directions fits
+    let free = capped((64, 64));
+    assert!(free.within, "{:?}", free.why);
+    assert!(free.net.1 > 6);
+}
+
+/// An approximating scheme on the quarter torus: Doo–Sabin fits (its limit
+/// rows take the reference's lengths and rows go where the distance is not
+/// the tangents' doing); Catmull–Clark, whose rows stay off though its
+/// tangents are the torus's, is refused after a few nets with why and what
+/// to do, not after growing to the cap.
+#[test]
+fn an_approximating_scheme_on_a_torus_fits_or_says_why_early() {
+    let reference = torus(0.6, 0.25);
+    let with = |scheme| {
+        fit_reference(
+            &reference,
+            &ReferenceFitOptions {
+                scheme,
+                ..Default::default()
+            },
+        )
+        .unwrap()
+    };
+    let ds = with(SurfaceScheme::DooSabin);
+    show("quarter torus, doo-sabin", &ds);
+    assert!(ds.within, "{:?}", ds.why);
+    let outside = outside_deviation(&ds.design, ds.depth, &reference);
+    assert!(outside <= ds.tolerance * (1.0 + 1e-9), "{outside}");
+    let cc = with(SurfaceScheme::CatmullClark);
+    show("quarter torus, catmull-clark", &cc);
+    if !cc.within {
+        let why = cc.why.clone().unwrap();
+        assert!(
+            why.contains("approximates") && why.contains("--scheme kobbelt"),
+            "{why}"
+        );
+        assert!(cc.steps <= 40, "{} nets", cc.steps);
+        // negative control: the design really is that far
+        let outside = outside_deviation(&cc.design, cc.depth, &reference);
+        assert!(outside > cc.tolerance, "{outside}");
+    }
+}

@@ -78,6 +78,10 @@ pub const MAX_FILE_POLES: usize = 8_000_000;
 /// The most points a grid or vertices a mesh may have (16 million).
 pub const MAX_POINTS: usize = 16_000_000;
 
+/// The most triangles a mesh may have (32 million, about 400 MB with its
+/// index; a binary STL of the largest size read holds 10.7 million).
+pub const MAX_TRIANGLES: usize = 32_000_000;
+
 /// The whole file as bytes, refused when it cannot be read or is larger
 /// than [`MAX_FILE_BYTES`].
 pub fn read_file(path: &Path) -> Result<Vec<u8>, ReferenceError> {

@@ -16,8 +16,9 @@
 //! so an interpolation). OBJ states no unit: its lengths are taken as
 //! metres.
 
-use crate::error::ReferenceError;
+use crate::error::{MAX_POINTS, ReferenceError};
 use crate::geom;
+use crate::mesh;
 use crate::{FaceData, SurfaceKind};
 use std::collections::HashMap;
 use std::path::Path;
@@ -69,12 +70,19 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<GridFile, ReferenceError
     })?;
     // one vertex list and one face list over every object
     let mut positions: Vec<DVec3> = Vec::new();
-    let mut faces: Vec<[usize; 4]> = Vec::new();
-    let mut face_index = 0usize;
+    let mut polygons: Vec<(Vec<usize>, usize)> = Vec::new();
     let line_of = |k: usize| lines.get(k).copied().unwrap_or(1);
     for m in &models {
         let mesh = &m.mesh;
         let base = positions.len();
+        if base + mesh.positions.len() / 3 > MAX_POINTS {
+            return Err(ReferenceError::whole(
+                path,
+                format!(
+                    "the file has more than {MAX_POINTS} vertices, more than a reference is read with; decimate it"
+                ),
+            ));
+        }
         for p in mesh.positions.chunks_exact(3) {
             let v = DVec3::new(p[0], p[1], p[2]);
             if !v.is_finite() {
@@ -96,38 +104,59 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<GridFile, ReferenceError
         let mut at = 0usize;
         for &n in &arities {
             let n = n as usize;
-            if n != 4 {
-                return Err(ReferenceError::at(
-                    path,
-                    line_of(face_index),
-                    1,
-                    format!(
-                        "face {} has {n} corners, so the faces are not one grid of quadrilaterals; export the points as one grid of quads (a subdivided plane, not triangulated)",
-                        face_index + 1
-                    ),
-                ));
-            }
-            let idx = &mesh.indices[at..at + 4];
-            faces.push([
-                base + idx[0] as usize,
-                base + idx[1] as usize,
-                base + idx[2] as usize,
-                base + idx[3] as usize,
-            ]);
-            at += 4;
-            face_index += 1;
+            let Some(idx) = mesh.indices.get(at..at + n) else {
+                break;
+            };
+            polygons.push((
+                idx.iter().map(|&i| base + i as usize).collect(),
+                line_of(polygons.len()),
+            ));
+            at += n;
         }
     }
-    if faces.is_empty() {
+    if polygons.is_empty() {
         return Err(ReferenceError::whole(
             path,
-            "has no faces; a point grid is an OBJ of quadrilateral faces (`f a b c d`)",
+            "has no faces; a point grid is an OBJ of quadrilateral faces (`f a b c d`), a mesh one of any faces",
         ));
     }
-    let grid = find_grid(&positions, &faces).map_err(|(face, why)| match face {
-        Some(k) => ReferenceError::at(path, line_of(k), 1, why),
-        None => ReferenceError::whole(path, why),
-    })?;
+    // one grid of quads is a surface; anything else a mesh, which says why
+    // it is not a grid when it is refused a fit
+    let in_range = polygons
+        .iter()
+        .all(|(p, _)| p.iter().all(|&i| i < positions.len()));
+    let not_grid = match polygons.iter().position(|(p, _)| p.len() != 4) {
+        Some(k) => (
+            polygons[k].1,
+            format!("face {} has {} corners", k + 1, polygons[k].0.len()),
+        ),
+        None if !in_range => (0, "a face names a vertex past the end".to_string()),
+        None => {
+            let quads: Vec<[usize; 4]> = polygons
+                .iter()
+                .map(|(p, _)| [p[0], p[1], p[2], p[3]])
+                .collect();
+            match find_grid(&positions, &quads) {
+                Ok(grid) => return grid_face(path, &positions, &grid, line_of(0)),
+                Err((face, why)) => (face.map_or(0, line_of), why.replace("; ", ": ")),
+            }
+        }
+    };
+    Ok(GridFile {
+        unit: "metre".into(),
+        metres_per_unit: 1.0,
+        faces: vec![mesh::from_obj(path, positions, &polygons, Some(not_grid))?],
+    })
+}
+
+/// The face of the grid `grid` of vertex indices into `positions`: the
+/// B-spline surface through its points.
+fn grid_face(
+    path: &Path,
+    positions: &[DVec3],
+    grid: &Grid<usize>,
+    line: usize,
+) -> Result<GridFile, ReferenceError> {
     let (rows, cols) = (grid.rows(), grid.cols());
     let points = Grid::new(
         rows,
@@ -143,8 +172,10 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<GridFile, ReferenceError
         faces: vec![FaceData {
             kind: SurfaceKind::Grid,
             entity: format!("a grid of {rows} × {cols} points"),
-            line: lines.first().copied().unwrap_or(1),
+            line,
             surface: Some(surface),
+            mesh: None,
+            not_grid: None,
             closed: grid_closed(&points),
             trimmed: false,
             area,

@@ -2,8 +2,9 @@
 //! design is fitted to: the B-spline faces of STEP and IGES files, as the
 //! kernel's [`NurbsSurface`] in metres.
 //!
-//! [`read`] takes a `.step`/`.stp`/`.p21` or `.igs`/`.iges` file and
-//! returns its faces in file order, each with a [`FaceInfo`] (kind,
+//! [`read`] takes a `.step`/`.stp`/`.p21` or `.igs`/`.iges` file (or an
+//! `.obj` grid of points, or an `.obj` or `.stl` triangle mesh, [`mesh`],
+//! for display and measuring only) and returns its faces in file order, each with a [`FaceInfo`] (kind,
 //! degrees, pole counts, closed and periodic flags, whether it is trimmed,
 //! its area and box) and, for a B-spline face, its surface
 //! ([`ReferenceFile::surface`]). STEP text is parsed by the `ruststep`
@@ -17,12 +18,14 @@ pub mod error;
 mod geom;
 pub mod grid;
 mod iges;
+pub mod mesh;
 mod step;
 
 pub use error::ReferenceError;
 
 use serde::Serialize;
 use std::path::{Path, PathBuf};
+use streamline_kernel::fit::TriangleMesh;
 use streamline_kernel::nurbs::rational::NurbsSurface;
 
 /// The exchange format of a reference file, from its extension.
@@ -34,14 +37,17 @@ pub enum Format {
     /// IGES, fixed-format ASCII (`.igs`, `.iges`).
     Iges,
     /// A regular grid of points: an OBJ of quadrilateral faces (`.obj`),
-    /// made a surface by the B-spline fit through its points ([`grid`]).
+    /// made a surface by the B-spline fit through its points ([`grid`]);
+    /// other OBJ faces are a triangle mesh ([`mesh`]).
     Obj,
+    /// A triangle mesh, binary or ASCII STL (`.stl`), for display and
+    /// measuring only ([`mesh`]).
+    Stl,
 }
 
 impl Format {
     /// The extensions read, as an error lists them.
-    pub const EXTENSIONS: &'static str =
-        ".step, .stp, .p21 (STEP), .igs, .iges (IGES) or .obj (a grid of points)";
+    pub const EXTENSIONS: &'static str = ".step, .stp, .p21 (STEP), .igs, .iges (IGES), .obj (a grid of points or a mesh) or .stl (a mesh)";
 
     /// The format of `path` from its extension, case-insensitive.
     pub fn from_path(path: &Path) -> Result<Format, ReferenceError> {
@@ -53,6 +59,7 @@ impl Format {
             "step" | "stp" | "p21" => Ok(Format::Step),
             "igs" | "iges" => Ok(Format::Iges),
             "obj" => Ok(Format::Obj),
+            "stl" => Ok(Format::Stl),
             _ => Err(ReferenceError::whole(
                 path,
                 format!(
@@ -83,6 +90,8 @@ pub enum SurfaceKind {
     Other,
     /// A B-spline surface fitted through a regular grid of points.
     Grid,
+    /// A triangle mesh (OBJ or STL): displayed and measured, not fitted.
+    Mesh,
 }
 
 impl SurfaceKind {
@@ -94,6 +103,7 @@ impl SurfaceKind {
             SurfaceKind::Plane => "a plane",
             SurfaceKind::Other => "a surface of another kind",
             SurfaceKind::Grid => "a surface through a grid of points",
+            SurfaceKind::Mesh => "a triangle mesh",
         }
     }
 }
@@ -130,15 +140,28 @@ pub struct FaceInfo {
     /// plane's bounding polygon; 0 when unknown.
     pub area: f64,
     /// Axis-aligned box in metres `[min, max]`, from evaluated points (a
-    /// STEP plane's: of its vertices); `None` when unknown.
+    /// STEP plane's: of its vertices; a mesh's: of its triangles'
+    /// corners); `None` when unknown.
     pub bbox: Option<[[f64; 3]; 2]>,
+    /// A mesh's triangle count (absent for a surface).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub triangles: Option<usize>,
+    /// A mesh's vertex count (absent for a surface).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vertices: Option<usize>,
 }
 
-/// One face: its description and, for a B-spline, its surface in metres.
+/// One face: its description and, for a B-spline, its surface in metres,
+/// or for a triangle mesh its triangles.
 #[derive(Debug, Clone)]
 pub struct Face {
     pub info: FaceInfo,
     pub surface: Option<NurbsSurface>,
+    /// The triangles of a mesh reference ([`SurfaceKind::Mesh`]).
+    pub mesh: Option<TriangleMesh>,
+    /// For an OBJ mesh of quadrilaterals, why they are not one grid: the
+    /// line at fault (0 for none) and the reason.
+    pub not_grid: Option<(usize, String)>,
 }
 
 /// A reference file's faces.
@@ -161,6 +184,8 @@ pub(crate) struct FaceData {
     pub entity: String,
     pub line: usize,
     pub surface: Option<NurbsSurface>,
+    pub mesh: Option<TriangleMesh>,
+    pub not_grid: Option<(usize, String)>,
     pub closed: [bool; 2],
     pub trimmed: bool,
     pub area: f64,
@@ -205,8 +230,12 @@ impl FaceData {
                 trimmed: self.trimmed,
                 area: self.area,
                 bbox: self.bbox,
+                triangles: self.mesh.as_ref().map(|m| m.triangles().len()),
+                vertices: self.mesh.as_ref().map(|m| m.positions().len()),
             },
             surface: self.surface,
+            mesh: self.mesh,
+            not_grid: self.not_grid,
         }
     }
 }
@@ -246,6 +275,11 @@ pub fn parse(path: &Path, format: Format, bytes: Vec<u8>) -> Result<ReferenceFil
             let f = grid::read(path, &bytes)?;
             (f.unit, f.metres_per_unit, f.faces)
         }
+        Format::Stl => (
+            "metre".to_string(),
+            1.0,
+            vec![mesh::read_stl(path, &bytes)?],
+        ),
     };
     Ok(ReferenceFile {
         path: path.to_path_buf(),
@@ -271,21 +305,50 @@ fn count_faces(n: usize) -> String {
 }
 
 impl ReferenceFile {
-    /// The surface of face `face`, refused for an index past the end and
-    /// for a face that is not a B-spline.
-    pub fn surface(&self, face: usize) -> Result<&NurbsSurface, ReferenceError> {
-        let n = self.faces.len();
-        let Some(f) = self.faces.get(face) else {
-            return Err(ReferenceError::whole(
+    /// Face `face`, refused for an index past the end.
+    pub fn face(&self, face: usize) -> Result<&Face, ReferenceError> {
+        self.faces.get(face).ok_or_else(|| {
+            ReferenceError::whole(
                 &self.path,
                 format!(
                     "there is no face {face}: the file has {}; choose one with --face",
-                    count_faces(n)
+                    count_faces(self.faces.len())
                 ),
-            ));
-        };
+            )
+        })
+    }
+
+    /// The triangles of face `face` when it is a mesh (`None` for a
+    /// surface), refused for an index past the end.
+    pub fn mesh(&self, face: usize) -> Result<Option<&TriangleMesh>, ReferenceError> {
+        Ok(self.face(face)?.mesh.as_ref())
+    }
+
+    /// The surface of face `face`, refused for an index past the end, for
+    /// a triangle mesh (for display and measuring only) and for a face
+    /// that is not a B-spline.
+    pub fn surface(&self, face: usize) -> Result<&NurbsSurface, ReferenceError> {
+        let f = self.face(face)?;
         if let Some(s) = &f.surface {
             return Ok(s);
+        }
+        if f.mesh.is_some() {
+            let (line, why) = match &f.not_grid {
+                Some((l, why)) => (
+                    if *l > 0 { *l } else { f.info.line },
+                    format!(", not one grid of quadrilaterals ({why})"),
+                ),
+                None => (f.info.line, String::new()),
+            };
+            let msg = format!(
+                "face {face} is a triangle mesh ({}){why}: a mesh is for display and measuring only, with no parameters for the streamlines to follow; fit a STEP or IGES face or an OBJ quad grid, and keep the mesh to measure against",
+                f.info.entity
+            );
+            return Err(if line > 0 {
+                ReferenceError::at(&self.path, line, 1, msg)
+            } else {
+                ReferenceError::whole(&self.path, msg)
+            });
         }
         let bsplines: Vec<String> = self
             .faces

@@ -2,7 +2,7 @@
 //! an OBJ of quadrilaterals forming one `rows × cols` grid is read, whatever
 //! the order of its vertices, of its faces and of each face's corners, as
 //! one B-spline surface through every point; anything that is not one grid
-//! is refused at the face's line.
+//! is read as a triangle mesh, which a fit refuses at the face's line.
 
 use proptest::prelude::*;
 use std::path::PathBuf;
@@ -144,6 +144,16 @@ proptest! {
 
 #[test]
 fn what_is_not_one_grid_is_refused_at_its_line() {
+    // what is not one grid reads as a triangle mesh (for measuring, tests/mesh.rs),
+    // which a fit refuses, saying why it is not a grid
+    let not_grid = |name: &str, text: &str| -> String {
+        let f = read(&write(name, text)).unwrap();
+        assert_eq!(
+            f.faces[0].info.kind,
+            streamline_reference::SurfaceKind::Mesh
+        );
+        f.surface(0).unwrap_err().to_string()
+    };
     let (rows, cols) = (5, 6);
     let n = rows * cols;
     let ident: Vec<usize> = (0..n).collect();
@@ -151,10 +161,11 @@ fn what_is_not_one_grid_is_refused_at_its_line() {
     let good = obj(rows, cols, &ident, &order, &[]);
     // a triangle among the quads: refused at its own line
     let tri = good.replacen("f 1 2 8 7\n", "f 1 2 8\n", 1);
-    let e = read(&write("triangle.obj", &tri)).unwrap_err().to_string();
+    let e = not_grid("triangle.obj", &tri);
     let line = tri.lines().position(|l| l == "f 1 2 8").unwrap() + 1;
     assert!(
-        e.contains(&format!("triangle.obj:{line}:1: face 1 has 3 corners")),
+        e.contains(&format!("triangle.obj:{line}:1: face 0 is a triangle mesh"))
+            && e.contains("face 1 has 3 corners"),
         "{e}"
     );
     assert!(e.contains("; "), "{e}");
@@ -164,7 +175,7 @@ fn what_is_not_one_grid_is_refused_at_its_line() {
         .filter(|l| *l != "f 9 10 16 15")
         .map(|l| format!("{l}\n"))
         .collect();
-    let e = read(&write("holed.obj", &holed)).unwrap_err().to_string();
+    let e = not_grid("holed.obj", &holed);
     assert!(e.contains("holed.obj") && e.contains("grid"), "{e}");
     // two grids side by side: eight corners
     let mut two = good.clone();
@@ -178,7 +189,7 @@ fn what_is_not_one_grid_is_refused_at_its_line() {
             .collect();
         two += &format!("f {}\n", idx.join(" "));
     }
-    let e = read(&write("two.obj", &two)).unwrap_err().to_string();
+    let e = not_grid("two.obj", &two);
     assert!(e.contains("8 corners"), "{e}");
     // too few points to fit through
     let small = obj(
@@ -188,7 +199,7 @@ fn what_is_not_one_grid_is_refused_at_its_line() {
         &(0..10).collect::<Vec<_>>(),
         &[],
     );
-    let e = read(&write("small.obj", &small)).unwrap_err().to_string();
+    let e = not_grid("small.obj", &small);
     assert!(e.contains("at least 4 × 4"), "{e}");
     // no faces at all
     let e = read(&write("points.obj", "v 0 0 0\nv 1 0 0\n"))

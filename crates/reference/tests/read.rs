@@ -370,9 +370,14 @@ fn format_comes_from_the_extension() {
         Format::from_path(Path::new("scan.OBJ")).unwrap(),
         Format::Obj
     );
-    let e = Format::from_path(Path::new("mesh.stl")).unwrap_err();
+    assert_eq!(
+        Format::from_path(Path::new("scan.Stl")).unwrap(),
+        Format::Stl
+    );
+    let e = Format::from_path(Path::new("mesh.ply")).unwrap_err();
     assert!(
-        e.message.contains(".stl")
+        e.message.contains(".ply")
+            && e.message.contains(".stl")
             && e.message.contains(".step, .stp, .p21")
             && e.message.contains(".igs, .iges")
             && e.message.contains(".obj"),

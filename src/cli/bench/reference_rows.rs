@@ -12,6 +12,16 @@
 //!   a [`ClosestPoints`] of the face made once outside the timing, as a
 //!   deviation map of the edited design would keep it (the design's build
 //!   outside too);
+//! - `reference-deviation/hood/d5/drag-row`: what the editor's map measures
+//!   again in a frame of a drag of tangent (4, 3), a handle of the hood's
+//!   net (depth 0): the window of points the drag moves (189 rows × 223
+//!   columns, 42,147 of the 58,082 points) measured, the other points' distances
+//!   kept, the largest and mean distance of all made again
+//!   ([`ReferenceField::update`]);
+//! - `reference-deviation/hood/d5/drag-frame`: a whole frame of that drag
+//!   headless on one thread, as the editor runs on a machine of fewer than
+//!   four cores: the edit, the streamlines integrated again, the mesh and
+//!   the map's measure (no panels, no renderer);
 //! - `reference-deviation/car/d5`: the car at depth 5 (161 × 258 points)
 //!   against its own depth-4 B-spline export (docs/math.md §10), a
 //!   car-sized face, likewise;
@@ -22,6 +32,7 @@
 //! missing (an installed binary).
 
 use super::workloads::Workload;
+use crate::editor::ReferenceField;
 use crate::scene::io;
 use std::path::{Path, PathBuf};
 use streamline_kernel::fit::{ClosestPoints, ReferenceFitOptions, fit_reference};
@@ -110,6 +121,9 @@ pub fn rows() -> Vec<Workload> {
             },
         ));
     }
+    if shipped("hood.ron").exists() && shipped("hood.step").exists() {
+        rows.extend(hood_drag());
+    }
     rows.push(Workload::lazy(
         format!("reference-deviation/car/d{DEPTH}"),
         move || {
@@ -142,4 +156,71 @@ fn car_reference() -> (&'static NurbsSurface, Vec<streamline_kernel::DVec3>) {
     let face = Box::leak(Box::new(NurbsSurface::from_bspline(&exported.surface)));
     let built = car.build(DEPTH).expect("the car builds");
     (face, built.points.data().to_vec())
+}
+
+/// The handle of the hood's net the drag rows turn.
+const HOOD_HANDLE: (usize, usize) = (4, 3);
+
+/// The shipped hood in a windowless editor with its map to the reference
+/// shown (the model, the interaction core and the map; as
+/// `tests/editor_reference_map.rs`), one thread, measured once.
+fn hood_editor() -> bevy::app::App {
+    use crate::ecs::ModelPlugin;
+    use crate::editor::ReferenceMapPlugin;
+    use crate::editor::interaction::InteractionPlugin;
+    use bevy::prelude::*;
+    let doc =
+        crate::scene::document_io::load(&shipped("hood.ron")).expect("the shipped design loads");
+    let mut app = App::new();
+    app.add_plugins(MinimalPlugins)
+        .init_resource::<ButtonInput<MouseButton>>()
+        .init_resource::<ButtonInput<KeyCode>>()
+        .add_plugins(ModelPlugin::new(doc.patch_scene(0)))
+        .add_plugins(InteractionPlugin)
+        .add_plugins(ReferenceMapPlugin);
+    app.edit_schedule(Update, |s| {
+        s.set_executor(bevy::ecs::schedule::SingleThreadedExecutor::new());
+    });
+    app.world_mut().resource_mut::<ReferenceField>().shown = true;
+    app.update();
+    app.update();
+    app
+}
+
+/// The hood's drag rows (module docs).
+fn hood_drag() -> Vec<Workload> {
+    use crate::ecs::{self, SurfaceChange, SurfaceData};
+    let (row, col) = HOOD_HANDLE;
+    let measured = Workload::lazy(
+        format!("reference-deviation/hood/d{DEPTH}/drag-row"),
+        move || {
+            let mut app = hood_editor();
+            let mut sign = 1.0;
+            ecs::send(&mut app, super::ecs_rows::wiggle(row, col, &mut sign));
+            app.update();
+            let points = app.world().resource::<SurfaceData>().points.clone();
+            let mut field = std::mem::take(&mut *app.world_mut().resource_mut::<ReferenceField>());
+            let window = field.window.expect("a tangent's drag measures its window");
+            Box::new(move || {
+                field.note(SurfaceChange::Window(window));
+                field.update(&points, false);
+                field.distances.max
+            })
+        },
+    );
+    let frame = Workload::lazy(
+        format!("reference-deviation/hood/d{DEPTH}/drag-frame"),
+        move || {
+            let mut app = hood_editor();
+            let mut sign = 1.0;
+            Box::new(move || {
+                parallel::set_enabled(false);
+                ecs::send(&mut app, super::ecs_rows::wiggle(row, col, &mut sign));
+                app.update();
+                parallel::set_enabled(true);
+                app.world().resource::<ReferenceField>().distances.max
+            })
+        },
+    );
+    vec![measured, frame]
 }

@@ -341,6 +341,19 @@ pub fn iges(data: &[u8]) {
     reference(streamline_reference::Format::Iges, "fuzz.igs", data);
 }
 
+/// An OBJ reference (any bytes): an error, one grid of quadrilaterals (its
+/// surface checked and fitted as [`step`]'s) or a triangle mesh, whose
+/// points, area and distances to a few points are finite.
+pub fn reference_obj(data: &[u8]) {
+    reference(streamline_reference::Format::Obj, "fuzz.obj", data);
+}
+
+/// An STL file (any bytes, binary or ASCII), checked as [`reference_obj`]
+/// checks a triangle mesh.
+pub fn stl(data: &[u8]) {
+    reference(streamline_reference::Format::Stl, "fuzz.stl", data);
+}
+
 fn reference(format: streamline_reference::Format, name: &str, data: &[u8]) {
     use streamline_kernel::fit::{ReferenceFitOptions, fit_reference};
     let Ok(file) = streamline_reference::parse(Path::new(name), format, data.to_vec()) else {
@@ -356,6 +369,17 @@ fn reference(format: streamline_reference::Format, name: &str, data: &[u8]) {
         );
         if let Some([lo, hi]) = info.bbox {
             assert!(lo.iter().chain(&hi).all(|x| x.is_finite()), "face {i}: box");
+        }
+        if let Some(mesh) = &face.mesh {
+            finite("reference mesh", mesh.positions());
+            if mesh.triangles().len() <= 20_000 {
+                let [lo, hi] = mesh.bbox();
+                let probes = [lo, hi, (lo + hi) * 0.5, hi + (hi - lo), DVec3::ZERO];
+                let index = streamline_kernel::fit::MeshIndex::new(mesh.clone());
+                for d in index.distances(&probes) {
+                    assert!(d.is_finite() && d >= 0.0, "face {i}: mesh distance {d}");
+                }
+            }
         }
         let Some(surface) = &face.surface else {
             continue;

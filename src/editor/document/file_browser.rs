@@ -124,6 +124,7 @@ struct Receivers<'w> {
     script: ResMut<'w, ScriptRun>,
     mesh: ResMut<'w, MeshView>,
     import: ResMut<'w, ImportForm>,
+    reference: ResMut<'w, super::reference::ReferenceForm>,
 }
 
 impl Receivers<'_> {
@@ -150,6 +151,7 @@ impl Receivers<'_> {
             PathAction::ExportMeshControl => self.mesh.export(path, true),
             PathAction::ExportMeshUsd => self.mesh.export_usd(path),
             PathAction::ImportSurface => self.import.read(path),
+            PathAction::AttachReference => self.reference.read(path),
         }
     }
 }

@@ -63,22 +63,8 @@ pub enum Pending {
     NewDesign(Box<crate::ecs::authoring::AuthorEdit>),
     /// Open a file.
     Open(PathBuf),
-    /// Replace the scene with a design fitted to a surface (File ▸ Import
-    /// surface…, `import.rs`).
-    Import(ImportedScene),
     /// Quit the editor.
     Quit,
-}
-
-/// A fitted scene waiting to be opened: shared, so that the dialog holding
-/// it is cheap to copy; two are the same when they are the same scene.
-#[derive(Debug, Clone)]
-pub struct ImportedScene(pub std::sync::Arc<crate::scene::Scene>);
-
-impl PartialEq for ImportedScene {
-    fn eq(&self, other: &Self) -> bool {
-        std::sync::Arc::ptr_eq(&self.0, &other.0)
-    }
 }
 
 /// What a file is picked for (in the file browser, `file_browser.rs`).
@@ -103,6 +89,9 @@ pub enum PathAction {
     /// Fit a design to a face of a STEP or IGES file or an OBJ grid of
     /// points (File ▸ Import surface…).
     ImportSurface,
+    /// Attach a reference to the design without fitting (File ▸
+    /// Reference…, `reference.rs`).
+    AttachReference,
 }
 
 impl PathAction {
@@ -118,6 +107,9 @@ impl PathAction {
             PathAction::ExportMeshControl => "Export the Loop control mesh (OBJ)".into(),
             PathAction::ExportMeshUsd => "Export the Loop control mesh (USD)".into(),
             PathAction::ImportSurface => "Import a surface (STEP, IGES or a grid of points)".into(),
+            PathAction::AttachReference => {
+                "Reference (STEP, IGES or a grid of points), to compare the design with".into()
+            }
         }
     }
 
@@ -138,8 +130,12 @@ impl PathAction {
             PathAction::Export(Format::Iges) => ("IGES (.igs, .iges)", &["igs", "iges"]),
             PathAction::ExportMeshUsd => ("USD text (.usda)", &["usda"]),
             PathAction::ImportSurface => (
-                "Surfaces (.step, .stp, .igs, .iges, .obj)",
-                &["step", "stp", "igs", "iges", "obj"],
+                "Surfaces (.step, .stp, .p21, .igs, .iges, .obj)",
+                &["step", "stp", "p21", "igs", "iges", "obj"],
+            ),
+            PathAction::AttachReference => (
+                "Surfaces and meshes (.step, .stp, .p21, .igs, .iges, .obj, .stl)",
+                &["step", "stp", "p21", "igs", "iges", "obj", "stl"],
             ),
         }
     }
@@ -152,6 +148,7 @@ impl PathAction {
                 | PathAction::RunScript
                 | PathAction::OpenMesh
                 | PathAction::ImportSurface
+                | PathAction::AttachReference
         )
     }
 }
@@ -283,10 +280,6 @@ fn run_pending(
         }
         Pending::Open(path) => {
             edits.write(EditMessage::from(Edit::Load(path)));
-        }
-        Pending::Import(s) => {
-            let scene = Box::new((*s.0).clone());
-            edits.write(EditMessage::from(Edit::Replace(scene)));
         }
         Pending::Quit => {
             exit.write(AppExit::Success);

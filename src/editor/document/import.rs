@@ -3,20 +3,21 @@
 //! §12`). The file picked in the browser is read at once (a file that
 //! cannot be read is named in the dialog; the current design stays); the
 //! "Import surface" window lists its faces (a B-spline face can be chosen,
-//! the others are greyed with the reason), the streamline direction, the
-//! tolerance relative to the face's diagonal and the fit depth. **Fit** runs
-//! the kernel's fit on a thread of its own, with a progress bar and
-//! **Cancel** (the window and the 3D view stay live). A design within the
-//! tolerance is opened at once; one that is not shows why and offers "Open
-//! the best design" (the job itself is `fit_job.rs`). Opening goes through
-//! the unsaved-changes question as every File ▸ New does (`files::request`,
-//! [`Pending::Import`]), then replaces the scene (`Edit::Replace`: like
-//! File ▸ New, the undo history starts again), its `reference` naming the
-//! file and the face.
+//! the others are greyed with the reason; the chosen one is drawn as a
+//! ghost, `surface/reference_ghost.rs`), where the result goes (as a new
+//! design, or as a new patch of the current design), the streamline
+//! direction, the tolerance relative to the face's diagonal and the fit
+//! depth. **Fit** runs the kernel's fit on a thread of its own, with a
+//! progress bar and **Cancel** (the window and the 3D view stay live). A
+//! design within the tolerance is imported at once; one that is not shows
+//! why and offers "Import the best design" (the job itself is
+//! `fit_job.rs`). Importing is one edit, `Edit::Import`, and one undo step
+//! either way: Undo brings back the design as it was. As a new design its
+//! `reference` names the file and the face; as a new patch the design
+//! keeps its reference, or takes the imported face when it has none.
 
-use super::files::{self, FileUi, ImportedScene, Pending};
 pub use super::fit_job::{FitJob, Fitted, JobEnd};
-use crate::ecs::{EditMessage, Model};
+use crate::ecs::{Edit, EditMessage};
 use crate::scene::Scene;
 use bevy::prelude::*;
 use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
@@ -62,6 +63,8 @@ pub struct ImportForm {
     pub last: Option<JobEnd>,
     /// Whether the last fit's design was sent to be opened.
     pub opened: bool,
+    /// Import as a new patch of the current design (else as a new design).
+    pub as_patch: bool,
 }
 
 impl Default for ImportForm {
@@ -79,6 +82,7 @@ impl Default for ImportForm {
             job: None,
             last: None,
             opened: false,
+            as_patch: false,
         }
     }
 }
@@ -182,7 +186,7 @@ impl ImportForm {
     }
 
     /// Collects a fit that ended: the scene to open when it came within the
-    /// tolerance (else it waits for "Open the best design").
+    /// tolerance (else it waits for "Import the best design").
     pub fn poll(&mut self) -> Option<Arc<Scene>> {
         if !self.job.as_ref().is_some_and(FitJob::is_finished) {
             return None;
@@ -224,6 +228,15 @@ pub fn summary(fit: &ReferenceFit) -> String {
     )
 }
 
+/// The edit that imports a fitted `scene` as the form says (a new design
+/// or a new patch).
+pub fn import_edit(scene: &Scene, as_patch: bool) -> Edit {
+    Edit::Import {
+        scene: Box::new(scene.clone()),
+        as_patch,
+    }
+}
+
 /// A face's size: its bounding box's sides, in metres.
 fn size_of(info: &FaceInfo) -> String {
     match info.bbox {
@@ -255,43 +268,28 @@ impl Plugin for ImportPlugin {
     }
 }
 
-/// Opens `scene` after the unsaved-changes question.
-fn open_scene(
-    scene: Arc<Scene>,
-    model: &Model,
-    files_ui: &mut FileUi,
-    edits: &mut MessageWriter<EditMessage>,
-    exit: &mut MessageWriter<AppExit>,
-) {
-    files::request(
-        Pending::Import(ImportedScene(scene)),
-        model,
-        files_ui,
-        edits,
-        exit,
-    );
-}
-
-/// A fit that ended: within the tolerance, its design is opened.
+/// A fit that ended: within the tolerance, its design is imported.
 fn finish_fits(
     meter: Res<crate::ecs::meter::CpuMeter>,
     mut form: ResMut<ImportForm>,
-    model: Res<Model>,
-    mut files_ui: ResMut<FileUi>,
     mut edits: MessageWriter<EditMessage>,
-    mut exit: MessageWriter<AppExit>,
 ) {
     let _meter = meter.start();
     if !form.job.as_ref().is_some_and(FitJob::is_finished) {
         return;
     }
     if let Some(scene) = form.poll() {
-        open_scene(scene, &model, &mut files_ui, &mut edits, &mut exit);
+        edits.write(EditMessage::from(import_edit(&scene, form.as_patch)));
     }
 }
 
 /// The faces as a grid: one row each, a B-spline face selectable.
-fn face_grid(ui: &mut egui::Ui, faces: &[FaceRow], chosen: &mut Option<usize>, enabled: bool) {
+pub(super) fn face_grid(
+    ui: &mut egui::Ui,
+    faces: &[FaceRow],
+    chosen: &mut Option<usize>,
+    enabled: bool,
+) {
     egui::ScrollArea::vertical()
         .max_height(180.0)
         .show(ui, |ui| {
@@ -318,7 +316,9 @@ fn face_grid(ui: &mut egui::Ui, faces: &[FaceRow], chosen: &mut Option<usize>, e
                         );
                         let r = match &f.refused {
                             Some(why) => r.on_disabled_hover_text(why),
-                            None => r.on_hover_text(format!("Fit face {} ({})", i.index, i.entity)),
+                            None => {
+                                r.on_hover_text(format!("Choose face {} ({})", i.index, i.entity))
+                            }
                         };
                         if r.clicked() {
                             *chosen = Some(i.index);
@@ -359,10 +359,8 @@ fn dialog(
     meter: Res<crate::ecs::meter::CpuMeter>,
     mut contexts: EguiContexts,
     mut form: ResMut<ImportForm>,
-    model: Res<Model>,
-    mut files_ui: ResMut<FileUi>,
+    patch: crate::ecs::patch::PatchRef,
     mut edits: MessageWriter<EditMessage>,
-    mut exit: MessageWriter<AppExit>,
 ) -> Result {
     let _meter = meter.start();
     if !form.open {
@@ -371,8 +369,14 @@ fn dialog(
     let ctx = contexts.ctx_mut()?;
     // edited on a copy of the fields: the resource is marked changed only
     // when something is
-    let (mut face, mut along, mut relative, mut depth) =
-        (form.face, form.along, form.relative, form.depth);
+    let (mut face, mut along, mut relative, mut depth, mut as_patch) = (
+        form.face,
+        form.along,
+        form.relative,
+        form.depth,
+        form.as_patch,
+    );
+    let has_reference = patch.reference().is_some();
     let busy = form.busy();
     let (mut fit, mut cancel, mut best, mut close) = (false, false, false, false);
     let mut open = true;
@@ -465,7 +469,7 @@ fn dialog(
             let problem = form.problem_with(face, relative, depth);
             match &form.last {
                 Some(JobEnd::Fitted(f)) if f.fit.within => {
-                    ui.label(format!("Opened: {}", summary(&f.fit)));
+                    ui.label(format!("Fitted: {}", summary(&f.fit)));
                 }
                 Some(JobEnd::Fitted(f)) => {
                     ui.colored_label(
@@ -477,8 +481,8 @@ fn dialog(
                     );
                     ui.label(summary(&f.fit));
                     best = ui
-                        .add_enabled(!form.opened, egui::Button::new("Open the best design"))
-                        .on_hover_text("Open the closest design reached, as an unsaved scene")
+                        .add_enabled(!form.opened, egui::Button::new("Import the best design"))
+                        .on_hover_text("Import the closest design reached (one undo step)")
                         .clicked();
                 }
                 Some(JobEnd::Failed(e)) => {
@@ -494,18 +498,51 @@ fn dialog(
             ui.horizontal(|ui| {
                 fit = ui
                     .add_enabled(problem.is_none(), egui::Button::new("Fit"))
-                    .on_hover_text("Fit a streamline design to the face, then open it")
+                    .on_hover_text("Fit a streamline design to the face, then import it")
                     .on_disabled_hover_text(problem.clone().unwrap_or_default())
                     .clicked();
                 if ui.button("Close").clicked() {
                     close = true;
                 }
+                ui.separator();
+                ui.add_enabled_ui(!busy, |ui| {
+                    ui.radio_value(&mut as_patch, false, "as a new design")
+                        .on_hover_text(
+                            "The fitted design replaces the current one; its reference is this \
+                             face. One undo step brings the current design back",
+                        );
+                    ui.radio_value(&mut as_patch, true, "as a new patch")
+                        .on_hover_text(
+                            "The fitted surface is added to the current design as a patch of its \
+                             own, joined to none; the design keeps its reference (this face when \
+                             it has none). One undo step",
+                        );
+                });
             });
+            if as_patch {
+                ui.label(
+                    egui::RichText::new(if has_reference {
+                        "A new patch, joined to none; the design keeps its reference."
+                    } else {
+                        "A new patch, joined to none; the design has no reference: it takes this face."
+                    })
+                    .weak(),
+                );
+            }
             if let Some(p) = problem {
                 ui.label(egui::RichText::new(p).color(egui::Color32::LIGHT_RED));
             }
         });
-    if (face, along, relative, depth) != (form.face, form.along, form.relative, form.depth) {
+    if (face, along, relative, depth, as_patch)
+        != (
+            form.face,
+            form.along,
+            form.relative,
+            form.depth,
+            form.as_patch,
+        )
+    {
+        form.as_patch = as_patch;
         form.face = face;
         form.along = along;
         form.relative = relative;
@@ -519,7 +556,7 @@ fn dialog(
         ctx.request_repaint();
     }
     if best && let Some(scene) = form.best() {
-        open_scene(scene, &model, &mut files_ui, &mut edits, &mut exit);
+        edits.write(EditMessage::from(import_edit(&scene, form.as_patch)));
     }
     if !open || close {
         form.cancel();

@@ -1,7 +1,8 @@
 //! The document: new, open, save, export and recent files with the
 //! unsaved-changes prompt (`files`), the File ▸ New ▸ New design… dialog
 //! (`new_design`), File ▸ Import surface… (`import`: a design fitted to a
-//! STEP, IGES or OBJ face, on a thread of its own: `fit_job`), and the file
+//! STEP, IGES or OBJ face, on a thread of its own: `fit_job`), File ▸
+//! Reference… (`reference`: a reference attached without a fit), and the file
 //! browser every file is picked in (`file_browser`). Autosave and recovery
 //! read the screenshot run's request, which stands above the panels, so
 //! `autosave.rs` stands beside the editor's `mod.rs`, above every room.
@@ -11,3 +12,4 @@ pub mod files;
 pub mod fit_job;
 pub mod import;
 pub mod new_design;
+pub mod reference;

@@ -317,8 +317,9 @@ fn reference_legend(ui: &mut egui::Ui, r: &ReferenceField) {
         ));
         ui.label(
             egui::RichText::new(format!(
-                "measured in {:.1} ms (live during a drag up to {LIVE_POINTS} points, else when it ends)",
-                r.seconds * 1e3
+                "measured in {:.1} ms ({} points; live during a drag that moves up to {LIVE_POINTS} points, else when it ends)",
+                r.seconds * 1e3,
+                r.measured
             ))
             .weak(),
         );

@@ -1,10 +1,12 @@
 //! File: new (a new design, or a built-in scene), open, import a surface,
-//! save, save as, export, recent files.
+//! save, save as, export, recent files; the design's reference (attach,
+//! detach, View ▸ Reference's ghost and why it cannot be drawn).
 
 use super::PanelCtx;
 use crate::ecs::runner::ScriptRun;
 use crate::editor::document::files::{self, FileUi, PathAction, Pending};
 use crate::editor::document::new_design::NewDesignForm;
+use crate::editor::surface::reference_ghost::ReferenceGhost;
 use crate::scene::builtin;
 use crate::scene::export::Format;
 use bevy::ecs::system::SystemParam;
@@ -19,6 +21,8 @@ pub struct FileSection<'w> {
     pub exit: MessageWriter<'w, AppExit>,
     pub script: ResMut<'w, ScriptRun>,
     pub new_design: ResMut<'w, NewDesignForm>,
+    /// The reference's ghost (absent in an editor without it).
+    pub ghost: Option<ResMut<'w, ReferenceGhost>>,
 }
 
 pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
@@ -138,9 +142,66 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
             }
         }
     }
+    reference(ui, p, s);
     ui.separator();
     let folder = files::scene_folder(&p.model);
     script(ui, &mut s.script, &mut s.files, folder);
+}
+
+/// The design's reference: its file and face, Reference… and Detach, the
+/// ghost's switch and why it cannot be drawn.
+fn reference(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
+    let link = p.patch.reference().cloned();
+    ui.horizontal_wrapped(|ui| {
+        match &link {
+            Some(l) => {
+                let name = l.path.file_name().map_or_else(
+                    || l.path.display().to_string(),
+                    |n| n.to_string_lossy().into(),
+                );
+                ui.label(format!("Reference: {name}, face {}", l.face))
+                    .on_hover_text(l.path.display().to_string());
+            }
+            None => {
+                ui.label(egui::RichText::new("No reference").weak());
+            }
+        }
+        if ui
+            .button("Reference…")
+            .on_hover_text("Attach a face of a STEP or IGES file or an OBJ grid, without fitting")
+            .clicked()
+        {
+            let folder = files::scene_folder(&p.model);
+            files::browse(&mut s.files, PathAction::AttachReference, folder, None);
+        }
+        if link.is_some()
+            && ui
+                .button("Detach")
+                .on_hover_text("The design keeps no reference (one undo step)")
+                .clicked()
+        {
+            p.send(crate::ecs::Edit::SetReference(None));
+        }
+    });
+    if let Some(g) = &mut s.ghost {
+        ghost_switch(ui, g, link.is_some());
+    }
+}
+
+/// View ▸ Reference: the ghost's switch, and why the face cannot be drawn.
+pub(super) fn ghost_switch(ui: &mut egui::Ui, ghost: &mut ReferenceGhost, has_reference: bool) {
+    let mut shown = ghost.shown;
+    ui.add_enabled(has_reference, egui::Checkbox::new(&mut shown, "Reference"))
+        .on_hover_text("Draw the reference as a translucent ghost over the design")
+        .on_disabled_hover_text(
+            "The design has no reference: Reference… in the File menu attaches one",
+        );
+    if shown != ghost.shown {
+        ghost.shown = shown;
+    }
+    if let Some(e) = &ghost.error {
+        ui.colored_label(egui::Color32::LIGHT_RED, e);
+    }
 }
 
 /// Run script: a script's edits played into the open scene, off the frame's

@@ -189,6 +189,13 @@ fn file_menu(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut Sections) {
         let folder = files::scene_folder(&p.model);
         files::browse(&mut f.files, PathAction::ImportSurface, folder, None);
     }
+    if entry(ui, "Reference…", "", true) {
+        let folder = files::scene_folder(&p.model);
+        files::browse(&mut f.files, PathAction::AttachReference, folder, None);
+    }
+    if entry(ui, "Detach reference", "", p.patch.reference().is_some()) {
+        p.send(Edit::SetReference(None));
+    }
     ui.separator();
     if entry(ui, "Quit", QUIT, true) {
         files::request(
@@ -270,6 +277,9 @@ fn view_menu(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut Sections) {
     ui.checkbox(&mut o.streamlines, "Streamlines");
     ui.checkbox(&mut o.axes_and_grid, "Axes and ground grid");
     ui.checkbox(&mut sp.show, "Gaussian sphere view");
+    if let Some(g) = &mut s.file.ghost {
+        super::file::ghost_switch(ui, g, p.patch.reference().is_some());
+    }
     d.handles.set_if_neq(h);
     d.overlay.set_if_neq(o);
     d.sphere.set_if_neq(sp);

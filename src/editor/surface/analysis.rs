@@ -357,11 +357,16 @@ pub(super) fn apply_mode(
         zebra.then_some(eye),
         measured.unwrap_or(0),
     );
-    // a fit slower than a frame waits for the drag to end (docs/cad.md)
-    let deferred = settings.mode == SurfaceMode::Deviation
-        && deviation.stale
-        && !deviation.live()
-        && mouse.get_pressed().next().is_some();
+    // a fit slower than a frame waits for the drag to end (docs/cad.md),
+    // and so does a map to the reference that is measured then
+    // (`reference_map`): its colours stay until it is measured again
+    let pressed = mouse.get_pressed().next().is_some();
+    let deferred = pressed
+        && match settings.mode {
+            SurfaceMode::Deviation => deviation.stale && !deviation.live(),
+            SurfaceMode::Reference => reference.stale && reference.values.is_some(),
+            _ => false,
+        };
     let unchanged = !surface_changed && !deviation.stale && last.as_ref() == Some(&key);
     if deferred {
         return;

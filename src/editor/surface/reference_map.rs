@@ -7,11 +7,19 @@
 //! (path and face) and kept in [`ReferenceField`], built again when the
 //! reference changes; a file that cannot be read is the field's
 //! [`ReferenceField::error`], shown in the panel. The distances are
-//! measured again when the surface changes: during a drag only when the
-//! shown points are at most [`LIVE_POINTS`] (about 14 ms at 0.7 µs a point),
-//! else when the drag ends. As `reference_fit::measure` does, a mirrored
-//! design measures its own half (the rows from the middle on); the
-//! reflected rows show the distance of the point they reflect.
+//! measured again when the surface changes, and only where it changed: the
+//! mesh stage names the window of points it rewrote ([`SurfaceChanges`]),
+//! and the map measures the streamlines (rows) and columns of that window
+//! again and keeps every other point's distance, so its values are those
+//! of a full measure, bit for bit (each point's distance depends on that
+//! point alone). A new shape, a new reference, or changes the map did not
+//! see are measured whole. During a drag the map is measured live when the
+//! points to measure are at most [`LIVE_POINTS`] (a share of a 4 ms frame
+//! at about 0.7 µs a point), else when the drag ends. As
+//! `reference_fit::measure` does, a mirrored design measures its own half
+//! (the rows from the middle on); the reflected rows show the distance of
+//! the point they reflect, and a change of a reflected row measures the row
+//! it reflects.
 //!
 //! The tolerance is [`TOLERANCE_SHARE`] of the diagonal of the face's
 //! bounding box (of a 33 × 33 sample of the face): the relative tolerance a
@@ -21,15 +29,19 @@
 
 use super::super::interaction::{Drag, EditorSet};
 use crate::ecs::patch::PatchRef;
-use crate::ecs::{SurfaceChanges, SurfaceData};
+use crate::ecs::{SurfaceChange, SurfaceChanges, SurfaceData};
 use crate::scene::reference_fit::measured_points;
 use crate::scene::reference_link::ReferenceLink;
 use bevy::prelude::*;
-use streamline_kernel::fit::{ClosestPoints, Distances, ReferenceSurface};
+use streamline_kernel::fit::{Distances, ReferenceIndex};
+use streamline_kernel::levels::dirty_window::{DirtyWindow, Span};
 use streamline_kernel::{DVec3, Grid};
 
-/// At most this many shown points are measured live during a drag.
-pub const LIVE_POINTS: usize = 20_000;
+/// At most this many points are measured in a frame of a drag (the rows
+/// and columns the drag moved, [`ReferenceField::update`]); a drag that moves
+/// more is measured when it ends. About 2 ms at 0.7 µs a point: half the
+/// 4 ms a drag's frame may take.
+pub const LIVE_POINTS: usize = 3_000;
 
 /// The map's tolerance as a share of the face's bounding-box diagonal: the
 /// fit's default.
@@ -60,7 +72,7 @@ pub struct ReferenceField {
     loaded: Option<ReferenceLink>,
     /// The closest-point index of the face (it keeps its own copy of the
     /// face's surface).
-    index: Option<ClosestPoints<'static>>,
+    index: Option<ReferenceIndex>,
     /// Whether the map is shown (the Analysis mode "to reference", which
     /// `super::analysis` sets): only then is the file read and measured.
     pub shown: bool,
@@ -82,6 +94,55 @@ pub struct ReferenceField {
     pub stale: bool,
     /// Counts the measurements (the map's coordinates follow it).
     pub generation: u64,
+    /// Points the last measurement measured: all the measured points, or
+    /// those of the window that changed.
+    pub measured: usize,
+    /// The shown rows and columns the last measurement measured (of the
+    /// measured half when mirrored); `None`: every point.
+    pub window: Option<DirtyWindow>,
+    /// The changes not measured yet, merged (`All` after a new reference).
+    pending: Pending,
+    /// The distance of each measured point ([`measured_points`]), and the
+    /// shown grid's `(rows, cols, mirror)` they were measured on.
+    half: Vec<f64>,
+    shape: (usize, usize, bool),
+}
+
+/// What the map must measure again.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+enum Pending {
+    /// Nothing.
+    #[default]
+    None,
+    /// These shown points (rows × columns).
+    Window(DirtyWindow),
+    /// Every point.
+    All,
+}
+
+impl Pending {
+    fn with(self, change: SurfaceChange) -> Pending {
+        match (self, change) {
+            (p, SurfaceChange::Unchanged) => p,
+            (Pending::All, _) | (_, SurfaceChange::All) => Pending::All,
+            (Pending::None, SurfaceChange::Window(w)) => Pending::Window(w),
+            (Pending::Window(a), SurfaceChange::Window(w)) => Pending::Window(a.union(w)),
+        }
+    }
+}
+
+/// The measured rows (`lo..=hi`, of the shown grid) and the columns
+/// (`lo..=hi`) that hold every point of `w`'s rows or of the rows they
+/// reflect (with the mirror on, the measured rows are those from the middle
+/// on, row `r` showing row `max(r, rows − 1 − r)`).
+fn measured_window(w: DirtyWindow, rows: usize, mirror: bool) -> ((usize, usize), (usize, usize)) {
+    let measured = |r: usize| if mirror { r.max(rows - 1 - r) } else { r };
+    let (lo, hi) = w
+        .rows
+        .iter()
+        .map(measured)
+        .fold((usize::MAX, 0), |(lo, hi), m| (lo.min(m), hi.max(m)));
+    ((lo, hi), (w.cols.lo, w.cols.hi))
 }
 
 impl ReferenceField {
@@ -92,6 +153,7 @@ impl ReferenceField {
         self.error = None;
         self.values = None;
         self.stale = true;
+        self.pending = Pending::All;
         if let Some(l) = &link {
             match index_of(l) {
                 Ok((index, tolerance)) => {
@@ -104,20 +166,127 @@ impl ReferenceField {
         self.loaded = link;
     }
 
-    /// Measures the shown points `points` of the first patch (module
-    /// documentation).
-    fn measure(&mut self, points: &Grid<DVec3>, mirror: bool) {
+    /// Measures every point again at the next update, as a new reference
+    /// would (the incremental measure's check in the tests).
+    pub fn remeasure_all(&mut self) {
+        self.pending = Pending::All;
+        self.stale = true;
+    }
+
+    /// Notes a change of the surface: measured by the next
+    /// [`Self::update`].
+    pub fn note(&mut self, change: SurfaceChange) {
+        self.pending = self.pending.with(change);
+        if self.pending != Pending::None {
+            self.stale = true;
+        }
+    }
+
+    /// The points the next [`Self::update`] of `points` measures: all the
+    /// measured points, or the window that changed
+    /// ([`measured_window`]) when the last measurement was of this shape;
+    /// `None` when nothing changed.
+    fn to_measure(&self, points: &Grid<DVec3>, mirror: bool) -> Option<Measure> {
+        let (rows, cols) = (points.rows(), points.cols());
+        let all = measured_points(points, mirror).len();
+        match self.pending {
+            Pending::None if self.values.is_some() => None,
+            Pending::Window(w)
+                if self.values.is_some()
+                    && self.shape == (rows, cols, mirror)
+                    && self.half.len() == all
+                    && w.rows.hi < rows
+                    && w.cols.hi < cols =>
+            {
+                let ((r0, r1), (c0, c1)) = measured_window(w, rows, mirror);
+                Some(Measure::Window {
+                    rows: (r0, r1),
+                    cols: (c0, c1),
+                    points: (r1 - r0 + 1) * (c1 - c0 + 1),
+                })
+            }
+            _ => Some(Measure::All { points: all }),
+        }
+    }
+
+    /// Measures the shown points `points` of the first patch again where
+    /// they changed (module documentation), or all of them; the largest
+    /// and mean distance are those of every measured point.
+    pub fn update(&mut self, points: &Grid<DVec3>, mirror: bool) {
+        let Some(what) = self.to_measure(points, mirror) else {
+            return;
+        };
         let Some(index) = &self.index else {
             return;
         };
         let t0 = std::time::Instant::now();
-        let half = index.distances(measured_points(points, mirror));
-        let values = shown_distances(&half, points.rows(), points.cols(), mirror);
-        self.distances = Distances::of(&half);
-        self.values = Some(values);
+        let (rows, cols) = (points.rows(), points.cols());
+        match what {
+            Measure::All { points: n } => {
+                self.half = index.distances(measured_points(points, mirror));
+                self.values = Some(shown_distances(&self.half, rows, cols, mirror));
+                self.shape = (rows, cols, mirror);
+                self.measured = n;
+                self.window = None;
+            }
+            Measure::Window {
+                rows: (r0, r1),
+                cols: (c0, c1),
+                points: n,
+            } => {
+                let data = points.data();
+                let width = c1 - c0 + 1;
+                // one call, so that a large window is measured on two threads
+                let mut window = Vec::with_capacity(n);
+                for r in r0..=r1 {
+                    window.extend_from_slice(&data[r * cols + c0..=r * cols + c1]);
+                }
+                let d = index.distances(&window);
+                let first = if mirror { rows / 2 } else { 0 };
+                let values = self.values.get_or_insert_with(Vec::new);
+                for (k, r) in (r0..=r1).enumerate() {
+                    let row = &d[k * width..(k + 1) * width];
+                    let h = (r - first) * cols;
+                    self.half[h + c0..=h + c1].copy_from_slice(row);
+                    values[r * cols + c0..=r * cols + c1].copy_from_slice(row);
+                    if mirror {
+                        let m = rows - 1 - r;
+                        values[m * cols + c0..=m * cols + c1].copy_from_slice(row);
+                    }
+                }
+                self.measured = n;
+                self.window = Some(DirtyWindow {
+                    rows: Span::new(r0, r1),
+                    cols: Span::new(c0, c1),
+                });
+            }
+        }
+        self.distances = Distances::of(&self.half);
+        self.pending = Pending::None;
         self.seconds = t0.elapsed().as_secs_f64();
         self.stale = false;
         self.generation += 1;
+    }
+}
+
+/// What [`ReferenceField::update`] measures.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Measure {
+    /// Every measured point (`points` of them).
+    All { points: usize },
+    /// The shown rows `rows` and columns `cols` (inclusive), `points` in all.
+    Window {
+        rows: (usize, usize),
+        cols: (usize, usize),
+        points: usize,
+    },
+}
+
+impl Measure {
+    fn points(self) -> usize {
+        match self {
+            Measure::All { points } | Measure::Window { points, .. } => points,
+        }
     }
 }
 
@@ -138,31 +307,19 @@ fn shown_distances(half: &[f64], rows: usize, cols: usize, mirror: bool) -> Vec<
         .collect()
 }
 
-/// The closest-point index of the face of `link` and the map's tolerance.
-fn index_of(link: &ReferenceLink) -> Result<(ClosestPoints<'static>, f64), String> {
-    let file = streamline_reference::read(&link.path).map_err(|e| e.to_string())?;
-    let surface = file.surface(link.face).map_err(|e| e.to_string())?;
-    let tolerance = TOLERANCE_SHARE * diagonal(surface);
-    let index = ClosestPoints::shared(std::sync::Arc::new(surface.clone()))
-        .map_err(|e| format!("{}: face {}: {e}", link.path.display(), link.face))?;
+/// The closest-point index of the face of `link` (a surface's or a
+/// triangle mesh's, `reference_fit::reference_index`) and the map's
+/// tolerance.
+fn index_of(link: &ReferenceLink) -> Result<(ReferenceIndex, f64), String> {
+    let index = crate::scene::reference_fit::reference_index(link)?;
+    let tolerance = TOLERANCE_SHARE * diagonal(&index);
     Ok((index, tolerance))
 }
 
-/// The diagonal of the bounding box of a 33 × 33 sample of `surface`.
-fn diagonal(surface: &dyn ReferenceSurface) -> f64 {
-    let ([u0, u1], [v0, v1]) = surface.domain();
-    let n = 32;
-    let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-    for i in 0..=n {
-        for j in 0..=n {
-            let u = u0 + (u1 - u0) * i as f64 / n as f64;
-            let v = v0 + (v1 - v0) * j as f64 / n as f64;
-            let p = surface.point(u, v);
-            lo = lo.min(p);
-            hi = hi.max(p);
-        }
-    }
-    (hi - lo).length()
+/// The reference's size: the diagonal of the bounding box of a 33 × 33
+/// sample of the surface, or of a mesh's vertices.
+fn diagonal(index: &ReferenceIndex) -> f64 {
+    index.diagonal()
 }
 
 /// Keeps the index for the design's reference and, while the map is
@@ -176,9 +333,7 @@ fn measure_reference(
     mut field: ResMut<ReferenceField>,
 ) {
     let _meter = meter.start();
-    if changes.take().any() {
-        field.stale = true;
-    }
+    field.note(changes.take());
     let link = patch.reference().cloned();
     let has = link.is_some();
     if field.has_reference != has {
@@ -193,11 +348,16 @@ fn measure_reference(
     if field.index.is_none() || !field.stale {
         return;
     }
+    let mirror = patch.structure().mirror;
+    let Some(what) = field.to_measure(&data.points, mirror) else {
+        field.stale = false;
+        return;
+    };
     let dragging = drag.0.is_some();
-    if dragging && data.points.data().len() > LIVE_POINTS {
+    if dragging && what.points() > LIVE_POINTS {
         return; // when the drag ends
     }
-    field.measure(&data.points, patch.structure().mirror);
+    field.update(&data.points, mirror);
     field.live = dragging;
 }
 
@@ -220,5 +380,30 @@ mod tests {
         // 4 rows: measured rows 2, 3; row 0 reflects row 3
         let even = shown_distances(&[5.0, 6.0], 4, 1, true);
         assert_eq!(even, [6.0, 5.0, 5.0, 6.0].to_vec());
+    }
+
+    /// A changed window is measured on the rows it changed, or with the
+    /// mirror on on the measured rows they reflect; changes merge.
+    #[test]
+    fn a_window_is_measured_on_the_rows_it_reflects() {
+        let w = |r0, r1, c0, c1| DirtyWindow {
+            rows: Span::new(r0, r1),
+            cols: Span::new(c0, c1),
+        };
+        assert_eq!(measured_window(w(0, 1, 2, 3), 5, false), ((0, 1), (2, 3)));
+        // 5 rows, the middle row 2: rows 0, 1 show rows 4, 3
+        assert_eq!(measured_window(w(0, 1, 2, 3), 5, true), ((3, 4), (2, 3)));
+        assert_eq!(measured_window(w(1, 3, 0, 0), 5, true), ((2, 3), (0, 0)));
+        assert_eq!(measured_window(w(3, 4, 0, 0), 5, true), ((3, 4), (0, 0)));
+        let p = Pending::None.with(SurfaceChange::Window(w(0, 1, 0, 0)));
+        let p = p.with(SurfaceChange::Unchanged);
+        assert_eq!(p, Pending::Window(w(0, 1, 0, 0)));
+        let p = p.with(SurfaceChange::Window(w(3, 3, 2, 2)));
+        assert_eq!(p, Pending::Window(w(0, 3, 0, 2)));
+        assert_eq!(p.with(SurfaceChange::All), Pending::All);
+        assert_eq!(
+            Pending::All.with(SurfaceChange::Window(w(0, 0, 0, 0))),
+            Pending::All
+        );
     }
 }

@@ -52,12 +52,29 @@ pub(crate) fn refine_closest(
     dv: [f64; 2],
     stop: f64,
 ) -> (f64, f64, f64) {
+    refine_closest_steps(r, p, u, v, du, dv, stop, NEWTON_STEPS)
+}
+
+/// [`refine_closest`] with at most `steps` Gauss–Newton steps: with one,
+/// a first estimate (never less than the distance found with more), from
+/// whose `(u, v)` [`refine_closest`] goes on as it would have.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn refine_closest_steps(
+    r: &dyn ReferenceSurface,
+    p: DVec3,
+    u: f64,
+    v: f64,
+    du: [f64; 2],
+    dv: [f64; 2],
+    stop: f64,
+    steps: usize,
+) -> (f64, f64, f64) {
     let (mut u, mut v) = (u.clamp(du[0], du[1]), v.clamp(dv[0], dv[1]));
     let [mut s, mut su, mut sv] = r.derivatives(u, v);
     let mut d2 = (p - s).length_squared();
     let eps_u = 1e-15 * (du[1] - du[0]);
     let eps_v = 1e-15 * (dv[1] - dv[0]);
-    for _ in 0..NEWTON_STEPS {
+    for _ in 0..steps {
         let e = p - s;
         let (a11, a12, a22) = (su.dot(su), su.dot(sv), sv.dot(sv));
         let (b1, b2) = (su.dot(e), sv.dot(e));
@@ -305,6 +322,11 @@ impl<'a> ClosestPoints<'a> {
         reference: std::sync::Arc<dyn ReferenceSurface + Send>,
     ) -> Result<ClosestPoints<'static>, ReferenceFitError> {
         ClosestPoints::build(Held::Shared(reference))
+    }
+
+    /// The reference measured against.
+    pub fn reference(&self) -> &dyn ReferenceSurface {
+        self.reference.get()
     }
 
     /// Number of samples.

@@ -200,6 +200,58 @@ impl<'f, 'a> Sampler<'f, 'a> {
     }
 }
 
+/// Sweeps at most of [`limit_lengths`].
+const LENGTH_SWEEPS: usize = 200;
+
+/// The phantom row lengths continued linearly from the two rows next to
+/// them (at least half the next one's).
+fn continue_lengths(r: &[f64], lam: &mut [f64]) {
+    let m = lam.len();
+    let line = |lam: &[f64], j0: usize, j1: usize, j: usize| {
+        let k = (r[j] - r[j0]) / (r[j1] - r[j0]);
+        let l = lam[j0] + k * (lam[j1] - lam[j0]);
+        l.max(0.5 * lam[j0])
+    };
+    lam[0] = line(lam, 1, 2, 0);
+    lam[m - 1] = line(lam, m - 2, m - 3, m - 1);
+}
+
+/// Control row lengths of an approximating scheme whose limit at every
+/// interior row is `want` (the reference's length at the limit row), the
+/// phantoms continued linearly: progressive interpolation on the scalars,
+/// `λ ← λ + (want − limit(λ))`, which contracts by at least `4w` (the
+/// limit weight's) a sweep. Without it the limit's rows are the blend
+/// `(λ_{j−1} + 4λ_j + λ_{j+1})/6` of lengths sampled elsewhere, off by
+/// `λ''h²/6` wherever the rows' length is not linear across them (a torus:
+/// the fit could not come within its tolerance with any net).
+pub(crate) fn limit_lengths(scheme: SurfaceScheme, r: &[f64], want: &[f64]) -> Vec<f64> {
+    let m = want.len();
+    let mut lam = want.to_vec();
+    continue_lengths(r, &mut lam);
+    let scale = want.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let mut next = lam.clone();
+    for _ in 0..LENGTH_SWEEPS {
+        let mut worst = 0.0f64;
+        for j in 1..m - 1 {
+            let e = want[j] - limit_at(scheme, &lam, j);
+            worst = worst.max(e.abs());
+            next[j] = lam[j] + e;
+        }
+        if !next.iter().all(|x| x.is_finite() && *x > 0.0) {
+            // (a row of no length: keep the samples)
+            let mut lam = want.to_vec();
+            continue_lengths(r, &mut lam);
+            return lam;
+        }
+        if worst <= 1e-14 * scale {
+            break;
+        }
+        lam.copy_from_slice(&next);
+        continue_lengths(r, &mut lam);
+    }
+    lam
+}
+
 /// What [`build_design`] needs beyond the nodes.
 pub(crate) struct Setup<'c> {
     pub scheme: SurfaceScheme,
@@ -333,20 +385,24 @@ pub(crate) fn build_design(
         .ok_or(BuildFailure::NoAnchor)?
         + ph;
     let lt = setup.length;
-    // row lengths: sampled at the node rows, continued linearly to phantoms
-    let mut lam = vec![0.0; m];
-    for j in ph..m - ph {
-        lam[j] = sampler.row(r[j] * lt)?.length();
-    }
-    if ph == 1 {
-        let line = |lam: &[f64], j0: usize, j1: usize, j: usize| {
-            let k = (r[j] - r[j0]) / (r[j1] - r[j0]);
-            let l = lam[j0] + k * (lam[j1] - lam[j0]);
-            l.max(0.5 * lam[j0])
-        };
-        lam[0] = line(&lam, 1, 2, 0);
-        lam[m - 1] = line(&lam, m - 2, m - 3, m - 1);
-    }
+    // row lengths: sampled at the node rows (Kobbelt); for an approximating
+    // scheme, whose limit row `j` lies at `limit_at(r, j)` and has the
+    // length `limit_at(λ, j)`, the lengths are turned until that limit is
+    // the reference's row length there, the phantoms continued linearly
+    let lam = if ph == 0 {
+        let mut lam = Vec::with_capacity(m);
+        for &y in &r {
+            lam.push(sampler.row(y * lt)?.length());
+        }
+        lam
+    } else {
+        let mut want = vec![0.0; m];
+        for (j, w) in want.iter_mut().enumerate().take(m - 1).skip(1) {
+            let y = limit_at(scheme, &r, j).clamp(0.0, 1.0);
+            *w = sampler.row(y * lt)?.length();
+        }
+        limit_lengths(scheme, &r, &want)
+    };
     let mut s = Vec::with_capacity(n * m);
     for &l in &lam {
         s.extend(c.iter().map(|x| x * l));

@@ -28,12 +28,13 @@ use super::construct::{
 };
 use super::error::ReferenceFitError;
 use super::initial::fit_initial;
-use super::measure::{Measure, breaks, from_reference, interval, measure};
+use super::measure::{Measure, RowCache, breaks, from_reference, interval, measure};
 use super::options::{Along, MAX_FIT_DEPTH, MAX_NET_SIDE, ReferenceFitOptions, Tolerance};
 use super::reference::{AnchorCurve, Frame, ReferenceSurface, Swapped};
 use crate::error::KernelError;
 use crate::levels::builder::Builder;
 use crate::levels::design::{Design, Level};
+use crate::levels::surface::SurfaceScheme;
 use crate::streamline::integrate::point_arclength;
 use glam::DVec3;
 use std::time::Instant;
@@ -183,6 +184,8 @@ struct Best {
     from: Option<Distances>,
     /// Whether `to` was measured at every point.
     full: bool,
+    /// Its furthest measured point (`Measure::worst`).
+    worst: (f64, f64, f64, f64),
 }
 
 /// Meshes with more points than this are measured at every other row and
@@ -192,6 +195,10 @@ const STRIDE_FROM: usize = 40_000;
 /// The fit stops when this many nets in a row come no closer (by 1 %) than
 /// the best one.
 const STALL_NETS: usize = 24;
+
+/// With one direction at its cap, the fit stops when this many nets in a
+/// row come no closer (by 1 %) than the best one.
+const FULL_STALL_NETS: usize = 4;
 
 /// [`fit_reference_with`] without a progress hook.
 pub fn fit_reference(
@@ -307,6 +314,7 @@ pub fn fit_reference_with(
     let mut sampler = Sampler::new(&f, &anchor);
     let mut nodes = initial_nodes(opts.scheme, opts.anchor);
     let mut builder = Builder::new();
+    let mut cache = RowCache::default();
     let mut best: Option<Best> = None;
     let mut blocked: Vec<Insert> = Vec::new();
     let mut last: Option<(Nodes, Measure, Insert)> = None;
@@ -389,12 +397,34 @@ pub fn fit_reference_with(
         let (rows_d, cols_d) = (level.tangents.rows(), level.tangents.cols());
         let mut stride = if rows_d * cols_d > STRIDE_FROM { 2 } else { 1 };
         let mut m = measure(
-            &f, &anchor, &nodes, lt, level, points, stride, stop, fraction,
+            &f,
+            &anchor,
+            &nodes,
+            lt,
+            level,
+            points,
+            (stride, stride),
+            stop,
+            fraction,
+            &mut cache,
         )?;
         let mut to = Distances::of(&m.dist);
         if to.max <= tol && stride > 1 {
+            // every point now (the strided rows lend theirs), the cells
+            // scored as they were
             stride = 1;
-            m = measure(&f, &anchor, &nodes, lt, level, points, 1, stop, fraction)?;
+            m = measure(
+                &f,
+                &anchor,
+                &nodes,
+                lt,
+                level,
+                points,
+                (1, 2),
+                stop,
+                fraction,
+                &mut cache,
+            )?;
             to = Distances::of(&m.dist);
         }
         let mut from = None;
@@ -424,6 +454,7 @@ pub fn fit_reference_with(
                 to,
                 from,
                 full: stride == 1,
+                worst: m.worst,
             });
         }
         if from.is_some_and(|d| d.max <= tol) {
@@ -438,6 +469,41 @@ pub fn fit_reference_with(
         if !progress(done) {
             return Err(ReferenceFitError::Cancelled);
         }
+        let (col_full, row_full) = (nodes.cols.len() >= cap_cols, nodes.rows.len() >= cap_rows);
+        // with one direction at its cap, only the other can grow: a few
+        // nets that bring the design no closer say that it cannot
+        let (psi_b, d_b, e_b, x_b) = best.as_ref().map_or(m.worst, |b| b.worst);
+        let b = best.as_ref().map_or(key, |b| b.key);
+        let other = if f.along() == 'u' { 'v' } else { 'u' };
+        if (col_full || row_full) && steps - best_step >= FULL_STALL_NETS {
+            why = Some(if col_full {
+                format!(
+                    "the columns reached their cap of {} control tangents and {FULL_STALL_NETS} more nets brought the design no closer than {b:.3e} (over the tolerance {tol:.3e}): the error lies along the rows (furthest at {:.0} % of their length), where the face turns faster than {} columns can follow; run the streamlines along {other}, loosen the tolerance or split the face",
+                    opts.max_net.1,
+                    100.0 * x_b,
+                    opts.max_net.1,
+                )
+            } else {
+                format!(
+                    "the rows reached their cap of {} control tangents and {FULL_STALL_NETS} more nets brought the design no closer than {b:.3e} (over the tolerance {tol:.3e}): the error lies across the rows (furthest at {:.0} % of the initial curve), where the face changes faster than {} rows can follow; run the streamlines along {other}, loosen the tolerance or split the face",
+                    opts.max_net.0,
+                    100.0 * psi_b,
+                    opts.max_net.0,
+                )
+            });
+            break;
+        }
+        // an approximating scheme whose tangents are the face's but whose
+        // rows stay off: more nets do not help
+        if ph > 0 && steps - best_step >= FULL_STALL_NETS && d_b > tol && e_b < 0.5 * d_b {
+            why = Some(format!(
+                "{} approximates: {FULL_STALL_NETS} more nets brought the design no closer than {b:.3e} (over the tolerance {tol:.3e}); its tangents are the face's (they explain {e_b:.1e} of it) but its rows, blended from their neighbours, do not lie where the face's do (furthest at {:.0} % of the initial curve and {:.0} % of the rows' length); fit with the interpolating scheme (--scheme kobbelt), loosen the tolerance or split the face",
+                opts.scheme.name(),
+                100.0 * psi_b,
+                100.0 * x_b,
+            ));
+            break;
+        }
         if steps - best_step >= STALL_NETS {
             why = Some(format!(
                 "the deviation stopped falling: {STALL_NETS} nets in a row came no closer than {:.3e} (over the tolerance {:.3e}); the face may have a crease or a degenerate edge: loosen the tolerance or split the face",
@@ -446,14 +512,17 @@ pub fn fit_reference_with(
             ));
             break;
         }
-        let (col_full, row_full) = (nodes.cols.len() >= cap_cols, nodes.rows.len() >= cap_rows);
         // a point much further than its row's tangent error explains is
         // off because its row is (its start, its length: what is blended
         // across the rows): a row there
-        let (psi_w, d_w, e_w) = m.worst;
-        // (not again right after such a row brought the design no closer)
-        // (for the interpolating scheme, whose node rows are mesh rows)
-        let across = (ph == 0 && chord.is_none() && d_w > tol && e_w < 0.5 * d_w)
+        let (psi_w, d_w, e_w, _) = m.worst;
+        // (not again right after such a row brought the design no closer;
+        // with Doo–Sabin too, whose limit rows take the reference's lengths,
+        // not with Catmull–Clark, whose distance along the rows that the
+        // tangents do not explain is its columns' doing: a cylinder, whose
+        // rows are all alike, needs columns)
+        let rows_mend = !matches!(opts.scheme, SurfaceScheme::CatmullClark);
+        let across = (rows_mend && chord.is_none() && d_w > tol && e_w < 0.5 * d_w)
             .then(|| Insert::Row(interval(&breaks(&nodes.rows), psi_w)))
             .filter(|_| !(no_gain && last_across));
         last_across = across.is_some();
@@ -486,7 +555,18 @@ pub fn fit_reference_with(
         builder.build(&b.design, opts.depth)?;
         if let Some(level) = builder.level() {
             let points = &builder.mesh().positions;
-            let m = measure(&f, &anchor, &b.nodes, lt, level, points, 1, stop, fraction)?;
+            let m = measure(
+                &f,
+                &anchor,
+                &b.nodes,
+                lt,
+                level,
+                points,
+                (1, 2),
+                stop,
+                fraction,
+                &mut cache,
+            )?;
             b.to = Distances::of(&m.dist);
             b.from = Some(Distances::of(
                 &from_reference(&f, &anchor, level, points, &m.tables)?.0,

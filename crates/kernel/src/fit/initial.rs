@@ -5,7 +5,9 @@
 //! interpolation on one curve, `t_i ← Rot(t(ξ_i) → T_C(ξ_i L)) t_i`
 //! (eq. 12.4), the sphere iteration of §7. The number of control tangents
 //! doubles (in spans) until the curve's points are within a quarter of the
-//! tolerance of the anchor curve's at the ends of its quadrature panels.
+//! tolerance of the anchor curve's at the ends of its quadrature panels,
+//! then the fewest control tangents between the last count short of that
+//! and the first within it that come within an eighth (bisection).
 
 use super::error::ReferenceFitError;
 use super::reference::{AnchorCurve, Frame};
@@ -95,9 +97,7 @@ pub(crate) fn fit_initial(
         want.push(AnchorCurve::point(f, anchor.fraction, v)?);
     }
     let spans = f.r.breaks_v().len() + 1;
-    let mut n = (spans + INITIAL_ORDER - 1).max(INITIAL_ORDER);
-    let mut best: Option<FittedInitial> = None;
-    loop {
+    let fit = |n: usize| -> Result<FittedInitial, ReferenceFitError> {
         let tangents = fit_tangents(f, anchor, n)?;
         let curve = InitialCurve::new(&tangents, INITIAL_ORDER.min(n), len, origin)?;
         let deviation = ts
@@ -105,16 +105,43 @@ pub(crate) fn fit_initial(
             .zip(&want)
             .map(|(&t, w)| curve.point(t).distance(*w))
             .fold(0.0, f64::max);
-        let better = best.as_ref().is_none_or(|b| deviation < b.deviation);
-        if better {
-            best = Some(FittedInitial { curve, deviation });
+        Ok(FittedInitial { curve, deviation })
+    };
+    let mut n = (spans + INITIAL_ORDER - 1).max(INITIAL_ORDER);
+    let mut best: Option<FittedInitial> = None;
+    // the last count that was not within the tolerance
+    let mut short = None;
+    loop {
+        let got = fit(n)?;
+        let within = got.deviation <= tolerance;
+        if best.as_ref().is_none_or(|b| got.deviation < b.deviation) {
+            best = Some(got);
         }
-        let b = best.as_ref().map_or(f64::INFINITY, |b| b.deviation);
         let next = 2 * n - INITIAL_ORDER + 1;
-        if b <= tolerance || next > MAX_INITIAL_TANGENTS {
+        if within || next > MAX_INITIAL_TANGENTS {
             break;
         }
+        short = Some(n);
         n = next;
+    }
+    // the doubling overshoots: the fewest tangents between the last count
+    // short of the tolerance and the first within it that come within half
+    // of it (bisection; fewer handles for the designer to hold, and the
+    // other half left to the net, which then grows no larger)
+    if let (Some(mut lo), Some(b)) = (short, best.as_ref())
+        && b.deviation <= 0.5 * tolerance
+    {
+        let mut hi = n;
+        while hi - lo > 1 {
+            let mid = lo + (hi - lo) / 2;
+            let got = fit(mid)?;
+            if got.deviation <= 0.5 * tolerance {
+                hi = mid;
+                best = Some(got);
+            } else {
+                lo = mid;
+            }
+        }
     }
     best.ok_or(ReferenceFitError::NonFinite {
         what: "initial curve",

@@ -15,6 +15,9 @@
 //!   the cells' scores that say where the net grows;
 //! * [`closest`]: closest points on the reference (Newton from the nearest
 //!   sample) and the distance from the reference to a design's mesh;
+//! * [`mesh`]: the distance from points to a triangle mesh (a reference
+//!   for display and measuring only) and [`ReferenceIndex`], which measures
+//!   against a surface or a mesh alike;
 //! * [`grow`]: the greedy growth of the net and the [`ReferenceFit`] it
 //!   reports;
 //! * [`error`]: every refusal, naming the edge and the fix.
@@ -25,11 +28,13 @@ pub mod error;
 pub mod grow;
 pub mod initial;
 mod measure;
+pub mod mesh;
 pub mod options;
 pub mod reference;
 
 pub use closest::{ClosestPoints, Distances, distances_to_reference};
 pub use error::ReferenceFitError;
 pub use grow::{ReferenceFit, fit_reference, fit_reference_with};
+pub use mesh::{MeshError, MeshIndex, ReferenceIndex, TriangleMesh};
 pub use options::{Along, AnchorAt, ReferenceFitOptions, Tolerance};
 pub use reference::ReferenceSurface;

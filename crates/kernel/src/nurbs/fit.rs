@@ -298,7 +298,18 @@ pub fn fit(data: &Samples, check: &Samples, opts: &FitOptions) -> Result<Fit, Fi
             on_check = bound <= DATA_MARGIN * tol;
         }
         let (eff, mut pick_u, mut pick_v) = if on_check {
-            let m = measure(&pass.surface, check, None);
+            // parametric: a face judged by foot points may pass with check
+            // points off its boundary, which OpenCascade's projection (an
+            // orthogonal one) does not see (docs/math.md §10)
+            let mut m = measure(&pass.surface, check, f64::INFINITY, None);
+            if m.deviation.max <= tol {
+                // the fitted points too: a round that reached the check grid
+                // without its bound under the margin has not bounded them
+                let at_data = measure(&pass.surface, data, f64::INFINITY, None);
+                if at_data.deviation.max > tol {
+                    m = at_data;
+                }
+            }
             // the closest reached is what the check grid measured, once it has
             reached = if checked {
                 reached.min(m.deviation.max)
@@ -363,6 +374,12 @@ pub fn fit(data: &Samples, check: &Samples, opts: &FitOptions) -> Result<Fit, Fi
             split_points(&kv, &data.v, j, pieces, &mut new_v);
         }
         if new_u.is_empty() && new_v.is_empty() {
+            // the fitted points' bound cannot be split further under the
+            // margin: the check grid judges (the margin only saves rounds)
+            if !on_check && !checked {
+                on_check = true;
+                continue;
+            }
             let dir = if pick_u.is_empty() {
                 Direction::V
             } else {

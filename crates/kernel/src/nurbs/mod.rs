@@ -16,13 +16,13 @@ pub mod samples;
 pub mod shell;
 pub mod surface;
 
-pub use deviation::{Deviation, deviation, deviation_field};
+pub use deviation::{Deviation, deviation, deviation_field, deviation_within};
 pub use error::{Direction, FitError};
 pub use fit::{Fit, FitOptions, FitReport, Tolerance, fit, fit_design, fit_knots};
 pub use knots::KnotVector;
 pub use samples::Samples;
 pub use shell::{
-    PatchGrid, SeamSpec, ShellError, ShellFace, ShellFit, ShellSeam, face_rows, fit_alone,
-    fit_shell,
+    PatchGrid, SeamSpec, ShellError, ShellFace, ShellFit, ShellSeam, face_deviation, face_rows,
+    fit_alone, fit_shell,
 };
 pub use surface::BSplineSurface;

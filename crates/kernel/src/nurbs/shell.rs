@@ -26,7 +26,7 @@
 //! check grid (one depth finer) and must be within the tolerance.
 
 use super::curve::Curve;
-use super::deviation::{Deviation, deviation};
+use super::deviation::{Deviation, foot_distance, measure};
 use super::error::FitError;
 use super::fit::{FitOptions, Tolerance, check_options, fit, fit_knots};
 use super::knots::KnotVector;
@@ -240,12 +240,33 @@ fn merge_knots(required: &[f64], optional: &[f64], gap: f64) -> Vec<f64> {
     kept
 }
 
-/// A seam's poles held in a face's first column, and for G1 the earlier
-/// face and its column next to the seam.
-type Held = (Vec<DVec3>, Option<(usize, usize)>);
+/// How a face's poles next to its incoming seam are held for G1 and G2.
+#[derive(Debug, Clone)]
+enum Smooth {
+    /// G0: only the seam's poles.
+    None,
+    /// A chain: the earlier face and its column next to the seam (each row
+    /// of poles made collinear across the seam).
+    Chain(usize, usize),
+    /// A side join: `a`'s cross derivative along the piece of its edge, a
+    /// curve in `b`'s `v` (the seam's own parameter), whose normal with the
+    /// seam curve is `a`'s normal there.
+    Side(Curve),
+}
+
+/// A seam's poles held in a face's first column, and how its second is held.
+type Held = (Vec<DVec3>, Smooth);
 
 /// The most `u` knots added to a face whose held boundary puts it over the tolerance.
-const MAX_ROUNDS: usize = 12;
+const MAX_ROUNDS: usize = 40;
+
+/// The margin of the fits alone (whose knots a shell starts from) under
+/// the tolerance: room for what holding a seam costs. A face that cannot
+/// be fitted within it alone starts from its fit within the tolerance
+/// itself, else from the fit of its own points (the margin is a head start,
+/// not a requirement: a margin the grid cannot reach refused every depth,
+/// docs/math.md §10); the shell's own rounds then hold the tolerance.
+const ALONE_MARGIN: f64 = 0.7;
 
 /// The piece of `a`'s edge that seam `k` (a side seam over `range`) is.
 fn side_piece(
@@ -274,6 +295,144 @@ fn side_piece(
     })
 }
 
+/// `a`'s cross derivative along the edge of seam `s` (up to a constant
+/// positive factor), over `range` as [`side_piece`] cuts the edge: the
+/// curve in `u` whose poles are the differences of `a`'s edge row of poles
+/// and the row next to it (the `v` derivative of a clamped surface at its
+/// boundary, Piegl & Tiller Eq. 3.17, is `q / v_{q+1}` times it).
+fn side_cross(a: &BSplineSurface, s: SeamSpec, (u0, u1): (f64, f64)) -> Curve {
+    let rows = a.poles.rows();
+    let (edge, next) = if s.join.edge == Edge::First {
+        (0, 1)
+    } else {
+        (rows - 1, rows - 2)
+    };
+    let poles = a
+        .poles
+        .row(next)
+        .iter()
+        .zip(a.poles.row(edge))
+        .map(|(n, e)| *n - *e)
+        .collect();
+    let d = Curve::new(&a.knots_u, poles);
+    if u0 < u1 {
+        d.piece(u0, u1)
+    } else {
+        d.piece(u1, u0).reversed()
+    }
+}
+
+/// The unit normal of the earlier face along a side seam at `w`: the seam
+/// curve's tangent crossed with the earlier face's cross derivative
+/// (`None` where either vanishes).
+fn side_normal(seam: &Curve, cross: &Curve, w: f64) -> Option<DVec3> {
+    let h = 1e-6;
+    let (lo, hi) = ((w - h).max(0.0), (w + h).min(1.0));
+    let tangent = seam.eval(hi) - seam.eval(lo);
+    let n = tangent.cross(cross.eval(w));
+    let len = n.length();
+    (len > 1e-300 && len.is_finite()).then(|| n / len)
+}
+
+/// Moves each pole of `surface`'s second column along the earlier face's
+/// normal at its Greville abscissa so that the face's cross derivative at
+/// the seam (`u = 0`) lies in the earlier face's tangent plane: the least
+/// squares of its normal component at `8 n + 16` points along the seam
+/// (`n` the poles in `v`), a tiny ridge keeping the moves small where a
+/// pole is barely seen. With the first column the seam curve, the face's
+/// normal along the seam is then the earlier face's (G1, docs/math.md §11.2).
+fn hold_side(surface: &mut BSplineSurface, seam: &Curve, cross: &Curve) {
+    let kv = surface.knots_v.clone();
+    let (q, n) = (kv.degree(), kv.count());
+    let knots = kv.knots();
+    let greville: Vec<f64> = (0..n)
+        .map(|l| knots[l + 1..=l + q].iter().sum::<f64>() / q as f64)
+        .collect();
+    let normals: Vec<DVec3> = greville
+        .iter()
+        .map(|&g| side_normal(seam, cross, g).unwrap_or(DVec3::ZERO))
+        .collect();
+    let d: Vec<DVec3> = (0..n)
+        .map(|l| surface.poles.get(l, 1) - surface.poles.get(l, 0))
+        .collect();
+    // normal equations (Aᵀ A + λ I) c = −Aᵀ r, A banded (q + 1 per row)
+    let mut ata = vec![0.0f64; n * n];
+    let mut atr = vec![0.0f64; n];
+    let samples = 8 * n + 16;
+    for k in 0..=samples {
+        let w = k as f64 / samples as f64;
+        let Some(nk) = side_normal(seam, cross, w) else {
+            continue;
+        };
+        let (first, basis) = kv.basis(w);
+        let mut a = [0.0f64; super::knots::MAX_DEGREE + 1];
+        let mut r = 0.0;
+        for i in 0..=q {
+            let l = first + i;
+            a[i] = basis[i] * normals[l].dot(nk);
+            r += basis[i] * d[l].dot(nk);
+        }
+        for i in 0..=q {
+            atr[first + i] -= a[i] * r;
+            for j in 0..=q {
+                ata[(first + i) * n + first + j] += a[i] * a[j];
+            }
+        }
+    }
+    let scale = (0..n).map(|i| ata[i * n + i]).fold(0.0f64, f64::max);
+    if !(scale > 0.0 && scale.is_finite()) {
+        return;
+    }
+    for i in 0..n {
+        ata[i * n + i] += 1e-12 * scale;
+    }
+    let Some(c) = solve_spd(&mut ata, &mut atr, n) else {
+        return;
+    };
+    for l in 0..n {
+        let p = surface.poles.get(l, 1) + normals[l] * c[l];
+        surface.poles.set(l, 1, p);
+    }
+}
+
+/// Solves `M x = b` for a symmetric positive definite `M` (`n × n`, row
+/// major) by Cholesky, in place; `None` if a pivot is not positive.
+fn solve_spd(m: &mut [f64], b: &mut [f64], n: usize) -> Option<Vec<f64>> {
+    for j in 0..n {
+        let mut d = m[j * n + j];
+        for k in 0..j {
+            d -= m[j * n + k] * m[j * n + k];
+        }
+        if !(d > 0.0 && d.is_finite()) {
+            return None;
+        }
+        let d = d.sqrt();
+        m[j * n + j] = d;
+        for i in j + 1..n {
+            let mut s = m[i * n + j];
+            for k in 0..j {
+                s -= m[i * n + k] * m[j * n + k];
+            }
+            m[i * n + j] = s / d;
+        }
+    }
+    for i in 0..n {
+        let mut s = b[i];
+        for k in 0..i {
+            s -= m[i * n + k] * b[k];
+        }
+        b[i] = s / m[i * n + i];
+    }
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for k in i + 1..n {
+            s -= m[k * n + i] * b[k];
+        }
+        b[i] = s / m[i * n + i];
+    }
+    Some(b.to_vec())
+}
+
 /// Puts the seam's poles into `surface`'s first column; with `g1` (`a`'s
 /// face and its column next to the seam), each pole of the second column
 /// is projected onto the line through `a`'s two poles before it, so the
@@ -290,6 +449,87 @@ fn hold(surface: &mut BSplineSurface, seam: &[DVec3], g1: Option<(&BSplineSurfac
             surface.poles.set(l, 1, p0 + dir * (p1 - p0).dot(dir));
         }
     }
+}
+
+/// Where a later face's parameters `(u, v)` near its start edge lie on its
+/// parent face: a chain's `(1, v)`, a side join's `(u₀ + v (u₁ − u₀), edge)`.
+#[derive(Debug, Clone, Copy)]
+enum ParentMap {
+    Chain,
+    Side(f64, (f64, f64)),
+}
+
+impl ParentMap {
+    fn start(self, v: f64) -> (f64, f64) {
+        match self {
+            ParentMap::Chain => (1.0, v),
+            ParentMap::Side(edge, (u0, u1)) => (u0 + v * (u1 - u0), edge),
+        }
+    }
+}
+
+/// The distance from a face's check samples to the shell near it: each
+/// sample farther than `tol` from the face (by its foot point,
+/// [`super::deviation_within`]) is also measured to its foot point on the
+/// parent face across the face's start edge. Where the subdivision moves a
+/// seam with depth (an approximating scheme shortens `A`'s boundary
+/// streamlines, and a G2 chain is cut at a column that moves by a fraction
+/// of a leg per depth, docs/math.md §11.1), the check grid one depth finer
+/// starts a strip of points beyond the data's seam, on the parent's side:
+/// those points are the parent's surface, and measured on the face alone
+/// their distance is the strip's width (halving per depth), not the fit's.
+fn measure_face(
+    surface: &BSplineSurface,
+    check: &Samples,
+    tol: f64,
+    parent: Option<(&BSplineSurface, ParentMap)>,
+) -> (Deviation, Vec<f64>) {
+    let mut field = Vec::with_capacity(check.points.data().len());
+    measure(surface, check, tol, Some(&mut field));
+    let cols = check.points.cols();
+    let mut span_u = vec![0.0f64; surface.knots_u.spans()];
+    let (mut max, mut sum, mut at) = (0.0f64, 0.0, (0, 0));
+    for (n, d) in field.iter_mut().enumerate() {
+        let (j, i) = (n / cols, n % cols);
+        if *d > tol
+            && let Some((a, map)) = parent
+        {
+            let q = check.points.get(j, i);
+            let start = map.start(check.v[j]);
+            let here = (a.eval(start.0, start.1) - q).length();
+            let foot = foot_distance(a, q, start, (0.0, 1.0), (0.0, 1.0), here);
+            *d = d.min(foot);
+        }
+        sum += *d;
+        if *d > max {
+            max = *d;
+            at = (j, i);
+        }
+        let s = &mut span_u[surface.knots_u.span(check.u[i])];
+        *s = s.max(*d);
+    }
+    let dev = Deviation {
+        max,
+        mean: sum / field.len() as f64,
+        at,
+    };
+    (dev, span_u)
+}
+
+/// Face `i` of a fitted shell measured at `check` (its points, with the
+/// face's own row parameters) as [`fit_shell`] measures it: foot points for
+/// the points over the face's tolerance, on the face and on the earlier face
+/// across its start edge.
+pub fn face_deviation(shell: &ShellFit, i: usize, check: &Samples) -> Deviation {
+    let face = &shell.faces[i];
+    let parent = shell.seams.iter().find(|s| s.spec.b == i).map(|s| {
+        let to = match s.spec.join.edge {
+            Edge::End => ParentMap::Chain,
+            e => ParentMap::Side(if e == Edge::First { 0.0 } else { 1.0 }, s.range),
+        };
+        (&shell.faces[s.spec.a].surface, to)
+    });
+    measure_face(&face.surface, check, face.tolerance, parent).0
 }
 
 /// Fits every patch as one face, the seams shared exactly (module docs).
@@ -375,14 +615,48 @@ pub fn fit_shell(
     let check: Vec<Samples> = (0..n).map(|i| with_v(&patches[i].check, &v[i].1)).collect();
     // each patch's knots alone, with a margin for the shared v knots
     let mut tols = Vec::with_capacity(n);
+    let mut too_few: Vec<Option<FitError>> = Vec::with_capacity(n);
     let mut alone = Vec::with_capacity(n);
     for i in 0..n {
         let tol = check_options(opts, &data[i]).map_err(fit_err(i))?;
-        let tight = FitOptions {
+        let within = |t: f64| FitOptions {
             degree: opts.degree,
-            tolerance: Tolerance::Absolute(0.7 * tol),
+            tolerance: Tolerance::Absolute(t),
         };
-        let f = fit(&data[i], &check[i], &tight).map_err(fit_err(i))?;
+        // a later face's check grid may start beyond its data's seam (see
+        // `measure_face`): measured alone it cannot come closer than that
+        // strip
+        // then, for a later face, the knots its own points need (no strip
+        // there), the shell's rounds measuring the rest
+        // (and for a root whose check grid slides against its data: the
+        // parametric measure of the fit alone, docs/math.md §10)
+        let ladder: &[(f64, bool)] = &[
+            (ALONE_MARGIN, true),
+            (1.0, true),
+            (ALONE_MARGIN, false),
+            (1.0, false),
+        ];
+        let mut found = None;
+        let mut short = None;
+        for (n, &(m, on_check)) in ladder.iter().enumerate() {
+            let against = if on_check { &check[i] } else { &data[i] };
+            match fit(&data[i], against, &within(m * tol)) {
+                Ok(f) => {
+                    found = Some(f);
+                    break;
+                }
+                Err(e @ FitError::TooFewPoints { .. }) if n + 1 < ladder.len() => {
+                    if on_check {
+                        short = Some(e);
+                    }
+                }
+                Err(e) => return Err(fit_err(i)(e)),
+            }
+        }
+        let f = found.expect("the ladder returns or finds one");
+        // a face started from its own points that the shell's rounds cannot
+        // bring within the tolerance is refused as its fit alone was
+        too_few.push(short);
         tols.push(tol);
         alone.push(f.surface);
     }
@@ -409,6 +683,15 @@ pub fn fit_shell(
                 opts,
                 k,
             )?),
+            _ => None,
+        };
+        let cross = match incoming[i] {
+            Some(k)
+                if seams[k].join.edge != Edge::End
+                    && seams[k].join.continuity >= Continuity::G1 =>
+            {
+                Some(side_cross(&faces[seams[k].a].surface, seams[k], ranges[k]))
+            }
             _ => None,
         };
         if root[i] == i {
@@ -444,43 +727,95 @@ pub fn fit_shell(
                 let s = seams[k];
                 let a = &faces[s.a].surface;
                 if s.join.edge == Edge::End {
-                    let g1 =
-                        (s.join.continuity >= Continuity::G1).then_some((s.a, a.poles.cols() - 2));
+                    let g1 = if s.join.continuity >= Continuity::G1 {
+                        Smooth::Chain(s.a, a.poles.cols() - 2)
+                    } else {
+                        Smooth::None
+                    };
                     Some((a.poles.column(a.poles.cols() - 1), g1))
                 } else {
                     let c = piece.as_ref().expect("a side seam's piece");
-                    let c = c.refined_to(&kv).ok_or_else(|| ShellError::Seam {
+                    let refined = c.refined_to(&kv).ok_or_else(|| ShellError::Seam {
                         seam: k,
                         problem: "the seam piece does not fit on the shared knots".into(),
                     })?;
-                    Some((c.poles, None))
+                    let g1 = match &cross {
+                        Some(d) => Smooth::Side(d.clone()),
+                        None => Smooth::None,
+                    };
+                    Some((refined.poles, g1))
                 }
             }
         };
         // refine u where the held boundary costs the tolerance
         let mut ku = alone[i].knots_u.clone();
         let mut rounds = 0;
+        let mut last: Option<(BSplineSurface, Deviation)> = None;
         let (surface, dev) = loop {
-            let mut surface = fit_knots(&data[i], &ku, &kv).map_err(fit_err(i))?;
-            if let Some((poles, g1)) = &held {
-                hold(
-                    &mut surface,
-                    poles,
-                    g1.map(|(a, col)| (&faces[a].surface, col)),
-                );
+            let mut surface = match (fit_knots(&data[i], &ku, &kv), last.take()) {
+                (Ok(s), _) => s,
+                // a split left a span without data: keep the round before
+                (Err(_), Some(before)) => break before,
+                (Err(e), None) => return Err(fit_err(i)(e)),
+            };
+            if let Some((poles, smooth)) = &held {
+                match smooth {
+                    Smooth::None => hold(&mut surface, poles, None),
+                    Smooth::Chain(a, col) => {
+                        hold(&mut surface, poles, Some((&faces[*a].surface, *col)))
+                    }
+                    Smooth::Side(d) => {
+                        hold(&mut surface, poles, None);
+                        let seam = Curve::new(&kv, poles.clone());
+                        hold_side(&mut surface, &seam, d);
+                    }
+                }
             }
-            let dev = deviation(&surface, &check[i]);
-            if dev.max <= tols[i] || rounds >= MAX_ROUNDS {
+            let parent = incoming[i].map(|k| {
+                let s = seams[k];
+                let to: ParentMap = match s.join.edge {
+                    Edge::End => ParentMap::Chain,
+                    e => ParentMap::Side(if e == Edge::First { 0.0 } else { 1.0 }, ranges[k]),
+                };
+                (&faces[s.a].surface, to)
+            });
+            let (mut dev, mut span_u) = measure_face(&surface, &check[i], tols[i], parent);
+            if dev.max <= tols[i] {
+                // and the fitted points themselves (foot points one depth
+                // finer promise nothing for them)
+                let (at_data, spans) = measure_face(&surface, &data[i], tols[i], parent);
+                if at_data.max > tols[i] {
+                    (dev, span_u) = (at_data, spans);
+                }
+            }
+            last = Some((surface.clone(), dev));
+            if dev.max <= tols[i] || rounds >= MAX_ROUNDS || ku.count() >= data[i].u.len() {
                 break (surface, dev);
             }
             rounds += 1;
-            let u = check[i].u[dev.at.1];
-            let (lo, hi) = ku.span_range(ku.span(u));
-            if !ku.insert(0.5 * (lo + hi)) {
+            // split every span over the tolerance (at most as many knots as
+            // the grid has room for)
+            let room = data[i].u.len() - ku.count();
+            let mids: Vec<f64> = (0..span_u.len())
+                .filter(|&j| span_u[j] > tols[i])
+                .map(|j| {
+                    let (lo, hi) = ku.span_range(j);
+                    0.5 * (lo + hi)
+                })
+                .take(room)
+                .collect();
+            let mut grew = false;
+            for u in mids {
+                grew |= ku.insert(u);
+            }
+            if !grew {
                 break (surface, dev);
             }
         };
         if dev.max.partial_cmp(&tols[i]) != Some(std::cmp::Ordering::Less) && dev.max != tols[i] {
+            if let Some(e) = too_few[i].take() {
+                return Err(fit_err(i)(e));
+            }
             return Err(ShellError::OverTolerance {
                 patch: patches[i].name.clone(),
                 reached: dev.max,

@@ -1,0 +1,6 @@
+//! libFuzzer target: [`streamline_studio::fuzz::reference_obj`] (see docs/reliability.md).
+#![no_main]
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| {
+    streamline_studio::fuzz::reference_obj(data);
+});
