@@ -107,7 +107,7 @@ mod tests {
     #[test]
     fn every_patch_is_measured_against_its_shell_face() {
         let doc = hood_screen_wing();
-        let depth = 3;
+        let depth = 4;
         let built = doc.build(depth).unwrap();
         let d = document_deviation(&doc, depth, &FitOptions::default()).unwrap();
         assert_eq!(d.depth, depth);
@@ -165,14 +165,14 @@ mod tests {
     }
 
     /// A depth whose points cannot carry the tolerance is sampled deeper
-    /// (hood-screen-wing at depth 1 needs depth 3); the map still measures
+    /// (hood-screen-wing at depth 1 needs depth 4); the map still measures
     /// the points shown, each patch's rows placed on its face at that depth.
     #[test]
     fn a_deeper_sampling_still_measures_the_points_shown() {
         let doc = hood_screen_wing();
         let shown = doc.build(1).unwrap();
         let d = document_deviation(&doc, 1, &FitOptions::default()).unwrap();
-        assert_eq!(d.depth, 3);
+        assert_eq!(d.depth, 4);
         assert_eq!(d.patches.len(), 3);
         for (p, stack) in d.patches.iter().zip(&shown.patches) {
             let points = &stack.points[1];

@@ -241,7 +241,7 @@ mod tests {
         assert_eq!(d.max, d.faces.iter().map(|f| f.max).fold(0.0, f64::max));
         assert!(!d.stale && d.seconds > 0.0);
 
-        // depth 0's points cannot carry the tolerance: sampled at depth 3
+        // depth 0's points cannot carry the tolerance: sampled at depth 4
         let mut shallow = first.clone();
         shallow.display_depth = 0;
         d.refit_document(
@@ -251,7 +251,7 @@ mod tests {
             shown_points(&shallow),
             &FitOptions::default(),
         );
-        assert_eq!(d.deeper, Some(3));
+        assert_eq!(d.deeper, Some(4));
         assert_eq!(
             d.values.as_ref().map(Vec::len),
             Some(shown_points(&shallow))
