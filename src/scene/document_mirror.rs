@@ -161,6 +161,7 @@ pub fn mirror_shell(shell: &ShellFit, patches: &[PatchGrid], plane: &MirrorPlane
         ShellSeam {
             spec,
             range: s.range,
+            slope_held: s.slope_held,
         }
     }));
     MirroredShell {

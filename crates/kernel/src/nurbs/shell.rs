@@ -81,6 +81,12 @@ pub struct ShellSeam {
     /// `Last`, `(u₀, u₁)` at `b`'s first and last row (`u₀ > u₁` when `b`'s
     /// rows run against `a`'s `u`).
     pub range: (f64, f64),
+    /// Whether a side G1 or G2 seam's slope is held (`b`'s second column of
+    /// poles in `a`'s tangent plane, docs/math.md §11.5): false where
+    /// holding it kept `b`'s face beyond its tolerance, and the face was
+    /// fitted with the seam curve alone held (G0 in the file); true for
+    /// every other seam.
+    pub slope_held: bool,
 }
 
 /// One fitted face.
@@ -674,6 +680,7 @@ pub fn fit_shell(
     // children's, and a chain group's v knots are made at its first patch
     let mut group_kv: Vec<Option<KnotVector>> = vec![None; n];
     let mut faces: Vec<ShellFace> = Vec::with_capacity(n);
+    let mut slope_held = vec![true; seams.len()];
     for i in 0..n {
         let piece = match incoming[i] {
             Some(k) if seams[k].join.edge != Edge::End => Some(side_piece(
@@ -747,70 +754,87 @@ pub fn fit_shell(
                 }
             }
         };
-        // refine u where the held boundary costs the tolerance
-        let mut ku = alone[i].knots_u.clone();
-        let mut rounds = 0;
-        let mut last: Option<(BSplineSurface, Deviation)> = None;
+        // refine u where the held boundary costs the tolerance; a side G1
+        // seam whose held slope keeps the face off its points beyond the
+        // tolerance is fitted again with the seam curve alone held (the
+        // faces then meet G0 in the file, within the tolerance)
+        let is_side = matches!(held, Some((_, Smooth::Side(_))));
+        let mut side_hold = true;
         let (surface, dev) = loop {
-            let mut surface = match (fit_knots(&data[i], &ku, &kv), last.take()) {
-                (Ok(s), _) => s,
-                // a split left a span without data: keep the round before
-                (Err(_), Some(before)) => break before,
-                (Err(e), None) => return Err(fit_err(i)(e)),
-            };
-            if let Some((poles, smooth)) = &held {
-                match smooth {
-                    Smooth::None => hold(&mut surface, poles, None),
-                    Smooth::Chain(a, col) => {
-                        hold(&mut surface, poles, Some((&faces[*a].surface, *col)))
-                    }
-                    Smooth::Side(d) => {
-                        hold(&mut surface, poles, None);
-                        let seam = Curve::new(&kv, poles.clone());
-                        hold_side(&mut surface, &seam, d);
-                    }
-                }
-            }
-            let parent = incoming[i].map(|k| {
-                let s = seams[k];
-                let to: ParentMap = match s.join.edge {
-                    Edge::End => ParentMap::Chain,
-                    e => ParentMap::Side(if e == Edge::First { 0.0 } else { 1.0 }, ranges[k]),
+            let mut ku = alone[i].knots_u.clone();
+            let mut rounds = 0;
+            let mut last: Option<(BSplineSurface, Deviation)> = None;
+            let (surface, dev) = loop {
+                let mut surface = match (fit_knots(&data[i], &ku, &kv), last.take()) {
+                    (Ok(s), _) => s,
+                    // a split left a span without data: keep the round before
+                    (Err(_), Some(before)) => break before,
+                    (Err(e), None) => return Err(fit_err(i)(e)),
                 };
-                (&faces[s.a].surface, to)
-            });
-            let (mut dev, mut span_u) = measure_face(&surface, &check[i], tols[i], parent);
-            if dev.max <= tols[i] {
-                // and the fitted points themselves (foot points one depth
-                // finer promise nothing for them)
-                let (at_data, spans) = measure_face(&surface, &data[i], tols[i], parent);
-                if at_data.max > tols[i] {
-                    (dev, span_u) = (at_data, spans);
+                if let Some((poles, smooth)) = &held {
+                    match smooth {
+                        Smooth::None => hold(&mut surface, poles, None),
+                        Smooth::Chain(a, col) => {
+                            hold(&mut surface, poles, Some((&faces[*a].surface, *col)))
+                        }
+                        Smooth::Side(d) => {
+                            hold(&mut surface, poles, None);
+                            let seam = Curve::new(&kv, poles.clone());
+                            if side_hold {
+                                hold_side(&mut surface, &seam, d);
+                            }
+                        }
+                    }
                 }
+                let parent = incoming[i].map(|k| {
+                    let s = seams[k];
+                    let to: ParentMap = match s.join.edge {
+                        Edge::End => ParentMap::Chain,
+                        e => ParentMap::Side(if e == Edge::First { 0.0 } else { 1.0 }, ranges[k]),
+                    };
+                    (&faces[s.a].surface, to)
+                });
+                let (mut dev, mut span_u) = measure_face(&surface, &check[i], tols[i], parent);
+                if dev.max <= tols[i] {
+                    // and the fitted points themselves (foot points one depth
+                    // finer promise nothing for them)
+                    let (at_data, spans) = measure_face(&surface, &data[i], tols[i], parent);
+                    if at_data.max > tols[i] {
+                        (dev, span_u) = (at_data, spans);
+                    }
+                }
+                last = Some((surface.clone(), dev));
+                if dev.max <= tols[i] || rounds >= MAX_ROUNDS || ku.count() >= data[i].u.len() {
+                    break (surface, dev);
+                }
+                rounds += 1;
+                // split every span over the tolerance (at most as many knots as
+                // the grid has room for)
+                let room = data[i].u.len() - ku.count();
+                let mids: Vec<f64> = (0..span_u.len())
+                    .filter(|&j| span_u[j] > tols[i])
+                    .map(|j| {
+                        let (lo, hi) = ku.span_range(j);
+                        0.5 * (lo + hi)
+                    })
+                    .take(room)
+                    .collect();
+                let mut grew = false;
+                for u in mids {
+                    grew |= ku.insert(u);
+                }
+                if !grew {
+                    break (surface, dev);
+                }
+            };
+            if dev.max > tols[i] && is_side && side_hold {
+                side_hold = false;
+                if let Some(k) = incoming[i] {
+                    slope_held[k] = false;
+                }
+                continue;
             }
-            last = Some((surface.clone(), dev));
-            if dev.max <= tols[i] || rounds >= MAX_ROUNDS || ku.count() >= data[i].u.len() {
-                break (surface, dev);
-            }
-            rounds += 1;
-            // split every span over the tolerance (at most as many knots as
-            // the grid has room for)
-            let room = data[i].u.len() - ku.count();
-            let mids: Vec<f64> = (0..span_u.len())
-                .filter(|&j| span_u[j] > tols[i])
-                .map(|j| {
-                    let (lo, hi) = ku.span_range(j);
-                    0.5 * (lo + hi)
-                })
-                .take(room)
-                .collect();
-            let mut grew = false;
-            for u in mids {
-                grew |= ku.insert(u);
-            }
-            if !grew {
-                break (surface, dev);
-            }
+            break (surface, dev);
         };
         if dev.max.partial_cmp(&tols[i]) != Some(std::cmp::Ordering::Less) && dev.max != tols[i] {
             if let Some(e) = too_few[i].take() {
@@ -833,7 +857,12 @@ pub fn fit_shell(
     let seams = seams
         .iter()
         .zip(ranges)
-        .map(|(spec, range)| ShellSeam { spec: *spec, range })
+        .zip(slope_held)
+        .map(|((spec, range), slope_held)| ShellSeam {
+            spec: *spec,
+            range,
+            slope_held,
+        })
         .collect();
     Ok(ShellFit { faces, seams })
 }
