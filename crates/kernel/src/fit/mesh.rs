@@ -157,19 +157,27 @@ fn closest_on_segment(p: DVec3, a: DVec3, b: DVec3) -> DVec3 {
 /// rounding of the position, not of the barycentric coordinates. A
 /// degenerate triangle (zero normal) is the closest of its edges.
 pub fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
+    let mut best = closest_on_segment(p, a, b);
+    for q in [closest_on_segment(p, b, c), closest_on_segment(p, c, a)] {
+        if (q - p).length_squared() < (best - p).length_squared() {
+            best = q;
+        }
+    }
+    // the projection, where it falls inside; kept only when nearer than the
+    // border: on a sliver the computed normal's direction is off by a
+    // rounding over its tiny length and the projection can land far away,
+    // while the border is within the sliver's width of every point of it
     let n = (b - a).cross(c - a);
     let n2 = n.length_squared();
     if n2 > 0.0 && n2.is_finite() {
         let q = p - n * (n.dot(p - a) / n2);
         let (qa, qb, qc) = (a - q, b - q, c - q);
-        if n.dot(qb.cross(qc)) >= 0.0 && n.dot(qc.cross(qa)) >= 0.0 && n.dot(qa.cross(qb)) >= 0.0 {
+        if n.dot(qb.cross(qc)) >= 0.0
+            && n.dot(qc.cross(qa)) >= 0.0
+            && n.dot(qa.cross(qb)) >= 0.0
+            && (q - p).length_squared() < (best - p).length_squared()
+        {
             return q;
-        }
-    }
-    let mut best = closest_on_segment(p, a, b);
-    for q in [closest_on_segment(p, b, c), closest_on_segment(p, c, a)] {
-        if (q - p).length_squared() < (best - p).length_squared() {
-            best = q;
         }
     }
     best
