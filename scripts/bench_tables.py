@@ -16,12 +16,16 @@ the source printed them:
                     deviation rows, the fit vs OpenCascade's grid fitter)
     drag.jsonl      `tests/gui/drag.sh` under xvfb + `scripts/drag_figures.py --json`
                     (the editor's drag; the reports are kept in docs/bench/drag/)
+    versus.jsonl    an earlier binary (`--before PATH`) and this one side by side in
+                    one run: the `ecs/` and three-patch export bench rows, taken in
+                    turns, and the drags of the car at depths 5 and 6 and of
+                    hood-screen-wing at depth 6 (measured only when named)
 
 Ratios and verdicts are computed here from those rows; no figure is typed.
 
 Usage:
     bench_tables.py [--measure SOURCES] [--from DIR] [--check] [--bin PATH]
-                    [--millis N] [--drag-runs N] [--doc FILE]
+                    [--before PATH] [--millis N] [--drag-runs N] [--doc FILE]
 
     (no option)         measure every source, save, rewrite the tables
     --measure a,b       measure only these sources (bench, peers, osd, cad,
@@ -33,6 +37,8 @@ Usage:
                         build in $CARGO_TARGET_DIR or target/, built if missing)
     --millis N          `bench --millis` (default 300)
     --drag-runs N       drags of the car at depth 6 (default 3)
+    --before PATH       the earlier binary `versus` compares with (its commit is
+                        read from PATH.commit when that file exists)
 """
 
 import datetime
@@ -47,7 +53,9 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SOURCES = ["bench", "peers", "osd", "cad", "reference", "drag"]
+SOURCES = ["bench", "peers", "osd", "cad", "reference", "drag", "versus"]
+# measured only when named with --measure (it needs --before)
+OPTIONAL = ["versus"]
 
 
 # ---------------------------------------------------------------- measuring
@@ -127,6 +135,7 @@ def measure(source, folder, opts):
         "cad": "bash scripts/cad_peers.sh --json",
         "reference": "bash scripts/reference_peers.sh --json",
         "drag": f"tests/gui/drag.sh ×{opts['drag_runs']} + scripts/drag_figures.py --json",
+        "versus": "bench --json (ecs/, export/hood-screen-wing) ×2 in turns + tests/gui/drag.sh, before and after",
     }[source])
     if source == "bench":
         rows = run_lines([b, "bench", "--json", "--millis", str(opts["millis"])])
@@ -138,9 +147,59 @@ def measure(source, folder, opts):
         rows = run_lines(["bash", "scripts/cad_peers.sh", "--json"], env)
     elif source == "reference":
         rows = run_lines(["bash", "scripts/reference_peers.sh", "--json"], env)
+    elif source == "versus":
+        if not opts["before"]:
+            sys.exit("versus: give the earlier binary with --before PATH")
+        before = os.path.abspath(opts["before"])
+        tag = before + ".commit"
+        start["meta"]["before"] = open(tag).read().strip() if os.path.exists(tag) else before
+        rows = measure_versus(before, b, opts["millis"])
     else:
         rows = measure_drag(b, folder, opts["drag_runs"])
     save(folder, source, start, rows)
+
+
+# The side-by-side drags: (name, scene, display depth, handle).
+VERSUS_DRAGS = [
+    ("car/d5", "scenes/car1.ron", 5, "2,4"),
+    ("car/d6", "scenes/car1.ron", 6, "2,4"),
+    ("hood-screen-wing/d6", "scenes/hood-screen-wing.ron", 6, "2,4"),
+]
+
+
+def measure_versus(before, after, millis):
+    """The bench rows of `ecs/` and the three-patch export, each binary twice
+    in turns (the smaller median of each kept, so that a burst of other work
+    on the machine weighs on neither alone), then each drag once with each
+    binary, one after the other."""
+    medians = {}
+    for who in ("before", "after", "before", "after"):
+        b = before if who == "before" else after
+        for f in ("ecs/", "export/hood-screen-wing"):
+            for r in run_lines([b, "bench", "--json", "--millis", str(millis), "--filter", f]):
+                key = (r["name"], who)
+                medians[key] = min(medians.get(key, r["median_ns"]), r["median_ns"])
+    names = sorted({n for n, _ in medians}, key=lambda n: (not n.startswith("ecs/"), n))
+    rows = [{"name": n, "before_ns": medians.get((n, "before")), "after_ns": medians.get((n, "after"))}
+            for n in names]
+    tmp = tempfile.mkdtemp()
+    fig = os.path.join(ROOT, "scripts/drag_figures.py")
+    for name, scene, depth, handle in VERSUS_DRAGS:
+        path = os.path.join(tmp, name.replace("/", "-") + ".ron")
+        text = open(os.path.join(ROOT, scene)).read()
+        open(path, "w").write(re.sub(r"display_depth: *\d+", f"display_depth: {depth}", text))
+        row = {"drag": name}
+        for who, b in (("before", before), ("after", after)):
+            report = os.path.join(tmp, f"{name.replace('/', '-')}-{who}.json")
+            env = dict(os.environ, SCENE=path, **dict(DRAG_ENV, SELECT=handle))
+            cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", "bash", "tests/gui/drag.sh", b,
+                   report + ".png", report]
+            print("+", " ".join(cmd), file=sys.stderr, flush=True)
+            subprocess.run(cmd, cwd=ROOT, env=env, check=True, stdout=subprocess.DEVNULL)
+            row[who] = run_lines([sys.executable, fig, "--json", report])[0]
+        rows.append(row)
+    shutil.rmtree(tmp, ignore_errors=True)
+    return rows
 
 
 # The drag of the method section: handle (2, 4) of the car at display depth 6.
@@ -358,6 +417,8 @@ def patches(m, b):
     rows = [
         ("ecs/patches/car-x1/d5/edit-first", "the car alone as a one-patch document, tangent (2, 4) turned"),
         ("ecs/patches/car-x3/d5/edit-first", "the same edit, two more cars G1-chained on its end"),
+        ("ecs/patches/car-x3/d5/edit-middle", "the same three cars, the middle car's (2, 4) turned"),
+        ("ecs/patches/car-x3/d5/edit-last", "the same three cars, the last car's (2, 4) turned"),
         ("ecs/patches/car-g2x3/d5/edit-first", "three cars G2-chained (one merged run), the first edited"),
         ("ecs/patches/car-g2x3/d5/edit-last", "the same run, the last car edited"),
         ("ecs/patches/hood-screen-wing/d6/edit-hood", "`scenes/hood-screen-wing.ron` at depth 6, the hood's (2, 4) turned"),
@@ -367,6 +428,7 @@ def patches(m, b):
     out += table(["row", "what", "median"], [[f"`{n}`", w, t(b(n))] for n, w in rows if b(n) is not None])
     ratios = [
         ("ecs/patches/car-x3/d5/edit-first", "ecs/patches/car-x1/d5/edit-first", "three G1-chained cars ÷ one car"),
+        ("ecs/patches/car-x3/d5/edit-last", "ecs/patches/car-x3/d5/edit-first", "three G1-chained cars: last car edited ÷ first car edited"),
         ("ecs/patches/car-g2x3/d5/edit-last", "ecs/patches/car-g2x3/d5/edit-first", "G2 run: last car edited ÷ first car edited"),
         ("joins/car-g2x3/d5/update", "joins/car-g2x3/d5/whole", "G2 run: update ÷ whole build"),
     ]
@@ -574,6 +636,36 @@ def drag(m, rows):
     return out
 
 
+def versus(m, rows):
+    if not m:
+        return provenance(m) + command("python3 scripts/bench_tables.py --measure versus --before OLD_BINARY")
+    out = provenance(m, f" Before: `{m.get('before', '?')}`, the same machine, in turns.")
+    out += command("python3 scripts/bench_tables.py --measure versus --before OLD_BINARY") + [""]
+    bench = [r for r in rows if "name" in r and r.get("before_ns") and r.get("after_ns")]
+    lines = [[f"`{r['name']}`", t(r["before_ns"]), t(r["after_ns"]), r2(r["after_ns"] / r["before_ns"])]
+             for r in bench]
+    if lines:
+        out += table(["row", "before", "after", "after ÷ before"], lines)
+        worst = max(bench, key=lambda r: r["after_ns"] / r["before_ns"])
+        out += ["", f"Largest ratio: `{worst['name']}`, {worst['after_ns'] / worst['before_ns']:.2f}."]
+    drags = [r for r in rows if "drag" in r]
+    if drags:
+        def fig(d, key, k):
+            v = (d.get(key) or {}).get(k)
+            return "–" if v is None else (f"{v:.2f}" if isinstance(v, float) else str(v))
+        dl = []
+        for r in drags:
+            b, a = r.get("before") or {}, r.get("after") or {}
+            dl.append([f"`{r['drag']}`", fig(b, "quiet", "frames"), fig(b, "quiet", "median"),
+                       fig(b, "quiet", "largest"), fig(a, "quiet", "frames"), fig(a, "quiet", "median"),
+                       fig(a, "quiet", "largest"), fig(a, "all", "over_budget")])
+        out += [""] + table(["drag", "quiet frames before", "median before", "largest before", "quiet frames after",
+                             "median after", "largest after", "frames over 4 ms after"], dl)
+        out += ["", "(ms, our systems' CPU time a frame, over the frames whose speed probes ran within 1.1 times "
+                "their usual time; `scripts/drag_figures.py`.)"]
+    return out
+
+
 SYSTEMS = {
     "ecs/mesh.rs": "mesh stage",
     "ecs/blend.rs": "blend",
@@ -598,6 +690,7 @@ AREAS = {
     "cad": ("cad", cad, False),
     "reference": ("reference", reference, False),
     "drag": ("drag", drag, False),
+    "versus": ("versus", versus, False),
 }
 
 
@@ -622,8 +715,9 @@ def rewrite(doc, tables):
 
 
 def main(argv):
-    opts = {"bin": None, "millis": 300, "drag_runs": 3}
-    folder, doc, todo, check = os.path.join(ROOT, "docs/bench"), os.path.join(ROOT, "docs/benchmarks.md"), list(SOURCES), False
+    opts = {"bin": None, "millis": 300, "drag_runs": 3, "before": None}
+    folder, doc, check = os.path.join(ROOT, "docs/bench"), os.path.join(ROOT, "docs/benchmarks.md"), False
+    todo = [s for s in SOURCES if s not in OPTIONAL]
     args = list(argv)
     while args:
         a = args.pop(0)
@@ -637,6 +731,8 @@ def main(argv):
             todo, check = [], True
         elif a == "--bin":
             opts["bin"] = args.pop(0)
+        elif a == "--before":
+            opts["before"] = args.pop(0)
         elif a == "--millis":
             opts["millis"] = int(args.pop(0))
         elif a == "--drag-runs":

@@ -24,7 +24,7 @@ use streamline_studio::scene::document_export::{
 };
 use streamline_studio::scene::document_io::load;
 use streamline_studio::scene::document_mirror::mirrored;
-use streamline_studio::scene::export::{Format, export};
+use streamline_studio::scene::export::{Format, write_meshes};
 use streamline_studio::scene::glb::{GlbPart, glb_parts_bytes};
 
 fn scratch(name: &str) -> PathBuf {
@@ -484,16 +484,26 @@ fn obj_and_stl_hold_one_object_per_patch_and_bad_names_say_what_to_do() {
     let e = export_document(&doc, &built, &bad, &DocumentExportSettings::default()).unwrap_err();
     assert!(e.to_string().contains(".step/.stp"), "{e}");
     assert!(!bad.exists());
-    // one patch: the one-patch export's very bytes
+    // one patch: one object named for the design, the surface shown
     let car = streamline_studio::scene::builtin::scene("car1").unwrap();
     let one = Document::from_scene(car.clone());
     let one_built = one.build(one.display_depth).unwrap();
-    let (a, b) = (dir.join("one.obj"), dir.join("scene.obj"));
+    let (a, b) = (dir.join("one.obj"), dir.join("mesh.obj"));
     export_document(&one, &one_built, &a, &DocumentExportSettings::default()).unwrap();
     let design = car.shown_design().unwrap();
     let level = design.levels(car.display_depth).unwrap().pop().unwrap();
     let mesh = SurfaceMesh::from_points(&design.streamlines(&level));
-    export(&mesh, &car.name, &b).unwrap();
-    assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
+    let part = GlbPart {
+        name: &car.name,
+        mesh: &mesh,
+        colors: None,
+    };
+    write_meshes(&b, Format::Obj, &[part]).unwrap();
+    let text = std::fs::read_to_string(&a).unwrap();
+    assert!(
+        text.starts_with("# Streamline Studio surface\no car1\n"),
+        "{text:.60}"
+    );
+    assert_eq!(text.into_bytes(), std::fs::read(&b).unwrap());
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -9,9 +9,14 @@ mod common;
 use std::path::{Path, PathBuf};
 use streamline_kernel::authoring::Template;
 use streamline_kernel::levels::surface::SurfaceScheme;
+use streamline_kernel::nurbs::FitOptions;
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
-use streamline_studio::scene::export::{ExportOptions, Format, export, export_scene};
-use streamline_studio::scene::{Scene, builtin, cad};
+use streamline_studio::scene::document_export::{
+    DocumentExportSettings, DocumentExported, export_document,
+};
+use streamline_studio::scene::export::{Format, write_meshes};
+use streamline_studio::scene::glb::GlbPart;
+use streamline_studio::scene::{Document, Scene, SceneError, builtin, cad};
 
 /// A fresh scratch folder for one test.
 fn scratch(name: &str) -> PathBuf {
@@ -19,6 +24,38 @@ fn scratch(name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
+}
+
+/// What the command line, scripts and the editor write for a scene: the
+/// scene as a design of one patch, through `export_document`.
+fn export_scene(
+    scene: &Scene,
+    depth: u32,
+    path: &Path,
+    fit: FitOptions,
+) -> Result<DocumentExported, SceneError> {
+    let doc = Document::from_scene(scene.clone());
+    let built = doc
+        .build(depth)
+        .map_err(|e| SceneError::file(path, e.to_string()))?;
+    let settings = DocumentExportSettings {
+        depth: Some(depth),
+        fit,
+        colors: None,
+    };
+    export_document(&doc, &built, path, &settings)
+}
+
+/// A mesh written alone, as a design of one patch's mesh is.
+fn export(mesh: &SurfaceMesh, name: &str, path: &Path) -> Result<Format, SceneError> {
+    let format = Format::of(path)?;
+    let part = GlbPart {
+        name,
+        mesh,
+        colors: None,
+    };
+    write_meshes(path, format, &[part])?;
+    Ok(format)
 }
 
 fn mesh_of(scene: &Scene, depth: u32) -> SurfaceMesh {
@@ -153,12 +190,11 @@ fn opencascade_reads_every_step_and_iges_file_we_write() {
     let dir = scratch("occ");
     let mut manifest = Vec::new();
     for (name, scene, depth) in scenes() {
-        let mesh = mesh_of(&scene, depth);
         for ext in ["step", "igs"] {
             let path = dir.join(format!("{name}.{ext}"));
-            let out = export_scene(&scene, &mesh, depth, &path, &ExportOptions::default())
+            let out = export_scene(&scene, depth, &path, FitOptions::default())
                 .unwrap_or_else(|e| panic!("{name} at depth {depth}: {e}"));
-            let fit = out.fit.expect("a CAD format reports its fit");
+            let fit = out.one.expect("a CAD format reports its fit");
             let r = fit.fit.report;
             assert!(r.deviation.max <= r.tolerance, "{name}: {r:?}");
             assert!(fit.depth >= depth, "{name}: sampled at {}", fit.depth);
@@ -249,7 +285,6 @@ fn any_scene_name_gives_step_and_iges_files_that_opencascade_reads_with_the_name
     let dir = scratch("names");
     let base = builtin::scene("minimal").unwrap();
     let depth = 4;
-    let mesh = mesh_of(&base, depth);
     let mut manifest = Vec::new();
     for (i, name) in names.into_iter().enumerate() {
         let mut scene = base.clone();
@@ -261,9 +296,9 @@ fn any_scene_name_gives_step_and_iges_files_that_opencascade_reads_with_the_name
         for ext in ["step", "igs"] {
             let file = format!("{stem}.{ext}");
             let path = dir.join(&file);
-            let out = export_scene(&scene, &mesh, depth, &path, &ExportOptions::default())
+            let out = export_scene(&scene, depth, &path, FitOptions::default())
                 .unwrap_or_else(|e| panic!("{name:?}: {e}"));
-            let r = out.fit.expect("a CAD format reports its fit").fit.report;
+            let r = out.one.expect("a CAD format reports its fit").fit.report;
             let written = if ext == "step" {
                 let kept: String = name.chars().take(1000).filter(|&c| c != '\0').collect();
                 serde_json::json!({
@@ -358,7 +393,6 @@ fn a_glb_holds_the_same_vertices_as_the_obj_of_the_same_build() {
 fn refused_exports_write_nothing_and_keep_the_old_file() {
     let dir = scratch("refuse");
     let scene = builtin::scene("car1").unwrap();
-    let mesh = mesh_of(&scene, 2);
     for ext in ["step", "igs"] {
         let path = dir.join(format!("old.{ext}"));
         std::fs::write(&path, "the old file").unwrap();
@@ -385,17 +419,7 @@ fn refused_exports_write_nothing_and_keep_the_old_file() {
                 "the deepest an export samples (the closest it came was",
             ),
         ] {
-            let e = export_scene(
-                &scene,
-                &mesh,
-                2,
-                &path,
-                &ExportOptions {
-                    fit: opts,
-                    colors: None,
-                },
-            )
-            .unwrap_err();
+            let e = export_scene(&scene, 2, &path, opts).unwrap_err();
             assert!(
                 e.message.contains(want) && e.message.contains("nothing was written"),
                 "{ext}: {e}"

@@ -239,7 +239,7 @@ fn opencascade_reads_one_shell_whose_seams_are_shared() {
         uncertainty: 1e-7,
         timestamp: "",
     };
-    std::fs::write(&path, faces_text(&alone, &[], &info)).unwrap();
+    std::fs::write(&path, faces_text(&alone, &[], None, &info)).unwrap();
     manifest.push(serde_json::json!({
         "file": path.display().to_string(),
         "points": point_files(&dir, "control", &control.patches),

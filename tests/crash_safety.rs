@@ -99,7 +99,7 @@ fn autosave_writer_child() {
         return;
     };
     use streamline_studio::editor::autosave::write_recovery;
-    use streamline_studio::editor::document::files::EditorDirs;
+    use streamline_studio::editor::files::open_save::EditorDirs;
     let dirs = EditorDirs { home: home.into() };
     let (a, b) = two_large_scenes();
     // the autosave writes the whole design; one patch: the scene's version-2 bytes
@@ -132,7 +132,7 @@ fn two_large_scenes() -> (Scene, Scene) {
 #[test]
 fn autosave_survives_sigkill() {
     use streamline_studio::editor::autosave::pending_recovery;
-    use streamline_studio::editor::document::files::{Dialog, EditorDirs};
+    use streamline_studio::editor::files::open_save::{Dialog, EditorDirs};
     let home =
         std::env::temp_dir().join(format!("streamline-autosave-kill-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&home);

@@ -17,9 +17,9 @@ use streamline_studio::ecs::joined::DocState;
 use streamline_studio::ecs::joined::world_io::doc_state;
 use streamline_studio::ecs::patch::scene;
 use streamline_studio::ecs::{Edit, EditMessage, Model};
-use streamline_studio::editor::document::files::FileUi;
-use streamline_studio::editor::document::import::{ImportForm, ImportPlugin, JobEnd};
-use streamline_studio::editor::document::reference::ReferencePlugin;
+use streamline_studio::editor::files::import::{ImportForm, ImportPlugin, JobEnd};
+use streamline_studio::editor::files::open_save::FileUi;
+use streamline_studio::editor::files::reference::ReferencePlugin;
 
 fn reference(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -1,6 +1,6 @@
 //! The handle room on several patches (docs/editor.md), headless. The
 //! active patch's handles are placed, found and picked (a joined patch's on
-//! level 0 of its built stack), every other patch's are dimmed and never
+//! its built stack, at the edit depth), every other patch's are dimmed and never
 //! picked, a hidden patch's are not shown; a drag sends the same edits as
 //! on the first patch; dragging a handle of `A` moves, in the same frame,
 //! the handles of every patch that starts on `A`. Checked on the shipped
@@ -420,30 +420,34 @@ fn dragging_a_handle_of_a_moves_every_patch_on_a_live() {
     release(&mut app);
 }
 
-/// At an edit depth above 0 a joined patch's handles are its level-0 ones
-/// (it has no details): the layout's edit depth is 0 while it is active,
-/// and the first patch's refined cells are gone; back on the first patch,
-/// they are there again.
+/// At an edit depth above 0 a joined patch's handles are its refined ones
+/// of that depth (its details, docs/math.md §5, §11.4), children of it;
+/// the first patch's refined cells are gone while it is active; back on the
+/// first patch, they are there again (`tests/editor_g2_placement.rs`
+/// checks where they stand).
 #[test]
-fn a_joined_patch_shows_its_level_0_handles_at_any_edit_depth() {
+fn a_joined_patch_shows_its_refined_handles_at_the_edit_depth() {
     let doc = hood();
     let mut app = editor(&doc, 2);
     let ids = patches(&mut app);
-    let refined = |app: &App| app.world().resource::<HandleLayout>().refined.is_some();
-    assert!(refined(&app));
+    let refined_parent = |app: &App| {
+        let v = &app.world().resource::<HandleLayout>().refined.as_ref()?.1;
+        app.world().get::<ChildOf>(*v.first()?).map(ChildOf::parent)
+    };
+    assert_eq!(refined_parent(&app), Some(ids[0]));
     activate(&mut app, Some(ids[1]));
     frame(&mut app);
-    assert_eq!(app.world().resource::<HandleLayout>().edit_depth, 0);
-    assert!(!refined(&app));
+    assert_eq!(app.world().resource::<HandleLayout>().edit_depth, 2);
+    assert_eq!(refined_parent(&app), Some(ids[1]));
     let picks = handles(&mut app, |q| {
         q.pickable(&HandleSettings::default())
             .map(|h| h.id)
             .collect::<Vec<_>>()
     });
-    assert!(!picks.is_empty() && picks.iter().all(|h| h.level() == 0));
+    assert!(!picks.is_empty() && picks.iter().all(|h| h.level() == 2));
     activate(&mut app, None);
     assert_eq!(app.world().resource::<HandleLayout>().edit_depth, 2);
-    assert!(refined(&app));
+    assert_eq!(refined_parent(&app), Some(ids[0]));
 }
 
 /// A turn of one of the active joined patch's tangents (its `Direction`

@@ -17,9 +17,9 @@ use streamline_kernel::DVec3;
 use streamline_kernel::fit::ClosestPoints;
 use streamline_studio::ecs::patch::scene;
 use streamline_studio::ecs::{Edit, EditMessage, Model};
-use streamline_studio::editor::document::files::FileUi;
-use streamline_studio::editor::document::import::{ImportForm, ImportPlugin};
-use streamline_studio::editor::document::reference::{ReferenceForm, ReferencePlugin};
+use streamline_studio::editor::files::import::{ImportForm, ImportPlugin};
+use streamline_studio::editor::files::open_save::FileUi;
+use streamline_studio::editor::files::reference::{ReferenceForm, ReferencePlugin};
 use streamline_studio::editor::{GHOST_SAMPLES, ReferenceGhost, ReferenceGhostPlugin};
 use streamline_studio::scene::reference_link::ReferenceLink;
 

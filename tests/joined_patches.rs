@@ -6,13 +6,14 @@
 
 mod common;
 
+use common::built::{assert_as_built, bits, changed_ticks, patches, stack};
+
 use bevy::prelude::*;
 use std::path::Path;
 use streamline_kernel::DVec3;
-use streamline_kernel::joins::{SeamReport, Stack};
-use streamline_studio::ecs::joined::{PatchSlot, PatchSurface, SeamState};
+use streamline_studio::ecs::joined::PatchSurface;
 use streamline_studio::ecs::patch::census::census;
-use streamline_studio::ecs::patch::{Direction, Patch, PatchIndex};
+use streamline_studio::ecs::patch::{Direction, PatchIndex};
 use streamline_studio::ecs::{self, Edit, ModelConfig};
 use streamline_studio::scene::document::Document;
 use streamline_studio::scene::document_io::load;
@@ -25,88 +26,11 @@ fn app(doc: &Document) -> App {
     ecs::headless_document_app(doc, None, ModelConfig::default())
 }
 
-/// Each patch's entity, in the document's order.
-fn patches(app: &mut App) -> Vec<Entity> {
-    let w = app.world_mut();
-    let mut q = w.query_filtered::<(Entity, &PatchSlot), With<Patch>>();
-    let mut v: Vec<_> = q.iter(w).map(|(e, s)| (s.index, e)).collect();
-    v.sort();
-    v.into_iter().map(|(_, e)| e).collect()
-}
-
-fn stack(app: &App, e: Entity) -> Stack {
-    let s = app
-        .world()
-        .get::<PatchSurface>(e)
-        .expect("a document patch has a surface");
-    match &s.built {
-        Some(Ok(s)) => s.clone(),
-        other => panic!("not built: {other:?}"),
-    }
-}
-
-fn seam(app: &App, e: Entity) -> SeamReport {
-    let s = app
-        .world()
-        .get::<SeamState>(e)
-        .expect("a joined patch has a seam");
-    s.report.clone().expect("the seam is measured")
-}
-
-fn bits(g: &streamline_kernel::Grid<DVec3>) -> Vec<[u64; 3]> {
-    g.data()
-        .iter()
-        .map(|p| p.to_array().map(f64::to_bits))
-        .collect()
-}
-
 /// Sets tangent (`row`, `col`) of the first patch to `dir` through the
 /// edit stage, and in `doc`, the design the world must equal.
 fn set_first(app: &mut App, doc: &mut Document, row: usize, col: usize, dir: DVec3) {
     ecs::apply(app, Edit::SetDirection { row, col, dir }).unwrap();
     doc.patches[0].design.set_tangent(row, col, dir).unwrap();
-}
-
-/// The world's patches and seams equal `Document::build`'s, bit for bit.
-fn assert_as_built(app: &mut App, doc: &Document) {
-    let depth = doc.display_depth;
-    let built = doc.build(depth).unwrap();
-    let ids = patches(app);
-    assert_eq!(ids.len(), doc.patches.len());
-    for (i, &e) in ids.iter().enumerate() {
-        let s = stack(app, e);
-        assert_eq!(s.depth(), depth);
-        let name = &doc.patches[i].name;
-        for (d, (l, w)) in s.levels.iter().zip(&built.patches[i].levels).enumerate() {
-            let f = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-            assert_eq!(
-                bits(&l.tangents),
-                bits(&w.tangents),
-                "{name} depth {d} tangents"
-            );
-            assert_eq!(
-                f(l.params.s.data()),
-                f(w.params.s.data()),
-                "{name} depth {d} s"
-            );
-            assert_eq!(f(&l.params.t), f(&w.params.t), "{name} depth {d} t");
-            assert_eq!(f(&l.params.sigma), f(&w.params.sigma), "{name} depth {d} σ");
-        }
-        for d in 0..=depth as usize {
-            assert_eq!(
-                bits(&s.points[d]),
-                bits(&built.patches[i].points[d]),
-                "patch {} depth {d}",
-                doc.patches[i].name
-            );
-        }
-    }
-    for sm in &built.seams {
-        let r = seam(app, ids[sm.b]);
-        assert_eq!(r.gap.to_bits(), sm.report.gap.to_bits());
-        assert_eq!(r.angle_deg.to_bits(), sm.report.angle_deg.to_bits());
-        assert_eq!(r.curvature_dev.to_bits(), sm.report.curvature_dev.to_bits());
-    }
 }
 
 #[test]
@@ -136,19 +60,6 @@ fn a_one_patch_document_is_todays_world() {
     let w = a.world_mut();
     assert_eq!(w.query::<&PatchSurface>().iter(w).count(), 0);
     assert_eq!(bits(&common::points(&a)), bits(&common::points(&b)));
-}
-
-fn changed_ticks(app: &mut App) -> Vec<bevy::ecs::change_detection::Tick> {
-    let ids = patches(app);
-    let w = app.world();
-    ids.iter()
-        .map(|&e| {
-            w.entity(e)
-                .get_ref::<PatchSurface>()
-                .unwrap()
-                .last_changed()
-        })
-        .collect()
 }
 
 #[test]

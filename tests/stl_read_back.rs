@@ -16,7 +16,8 @@ use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 use streamline_studio::scene::builtin;
 use streamline_studio::scene::document_export::{DocumentExportSettings, export_document};
 use streamline_studio::scene::document_io::load;
-use streamline_studio::scene::export::export;
+use streamline_studio::scene::export::{Format, write_meshes};
+use streamline_studio::scene::glb::GlbPart;
 
 /// A triangle's corners.
 type Tri = [[f64; 3]; 3];
@@ -86,7 +87,12 @@ fn opencascade_reads_our_stl_files_triangle_for_triangle() {
     let level = design.levels(3).unwrap().pop().unwrap();
     let car_mesh = SurfaceMesh::from_points(&design.streamlines(&level));
     let car_stl = dir.join("car.stl");
-    export(&car_mesh, &car.name, &car_stl).unwrap();
+    let part = GlbPart {
+        name: &car.name,
+        mesh: &car_mesh,
+        colors: None,
+    };
+    write_meshes(&car_stl, Format::Stl, &[part]).unwrap();
     // a document of three patches (G2 and G1 joins): ASCII, a solid each
     let doc =
         load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron")).unwrap();

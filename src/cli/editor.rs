@@ -2,34 +2,25 @@
 
 use super::input::{CliError, document_arg};
 use crate::editor::{self, EditorDirs, EditorOptions, PanelName, ScreenshotRequest, SurfaceMode};
+use crate::scene::Document;
 use clap::Args;
 use std::path::PathBuf;
 
 /// A scene argument: a `.ron` file of any version (with its path) or a
-/// built-in scene's name. Returns the first patch's scene, the whole
-/// document when it has several patches (docs/math.md §11), and the path.
-fn open_scene(arg: &str) -> Result<OpenedScene, CliError> {
-    let doc = document_arg(arg)?;
-    let scene = doc.patch_scene(0);
-    let document = (doc.patches.len() > 1).then_some(doc);
+/// built-in scene's name. Returns the document, of one patch or several
+/// (docs/math.md §11), and the path.
+fn open_document(arg: &str) -> Result<(Document, Option<PathBuf>), CliError> {
+    let document = document_arg(arg)?;
     let p = PathBuf::from(arg);
     let path = (arg.ends_with(".ron") || p.is_file()).then_some(p);
-    Ok((scene, document, path))
+    Ok((document, path))
 }
-
-/// What [`open_scene`] opens.
-type OpenedScene = (
-    crate::scene::Scene,
-    Option<crate::scene::Document>,
-    Option<PathBuf>,
-);
 
 /// Opens the editor on a scene file or a built-in scene, with `msaa` samples
 /// in the 3D views (`None`: chosen for the graphics adapter).
 pub fn open(scene: &str, msaa: Option<u32>) -> Result<(), CliError> {
-    let (scene, document, path) = open_scene(scene)?;
+    let (document, path) = open_document(scene)?;
     editor::run(EditorOptions {
-        scene,
         document,
         path,
         size: (1280, 800),
@@ -90,7 +81,7 @@ pub struct ScreenshotArgs {
 /// `screenshot`.
 pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
     let arg = a.scene_opt.clone().unwrap_or(a.scene.clone());
-    let (scene, document, path) = open_scene(&arg)?;
+    let (document, path) = open_document(&arg)?;
     let size = a
         .size
         .split_once('x')
@@ -159,7 +150,6 @@ pub fn screenshot(a: ScreenshotArgs) -> Result<(), CliError> {
     };
     let home = dirs.home.clone();
     let r = editor::run(EditorOptions {
-        scene,
         document,
         path,
         size,

@@ -6,11 +6,10 @@ use super::edit_error::EditError;
 use super::exchange::{ExportSettings, LastExport};
 use super::messages::{Edit, EditMessage};
 use super::resources::*;
-use crate::scene::SceneError;
 use crate::scene::document::{Document, MAIN_PATCH};
+use crate::scene::document_build::BuiltDocument;
 use crate::scene::document_export::{DocumentExportSettings, export_document};
 use crate::scene::document_io;
-use crate::scene::export::{ExportOptions, export_scene};
 use bevy::prelude::*;
 
 #[allow(clippy::too_many_arguments)]
@@ -54,19 +53,27 @@ pub(crate) fn write_files(
                     Err(e) => log.entries.push(Err(EditError::Save(e))),
                 }
             }
-            Edit::Export(path) if joined.several() => {
-                // every patch, as `build --export` writes them (docs/math.md §11)
+            Edit::Export(path) => {
+                // every patch, as `build --export` writes them (docs/math.md §11);
+                // one patch with the colours of the map shown, if they are its mesh's
                 let doc = joined.document(scene.clone());
+                let several = joined.several();
+                let colors = (settings.colors.as_ref())
+                    .filter(|c| !several && c.len() == surface.points.data().len())
+                    .map(|c| vec![c.clone()]);
                 let opts = DocumentExportSettings {
                     depth: Some(scene.display_depth),
                     fit: settings.fit,
-                    colors: None,
+                    colors,
                 };
-                let done = (doc.build(scene.display_depth))
-                    .map_err(|e| SceneError::file(path, format!("{e}; nothing was written")))
-                    .and_then(|built| export_document(&doc, &built, path, &opts));
-                match done {
-                    Ok(out) => {
+                // built by the export at the depths it needs
+                let unbuilt = BuiltDocument {
+                    depth: 0,
+                    patches: Vec::new(),
+                    seams: Vec::new(),
+                };
+                match export_document(&doc, &unbuilt, path, &opts) {
+                    Ok(out) if several => {
                         log.entries.push(Ok(format!(
                             "exported {} ({}, {} patches: {})",
                             path.display(),
@@ -76,23 +83,8 @@ pub(crate) fn write_files(
                         )));
                         last.written = Some((path.clone(), out.format, None));
                     }
-                    Err(e) => log.entries.push(Err(EditError::Export(e))),
-                }
-            }
-            Edit::Export(path) => {
-                let mesh = surface.mesh();
-                // the colours of the map shown, if they are this mesh's
-                let colors = (settings.colors.as_ref())
-                    .filter(|c| c.len() == mesh.positions.len())
-                    .cloned();
-                let opts = ExportOptions {
-                    fit: settings.fit,
-                    colors,
-                };
-                let depth = scene.display_depth;
-                match export_scene(scene, &mesh, depth, path, &opts) {
                     Ok(out) => {
-                        let what = match &out.fit {
+                        let what = match &out.one {
                             Some(f) => {
                                 let r = &f.fit.report;
                                 format!(
@@ -114,7 +106,7 @@ pub(crate) fn write_files(
                             path.display(),
                             out.format.name()
                         )));
-                        last.written = Some((path.clone(), out.format, out.fit));
+                        last.written = Some((path.clone(), out.format, out.one));
                     }
                     Err(e) => log.entries.push(Err(EditError::Export(e))),
                 }

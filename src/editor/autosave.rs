@@ -4,7 +4,7 @@
 //! start the editor offers to recover it when it is newer than the scene's
 //! file. A save removes it; so does discarding changes on quit.
 
-use super::document::files::{Dialog, EditorDirs, FileUi};
+use super::files::open_save::{Dialog, EditorDirs, FileUi};
 use super::screenshot::ScreenshotRequest;
 use crate::ecs::Model;
 use crate::ecs::joined::JoinedRead;

@@ -8,8 +8,9 @@
 //! The features stand in rooms by concern, each importing only the rooms
 //! below it (no circle: `tests/module_graph.rs`). From the ground up: `coords`
 //! (the kernel's axes and Bevy's) and the [`interaction`] core; `surface`
-//! (the shaded surface and its analysis displays); [`mesh_mode`] (the Loop
-//! mesh); [`document`] (files, new design, the file browser); `handles`
+//! (the shaded surface and its analysis displays); [`loop_mesh`] (the Loop
+//! mesh mode); [`files`] (the file dialogs: open, save, export, new design,
+//! import, reference, the file browser); `handles`
 //! (arrows, picking, box selection, the sphere view, structure edits) and
 //! [`view`] (camera, pacing, anti-aliasing, frame timing, overlay); `seams`
 //! (a document's several patches: seams, their streamlines, picking a patch); `panels`;
@@ -17,10 +18,10 @@
 
 pub mod autosave;
 mod coords;
-pub mod document;
+pub mod files;
 mod handles;
 pub mod interaction;
-pub mod mesh_mode;
+pub mod loop_mesh;
 mod panels;
 mod screenshot;
 mod seams;
@@ -28,25 +29,22 @@ mod surface;
 pub mod view;
 
 use crate::ecs::{Model, ModelPlugin};
-use crate::scene::Scene;
+use crate::scene::Document;
 use bevy::prelude::*;
 use bevy::window::WindowResolution;
-pub use document::files::EditorDirs;
+pub use files::open_save::EditorDirs;
 pub use interaction::Selection;
 pub use panels::{PanelName, UiState};
 pub use screenshot::ScreenshotRequest;
 use std::path::PathBuf;
-pub use surface::analysis::{AnalysisSettings, SurfaceMode};
+pub use surface::analysis_display::{AnalysisSettings, SurfaceMode};
 pub use surface::reference_ghost::{GHOST_SAMPLES, ReferenceGhost, ReferenceGhostPlugin};
 pub use surface::reference_map::{ReferenceField, ReferenceMapPlugin};
 
 /// How to open the editor.
 pub struct EditorOptions {
-    /// The scene to open (a document's first patch).
-    pub scene: Scene,
-    /// The whole document when it has several patches (docs/math.md §11):
-    /// its first patch is `scene`, the others are spawned after it.
-    pub document: Option<crate::scene::Document>,
+    /// The design to open: one patch or several (docs/math.md §11).
+    pub document: Document,
     /// The file it came from (`None`: a built-in scene).
     pub path: Option<PathBuf>,
     /// Window size in logical pixels.
@@ -72,23 +70,23 @@ impl Plugin for EditorPlugin {
             handles::picking::PickingPlugin,
             handles::sphere_view::SphereViewPlugin,
             view::camera::OrbitCameraPlugin,
-            surface::analysis::AnalysisPlugin,
+            surface::analysis_display::AnalysisPlugin,
             view::antialias::AntiAliasPlugin,
             view::frame_timing::FrameTimingPlugin,
             panels::PanelPlugin,
-            document::files::FilesPlugin,
+            files::open_save::FilesPlugin,
             autosave::AutosavePlugin,
-            mesh_mode::MeshModePlugin,
+            loop_mesh::MeshModePlugin,
             screenshot::ScreenshotPlugin,
         ))
         .add_plugins((
             handles::sphere_dots::SphereDotsPlugin,
-            document::new_design::NewDesignPlugin,
+            files::new_design::NewDesignPlugin,
             handles::structure::StructurePlugin,
             handles::box_select::BoxSelectPlugin,
-            document::file_browser::FileBrowserPlugin,
-            document::import::ImportPlugin,
-            document::reference::ReferencePlugin,
+            files::file_browser::FileBrowserPlugin,
+            files::import::ImportPlugin,
+            files::reference::ReferencePlugin,
             surface::patches::PatchSurfacesPlugin,
             surface::patch_maps::PatchMapsPlugin,
             surface::reference_map::ReferenceMapPlugin,
@@ -167,7 +165,7 @@ pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
             .as_deref(),
         std::thread::available_parallelism().map_or(1, usize::from),
     ));
-    let title = format!("Streamline Studio — {}", opts.scene.name);
+    let title = format!("Streamline Studio — {}", opts.document.name);
     let mut app = App::new();
     app.add_plugins(DefaultPlugins.set(WindowPlugin {
         primary_window: Some(Window {
@@ -175,13 +173,13 @@ pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
             resolution: WindowResolution::new(opts.size.0, opts.size.1),
             ..default()
         }),
-        // closing asks about unsaved changes first (document/files.rs)
+        // closing asks about unsaved changes first (files/open_save.rs)
         close_when_requested: false,
         ..default()
     }))
     .add_plugins(bevy_egui::EguiPlugin::default())
     .insert_resource(ClearColor(Color::srgb(0.16, 0.17, 0.19)))
-    .add_plugins(ModelPlugin::new(opts.scene))
+    .add_plugins(ModelPlugin::new(opts.document.patch_scene(0)))
     .add_plugins(crate::ecs::runner::ScriptRunPlugin)
     .insert_resource(opts.dirs)
     .insert_resource(view::antialias::AntiAliasing::new(opts.msaa))
@@ -189,10 +187,10 @@ pub fn run(opts: EditorOptions) -> Result<(), NoDisplay> {
         continuous: opts.screenshot.is_some(),
     })
     .add_plugins(EditorPlugin);
-    if let Some(doc) = &opts.document
+    if opts.document.patches.len() > 1
         && let Some(first) = crate::ecs::patch::patch_entity(app.world())
     {
-        crate::ecs::joined::spawn_joined(app.world_mut(), doc, first);
+        crate::ecs::joined::spawn_joined(app.world_mut(), &opts.document, first);
     }
     app.world_mut().resource_mut::<Model>().path = opts.path;
     if let Some(req) = opts.screenshot {

@@ -6,7 +6,7 @@ use super::coords::to_view;
 use super::handles::sphere_view::{SphereCamera, SubdividedPoints, cloud_points};
 use super::interaction::{HandleId, HandleQuery, MainCamera, Selection};
 use super::panels::{PanelName, UiState};
-use super::surface::analysis::{AnalysisSettings, SurfaceMode};
+use super::surface::analysis_display::{AnalysisSettings, SurfaceMode};
 use super::surface::shaded::{ShownSurface, SurfaceEntity};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
 use crate::ecs::{History, Model, Stats, SurfaceData};
@@ -152,7 +152,7 @@ impl Plugin for ScreenshotPlugin {
 
 fn set_up_view(
     req: Res<ScreenshotRequest>,
-    mut mesh: ResMut<super::mesh_mode::MeshView>,
+    mut mesh: ResMut<super::loop_mesh::MeshView>,
     mut ui: ResMut<UiState>,
     mut analysis: ResMut<AnalysisSettings>,
     mut selection: ResMut<Selection>,
@@ -381,7 +381,7 @@ fn drive(
     camera: Query<(&Camera, &GlobalTransform), With<MainCamera>>,
     sphere: Query<(&Camera, &GlobalTransform), With<SphereCamera>>,
     (mesh, reference): (
-        Res<super::mesh_mode::MeshView>,
+        Res<super::loop_mesh::MeshView>,
         Res<super::surface::reference_map::ReferenceField>,
     ),
     pending: Res<PendingPipelines>,
@@ -539,7 +539,7 @@ fn measure_shown_gap(
     patch: crate::ecs::patch::PatchRef,
     data: Res<SurfaceData>,
     meshes: Res<Assets<Mesh>>,
-    surface: Query<&Mesh3d, With<SurfaceEntity>>,
+    (surface, shown): (Query<&Mesh3d, With<SurfaceEntity>>, Res<ShownSurface>),
     points: Query<&Mesh3d, With<SubdividedPoints>>,
     levels: Query<(&SubdivisionLevel, &LevelData)>,
 ) {
@@ -548,7 +548,10 @@ fn measure_shown_gap(
     }
     let attr = |m: &Mesh3d, a| f32x3(&meshes, m, a);
     let mut worst = 0.0f64;
-    if let Ok(m) = surface.single() {
+    // (a G2 run's first patch, shaded, shows its stack's cut instead)
+    if let Ok(m) = surface.single()
+        && !shown.from_stack
+    {
         let (Some(pos), Some(nrm)) = (
             attr(m, Mesh::ATTRIBUTE_POSITION),
             attr(m, Mesh::ATTRIBUTE_NORMAL),

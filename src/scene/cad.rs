@@ -2,14 +2,18 @@
 //! the points of the scene at a depth, as the editor shows them (details,
 //! fine tuning, interpolated tangents included, both halves of a mirrored
 //! design as one surface, docs/math.md §9), with the parameters the kernel's
-//! fit gives them, and the fit checked one depth finer.
+//! fit gives them, and the fit checked one depth finer: the one face of a
+//! design of one patch, fitted as [`super::document_fit`] fits every face.
 
-use std::time::Instant;
-use streamline_kernel::grid::Grid;
-use streamline_kernel::levels::incremental::{reference_levels, tuned_points};
-use streamline_kernel::nurbs::{Fit, FitError, FitOptions, Samples, deviation_field, fit};
-
+use super::document::Document;
+use super::document_build::BuiltDocument;
+use super::document_fit::{DocumentFitError, FaceFit, fit_document};
 use super::model::Scene;
+use streamline_kernel::KernelError;
+use streamline_kernel::grid::Grid;
+use streamline_kernel::joins::Stack;
+use streamline_kernel::levels::incremental::{reference_levels, tuned_points};
+use streamline_kernel::nurbs::{Fit, FitError, FitOptions, Samples, ShellError, deviation_field};
 
 /// The scene's streamline points at `depth` with their fit parameters; a
 /// mirrored scene's are the doubled design's (one surface over both halves).
@@ -26,31 +30,6 @@ pub fn samples(scene: &Scene, depth: u32) -> Result<Samples, FitError> {
     Samples::from_level(level, points)
 }
 
-/// The most points the check grid of an export may have: the fit at depth
-/// `d` is checked at every point of depth `d + 1` (docs/math.md §10), and
-/// the deepest export depth is the last whose check grid stays within this
-/// (a 2049 × 1025 grid; the car's depth 6, whose check grid of 1025 × 641
-/// points builds and measures in about a second on one core).
-pub const MAX_CHECK_POINTS: usize = 1 << 21;
-
-/// The deepest depth `fit_scene` samples `scene` at: the last whose check
-/// grid (one depth finer) has at most [`MAX_CHECK_POINTS`] points and passes
-/// the kernel's size limits.
-pub fn max_fit_depth(scene: &Scene) -> u32 {
-    let Ok(design) = scene.shown_design() else {
-        return scene.display_depth;
-    };
-    let (rows, cols) = (design.net().rows(), design.net().cols());
-    let mut depth = 0;
-    while let Ok((r, c)) = design.scheme().check_depth(rows, cols, depth + 2) {
-        if r.saturating_mul(c + 1) > MAX_CHECK_POINTS {
-            break;
-        }
-        depth += 1;
-    }
-    depth
-}
-
 /// A fit of a scene with its time.
 #[derive(Debug, Clone)]
 pub struct SceneFit {
@@ -63,53 +42,49 @@ pub struct SceneFit {
     pub depth: u32,
 }
 
+/// The scene as a design of one patch whose design is the one shown: its
+/// [`Scene::shown_design`] (tangents interpolated, both halves of a mirror
+/// as one net, docs/math.md §7, §9), the mirror then off. Its patch builds
+/// the points of [`samples`].
+pub fn shown_document(scene: &Scene) -> Result<Document, KernelError> {
+    let mut shown = scene.clone();
+    shown.design = scene.shown_design()?;
+    shown.interpolate_tangents = false;
+    shown.mirror = false;
+    Ok(Document::from_scene(shown))
+}
+
 /// Fits the scene's surface within the options' tolerance, sampled at
-/// `depth` (checked at `depth + 1`) or, when the tolerance needs more
-/// control points than that grid has points, as much deeper as it needs, up
-/// to [`max_fit_depth`]: which sampling reaches the tolerance is the
-/// exporter's business, not the designer's (the depth used is in
-/// [`SceneFit::depth`]). Only when even the deepest grid is not enough is the
-/// fit refused ([`FitError::TooFewPoints`] at that depth, whose message says
-/// to loosen the tolerance).
+/// `depth` (checked at `depth + 1`) or as much deeper as it needs: the
+/// surface shown ([`shown_document`]) as a design of one patch, fitted by
+/// [`fit_document`] as one face (module docs of [`super::document_fit`];
+/// the depth used is in [`SceneFit::depth`]). Only when even the deepest
+/// grid is not enough is the fit refused ([`FitError::TooFewPointsAtDeepest`],
+/// whose message says to loosen the tolerance).
 pub fn fit_scene(scene: &Scene, depth: u32, opts: &FitOptions) -> Result<SceneFit, FitError> {
-    let deepest = max_fit_depth(scene).max(depth);
-    let mut depth = depth;
-    let mut data = samples(scene, depth)?;
-    let mut seconds = 0.0;
-    loop {
-        let check = samples(scene, depth + 1)?;
-        let start = Instant::now();
-        let result = fit(&data, &check, opts);
-        seconds += start.elapsed().as_secs_f64();
-        match result {
-            Ok(fit) => {
-                return Ok(SceneFit {
-                    fit,
-                    seconds,
-                    depth,
-                });
-            }
-            Err(FitError::TooFewPoints { .. }) if depth < deepest => {
-                depth += 1;
-                data = check;
-            }
-            Err(FitError::TooFewPoints {
-                direction,
-                points,
-                tolerance,
-                reached,
-            }) => {
-                return Err(FitError::TooFewPointsAtDeepest {
-                    direction,
-                    points,
-                    tolerance,
-                    reached,
-                    depth,
-                });
-            }
-            Err(e) => return Err(e),
-        }
-    }
+    let doc = shown_document(scene)?;
+    // built here first, so that a refused build keeps the kernel's error
+    let stack = Stack::build_parts(doc.patches[0].parts(&doc.patches[0].design), depth + 1)?;
+    let built = BuiltDocument {
+        depth: depth + 1,
+        patches: vec![stack],
+        seams: Vec::new(),
+    };
+    let mut f = fit_document(&doc, &built, depth, opts, FaceFit::Alone).map_err(|e| match e {
+        DocumentFitError::Shell(ShellError::Fit { error, .. }) => error,
+        e => FitError::BadSamples {
+            problem: e.to_string(),
+        },
+    })?;
+    let (face, report) = (f.faces.remove(0), f.reports.remove(0));
+    Ok(SceneFit {
+        fit: Fit {
+            surface: face.surface,
+            report,
+        },
+        seconds: f.seconds,
+        depth: f.depth,
+    })
 }
 
 /// The scene's fit at its display depth ([`fit_scene`], the face a

@@ -1,34 +1,36 @@
-//! Export of a design of several patches (docs/math.md §10, §11; docs/cad.md,
-//! "Several patches"): [`export_document`] chooses the format by the file's
-//! extension, as [`super::export::export_scene`] does for one patch, and
-//! writes every patch (and, with the mirror on, every patch's reflection,
-//! [`super::document_mirror`]) into one file, atomically and verified:
+//! Export of a design (docs/math.md §10, §11; docs/cad.md, "Several
+//! patches"): [`export_document`] chooses the format by the file's
+//! extension and writes every patch (and, with the mirror on, every patch's
+//! reflection, [`super::document_mirror`]) into one file, atomically and
+//! verified, through one writer per format:
 //!
 //! - STEP: one `ADVANCED_FACE` per patch in one shell, each seam one
 //!   `EDGE_CURVE` ([`super::step_shell`]), every patch sampled at one depth,
 //!   raised until the fit meets the tolerance ([`super::document_fit`]);
-//! - IGES: one entity 128 per patch, each fitted alone as the one-patch file
-//!   is ([`super::iges::iges_faces_text`]);
+//! - IGES: one entity 128 per patch, each fitted alone ([`super::iges`]);
 //! - OBJ: one `o <name>` object per patch, its vertices row by row ([`super::obj_shell`]);
-//! - glTF: one node and one mesh per patch, named for it ([`super::glb::glb_parts_bytes`]);
-//! - STL: ASCII, one `solid <name>` per patch ([`super::stl_shell`]).
+//! - glTF: one node and one mesh per patch, named for it ([`super::glb`]);
+//! - STL: binary for one patch, ASCII with one `solid <name>` per patch
+//!   for several ([`super::stl_shell`]).
 //!
-//! A design of one patch is written exactly as today's one-patch export
-//! writes its scene (a mirrored one as one face over both halves).
+//! A design of one patch is the case of one part: its surface as shown
+//! ([`super::cad::shown_document`]: a mirrored one as one surface over both
+//! halves), named for the design, its face fitted alone
+//! ([`super::cad::fit_scene`]).
 
-use super::cad::samples;
+use super::cad::{SceneFit, fit_scene, shown_document};
 use super::document::Document;
 use super::document_build::BuiltDocument;
 use super::document_fit::{DocumentFit, FaceFit, built_to, fit_document};
 use super::document_mirror::{mirror_plane, mirror_shell, mirrored, mirrored_names};
 use super::error::SceneError;
-use super::export::{
-    ExportOptions, Exported, Format, export_scene, file_name, fit_refused, utc_now,
-};
-use super::glb::{GlbPart, glb_parts_bytes};
+use super::export::{Format, file_name, fit_refused, utc_now, write_meshes};
+use super::glb::GlbPart;
+use super::iges;
 use super::io::write_atomic;
+use super::model::Scene;
 use super::step_shell::{MirrorFaces, write_fitted};
-use super::{glb, iges, obj_shell, stl_shell};
+use std::borrow::Cow;
 use std::path::Path;
 use streamline_kernel::nurbs::{FitOptions, ShellFace, ShellFit};
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
@@ -64,8 +66,8 @@ pub struct DocumentExported {
     /// For a mirrored STEP shell, the faces `(i, N + i)` whose first
     /// streamline (in the mirror plane) is one edge.
     pub mirror_seams: Vec<(usize, usize)>,
-    /// A design of one patch: what the one-patch export wrote.
-    pub one: Option<Exported>,
+    /// For STEP and IGES of a design of one patch, its face's fit.
+    pub one: Option<SceneFit>,
 }
 
 /// A mesh turned over: triangles wound the other way, normals negated (a
@@ -92,16 +94,29 @@ pub fn export_document(
 ) -> Result<DocumentExported, SceneError> {
     let format = Format::of(path)?;
     let depth = settings.depth.unwrap_or(doc.display_depth);
-    if let Some(scene) = doc.one_scene() {
-        return export_one(doc, &scene, depth, path, settings, format);
-    }
+    let one = doc.one_scene();
     if format.is_cad() {
-        return export_faces(doc, built, depth, path, settings, format);
+        return match &one {
+            Some(scene) => export_face(doc, scene, depth, path, settings, format),
+            None => export_faces(doc, built, depth, path, settings, format),
+        };
     }
-    let b = built_to(doc, built, depth)
-        .map_err(|e| SceneError::file(path, format!("{e}; nothing was written")))?;
-    let all = mirrored(doc, &b);
-    let names = mirrored_names(doc);
+    let unwritten =
+        |e: &dyn std::fmt::Display| SceneError::file(path, format!("{e}; nothing was written"));
+    let build = || built_to(doc, built, depth).map_err(|e| unwritten(&e));
+    let (all, names) = match &one {
+        // the surface shown: both halves of a mirror as one, named for the design
+        Some(scene) if doc.mirror => {
+            let shown = shown_document(scene).map_err(|e| unwritten(&e))?;
+            let b = shown.build(depth).map_err(|e| unwritten(&e))?;
+            (Cow::Owned(b), vec![doc.name.clone()])
+        }
+        Some(_) => (build()?, vec![doc.name.clone()]),
+        None => (
+            Cow::Owned(mirrored(doc, build()?.as_ref())),
+            mirrored_names(doc),
+        ),
+    };
     let n = doc.patches.len();
     let meshes: Vec<SurfaceMesh> = all
         .patches
@@ -112,56 +127,36 @@ pub fn export_document(
             if i < n { m } else { turned(m) }
         })
         .collect();
-    for (name, m) in names.iter().zip(&meshes) {
-        if m.positions.iter().any(|p| !p.is_finite()) {
-            return Err(SceneError::file(
-                path,
-                format!("patch `{name}` has a non-finite point; nothing was written"),
-            ));
-        }
+    let colors = settings.colors.as_ref().filter(|_| format == Format::Glb);
+    if let Some(c) = colors
+        && (c.len() != n
+            || c.iter()
+                .zip(&meshes)
+                .any(|(c, m)| c.len() != m.positions.len()))
+    {
+        return Err(SceneError::file(
+            path,
+            "the analysis colours are not one per vertex of every patch; nothing was written",
+        ));
     }
-    let named: Vec<(&str, &SurfaceMesh)> = names.iter().map(String::as_str).zip(&meshes).collect();
-    let count = named.len();
-    match format {
-        Format::Obj => {
-            let text = obj_shell::obj_meshes_text(&named);
-            write_atomic(path, text.as_bytes(), |b| verify_obj(b, count))?;
-        }
-        Format::Stl => {
-            let text = stl_shell::stl_solids_text(&named);
-            write_atomic(path, text.as_bytes(), |b| stl_shell::verify(b, count))?;
-        }
-        Format::Glb => {
-            let colors = settings.colors.as_ref();
-            if let Some(c) = colors
-                && (c.len() != n
-                    || c.iter()
-                        .zip(&meshes)
-                        .any(|(c, m)| c.len() != m.positions.len()))
-            {
-                return Err(SceneError::file(
-                    path,
-                    "the analysis colours are not one per vertex of every patch; nothing was written",
-                ));
-            }
-            let parts: Vec<GlbPart> = named
-                .iter()
-                .enumerate()
-                .map(|(i, (name, mesh))| GlbPart {
-                    name,
-                    mesh,
-                    colors: colors.map(|c| c[i % n].as_slice()),
-                })
-                .collect();
-            let bytes = glb_parts_bytes(&parts)
-                .map_err(|e| SceneError::file(path, format!("{e}; nothing was written")))?;
-            write_atomic(path, &bytes, glb::verify)?;
-        }
-        Format::Step | Format::Iges => unreachable!("the CAD formats are fitted"),
-    }
+    let parts: Vec<GlbPart> = names
+        .iter()
+        .zip(&meshes)
+        .enumerate()
+        .map(|(i, (name, mesh))| GlbPart {
+            name,
+            mesh,
+            colors: colors.map(|c| c[i % n].as_slice()),
+        })
+        .collect();
+    write_meshes(path, format, &parts)?;
+    let patches = match one {
+        Some(_) => vec![doc.patches[0].name.clone()],
+        None => names,
+    };
     Ok(DocumentExported {
         format,
-        patches: names,
+        patches,
         depth,
         faces: Vec::new(),
         fit: None,
@@ -170,43 +165,44 @@ pub fn export_document(
     })
 }
 
-/// The OBJ written has `objects` objects.
-fn verify_obj(bytes: &[u8], objects: usize) -> Result<(), String> {
-    let text = std::str::from_utf8(bytes).map_err(|_| "not UTF-8".to_string())?;
-    let found = text.lines().filter(|l| l.starts_with("o ")).count();
-    if found != objects {
-        return Err(format!("{found} objects, not {objects}"));
-    }
-    Ok(())
-}
-
-/// A design of one patch, as the one-patch export writes its scene: the
-/// mesh the editor shows at `depth` (details, tuning, both halves of a mirror).
-fn export_one(
+/// STEP or IGES of a design of one patch: its surface as shown, fitted
+/// alone ([`fit_scene`]) and written as a shell of one face, or one entity
+/// 128, named for the design.
+fn export_face(
     doc: &Document,
-    scene: &super::model::Scene,
+    scene: &Scene,
     depth: u32,
     path: &Path,
     settings: &DocumentExportSettings,
     format: Format,
 ) -> Result<DocumentExported, SceneError> {
-    let points = samples(scene, depth)
-        .map_err(|e| SceneError::file(path, format!("{e}; nothing was written")))?
-        .points;
-    let mesh = SurfaceMesh::from_points(&points);
-    let opts = ExportOptions {
-        fit: settings.fit,
-        colors: settings.colors.as_ref().and_then(|c| c.first().cloned()),
+    let fit = fit_scene(scene, depth, &settings.fit).map_err(|e| fit_refused(path, e))?;
+    let r = &fit.fit.report;
+    // the writers read the surface, the name and the tolerance
+    let face = ShellFace {
+        name: doc.name.clone(),
+        surface: fit.fit.surface.clone(),
+        deviation: r.deviation,
+        tolerance: r.tolerance,
+        v: (Vec::new(), Vec::new()),
     };
-    let out = export_scene(scene, &mesh, depth, path, &opts)?;
+    let shell = ShellFit {
+        faces: vec![face],
+        seams: Vec::new(),
+    };
+    if format == Format::Step {
+        write_fitted(path, &doc.name, &shell, None)?;
+    } else {
+        write_iges(path, &doc.name, &shell.faces)?;
+    }
     Ok(DocumentExported {
         format,
         patches: vec![doc.patches[0].name.clone()],
-        depth: out.fit.as_ref().map_or(depth, |f| f.depth),
+        depth: fit.depth,
         faces: Vec::new(),
         fit: None,
         mirror_seams: Vec::new(),
-        one: Some(out),
+        one: Some(fit),
     })
 }
 
@@ -281,5 +277,5 @@ fn write_iges(path: &Path, name: &str, faces: &[ShellFace]) -> Result<(), SceneE
     let surfaces: Vec<_> = faces.iter().map(|f| &f.surface).collect();
     let text = iges::iges_faces_text(&surfaces, &info);
     let n = faces.len();
-    write_atomic(path, text.as_bytes(), |b| iges::verify_faces(b, n))
+    write_atomic(path, text.as_bytes(), |b| iges::verify(b, n))
 }

@@ -1,27 +1,36 @@
 //! The patches of a document as B-spline faces (docs/math.md §10, §11): one
 //! STEP shell whose seams are shared ([`streamline_kernel::nurbs::fit_shell`])
-//! or each patch alone as the one-patch export fits it (IGES). As for one
-//! patch ([`super::cad::fit_scene`]), which sampling reaches the tolerance
-//! is the exporter's business: every patch is sampled at one depth (so a
-//! seam's points stay one set of points and its edge stays shared), starting
-//! from the one asked for, and when a face needs more control points than
-//! its grid has points, or cannot meet the tolerance with its seams held,
-//! the whole document is sampled one depth deeper, up to [`max_fit_depth`].
+//! or each patch alone (IGES, and a design of one patch: [`super::cad`]).
+//! Which sampling reaches the tolerance is the exporter's business, not the
+//! designer's: every patch is sampled at one depth (so a seam's points stay
+//! one set of points and its edge stays shared), starting from the one
+//! asked for, and when a face needs more control points than its grid has
+//! points, or cannot meet the tolerance with its seams held, the whole
+//! document is sampled one depth deeper, up to [`max_fit_depth`]. Only when
+//! even the deepest grid is not enough is the fit refused
+//! ([`FitError::TooFewPointsAtDeepest`], whose message says to loosen the
+//! tolerance).
 
-use super::cad::MAX_CHECK_POINTS;
 use super::document::Document;
 use super::document_build::{BuildError, BuiltDocument};
 use std::borrow::Cow;
 use std::fmt;
 use std::time::Instant;
 use streamline_kernel::nurbs::{
-    FitError, FitOptions, PatchGrid, SeamSpec, ShellError, ShellFace, ShellSeam, fit_alone,
+    FitError, FitOptions, FitReport, PatchGrid, SeamSpec, ShellError, ShellFace, ShellSeam, fit,
     fit_shell,
 };
 
+/// The most points the check grid of an export may have: the fit at depth
+/// `d` is checked at every point of depth `d + 1` (docs/math.md §10), and
+/// the deepest export depth is the last whose check grid stays within this
+/// (a 2049 × 1025 grid; the car's depth 6, whose check grid of 1025 × 641
+/// points builds and measures in about a second on one core).
+pub const MAX_CHECK_POINTS: usize = 1 << 21;
+
 /// The deepest depth a document is sampled at: the last at which every
 /// patch's check grid (one depth finer) has at most [`MAX_CHECK_POINTS`]
-/// points and passes the kernel's size limits (as [`super::cad::max_fit_depth`]).
+/// points and passes the kernel's size limits.
 pub fn max_fit_depth(doc: &Document) -> u32 {
     doc.patches
         .iter()
@@ -46,7 +55,7 @@ pub fn max_fit_depth(doc: &Document) -> u32 {
 pub enum FaceFit {
     /// One shell, each seam's boundary curve fitted once and shared (STEP).
     Shell,
-    /// Each patch alone, as the one-patch export fits it (IGES).
+    /// Each patch alone, as a face of its own (IGES, a design of one patch).
     Alone,
 }
 
@@ -59,6 +68,9 @@ pub struct DocumentFit {
     pub faces: Vec<ShellFace>,
     /// One per seam (empty for [`FaceFit::Alone`]).
     pub seams: Vec<ShellSeam>,
+    /// For [`FaceFit::Alone`], each face's fit report (one per patch);
+    /// empty for a shell.
+    pub reports: Vec<FitReport>,
     /// The points each face was fitted to and checked at.
     pub grids: Vec<PatchGrid>,
     /// Seconds the fits took (the builds not counted).
@@ -175,17 +187,18 @@ pub fn fit_document(
                         join: s.join,
                     })
                     .collect();
-                fit_shell(&grids, &specs, opts).map(|f| (f.faces, f.seams))
+                fit_shell(&grids, &specs, opts).map(|f| (f.faces, f.seams, Vec::new()))
             }
-            FaceFit::Alone => fit_alone(&grids, opts).map(|f| (f, Vec::new())),
+            FaceFit::Alone => fit_each(&grids, opts).map(|(f, r)| (f, Vec::new(), r)),
         };
         seconds += start.elapsed().as_secs_f64();
         match result {
-            Ok((faces, seams)) => {
+            Ok((faces, seams, reports)) => {
                 return Ok(DocumentFit {
                     depth,
                     faces,
                     seams,
+                    reports,
                     grids,
                     seconds,
                 });
@@ -194,4 +207,28 @@ pub fn fit_document(
             Err(e) => return Err(DocumentFitError::Shell(at_deepest(e, depth))),
         }
     }
+}
+
+/// Each patch fitted alone, as a face of its own, with its fit report.
+fn fit_each(
+    grids: &[PatchGrid],
+    opts: &FitOptions,
+) -> Result<(Vec<ShellFace>, Vec<FitReport>), ShellError> {
+    let mut faces = Vec::with_capacity(grids.len());
+    let mut reports = Vec::with_capacity(grids.len());
+    for p in grids {
+        let f = fit(&p.data, &p.check, opts).map_err(|error| ShellError::Fit {
+            patch: p.name.clone(),
+            error,
+        })?;
+        faces.push(ShellFace {
+            name: p.name.clone(),
+            surface: f.surface,
+            deviation: f.report.deviation,
+            tolerance: f.report.tolerance,
+            v: (p.data.v.clone(), p.check.v.clone()),
+        });
+        reports.push(f.report);
+    }
+    Ok((faces, reports))
 }

@@ -2,11 +2,15 @@
 //! scene file read, every error located and naming its patch; saved as
 //! version 2 when there is one patch (the bytes [`io::save`] writes) and
 //! version 3 otherwise, atomically and verified as [`io::write_atomic`] does.
+//! One surface's reading, [`Scene::parse`], is here too: a version-3 file is
+//! read as a document, whose one patch is the scene, so that a file has one
+//! parse path whatever reads it.
 
 use super::document::{Document, PatchScene, Start};
 use super::document_check::check_document;
 use super::error::SceneError;
-use super::format_v3::{DocumentFile, VERSION_PATCHES, declared_version};
+use super::format::SceneFile;
+use super::format_v3::{DocumentFile, StartSpec, VERSION_PATCHES, declared_version};
 use super::io;
 use super::model::Scene;
 use super::patch_text::PatchText;
@@ -65,6 +69,70 @@ impl Document {
             .map_err(|e| SceneError::ron(file, text, &e))?;
         Document::from_file(f, file, text)
     }
+}
+
+impl Scene {
+    /// Parses the RON text of one surface: a version-1 or -2 scene, or a
+    /// version-3 design of one patch on its own curve, read as a document
+    /// ([`Document::from_file`]) whose one patch is the scene. A design of
+    /// several patches is refused saying so (the editor, `build` and a
+    /// script's `Load` open every patch: [`Document::parse`]).
+    pub fn parse(text: &str, file: &Path) -> Result<Self, SceneError> {
+        if text.trim().is_empty() {
+            return Err(SceneError::at(
+                file,
+                1,
+                1,
+                "the file is empty; a scene is a RON record `( version: 2, tangents: …, … )` — start from scenes/car1.ron",
+            ));
+        }
+        if declared_version(text) != Some(VERSION_PATCHES) {
+            let f: SceneFile = ron::Options::default()
+                .from_str(text)
+                .map_err(|e| SceneError::ron(file, text, &e))?;
+            return Scene::from_file(f, file, text);
+        }
+        let f: DocumentFile = ron::Options::default()
+            .from_str(text)
+            .map_err(|e| SceneError::ron(file, text, &e))?;
+        one_surface(&f, file, text)?;
+        let doc = Document::from_file(f, file, text)?;
+        Ok(doc.one_scene().expect("one patch, on its own curve"))
+    }
+}
+
+/// A version-3 file read as one surface: refused, located, when it has
+/// several patches or its one patch starts on an edge.
+fn one_surface(f: &DocumentFile, file: &Path, text: &str) -> Result<(), SceneError> {
+    if f.patches.len() > 1 {
+        let names: Vec<String> = f.patches.iter().map(|p| format!("`{}`", p.name)).collect();
+        let (line, col) = PatchText::new(text).top("patches");
+        return Err(SceneError::at(
+            file,
+            line,
+            col,
+            format!(
+                "this design has {} patches ({}), and this reader takes one surface only (the editor, `build` and a script's `Load` open several patches); open it there, or give a design of one patch or a version-2 scene",
+                names.len(),
+                names.join(", ")
+            ),
+        ));
+    }
+    if let Some(patch) = f.patches.first()
+        && let StartSpec::Edge { patch: on, .. } = &patch.initial
+    {
+        let (line, col) = PatchText::new(text).in_patch(0, "initial");
+        return Err(SceneError::at(
+            file,
+            line,
+            col,
+            format!(
+                "patch `{}` starts on patch `{on}`, which is not an earlier patch; the first patch starts on its own curve: give it `initial: Curve(tangents: […], order: 3, length: L, origin: (x, y, z))`",
+                patch.name
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Reads and validates a scene file of any version as a document.

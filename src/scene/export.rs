@@ -1,21 +1,21 @@
-//! Export: the triangle mesh as Wavefront OBJ with normals (text), binary
-//! STL or binary glTF ([`super::glb`]), and the surface as one B-spline
-//! surface fitted to it (docs/math.md §10) in STEP ([`super::step`]) or IGES
-//! ([`super::iges`]). Every file is written atomically and verified
-//! ([`super::io::write_atomic`]); a refused export writes nothing and keeps
-//! the old file.
+//! Export's formats and the mesh files (docs/math.md §10; docs/cad.md):
+//! [`Format`], chosen by the file's extension, and [`write_meshes`], which
+//! writes the triangle meshes of a design's patches (one part for a design
+//! of one patch) as Wavefront OBJ ([`super::obj_shell`]), STL
+//! ([`super::stl_shell`]) or binary glTF ([`super::glb`]). The whole export,
+//! the fitted B-spline faces of STEP and IGES included, is
+//! [`super::document_export::export_document`]. Every file is written
+//! atomically and verified ([`super::io::write_atomic`]); a refused export
+//! writes nothing and keeps the old file.
 
-use super::cad::{SceneFit, fit_scene};
 use super::error::SceneError;
+use super::glb::{self, GlbPart};
 use super::io::write_atomic;
-use super::model::Scene;
-use super::{glb, iges, step};
-use std::fmt::Write as _;
+use super::{obj_shell, stl_shell};
 use std::path::Path;
-use streamline_kernel::nurbs::FitOptions;
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 
-/// The formats [`export`] writes, chosen by the file extension.
+/// The formats an export writes, chosen by the file extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
     /// `.obj`
@@ -86,172 +86,50 @@ impl Format {
     }
 }
 
-/// OBJ text: `v`, `vn` and `f a//a b//b c//c` lines.
-pub fn obj_text(mesh: &SurfaceMesh, name: &str) -> String {
-    let mut s = String::with_capacity(mesh.positions.len() * 80 + mesh.indices.len() * 12);
-    let _ = writeln!(s, "# Streamline Studio surface\no {}", sanitize(name));
-    for p in &mesh.positions {
-        let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
-    }
-    for n in &mesh.normals {
-        let _ = writeln!(s, "vn {} {} {}", n.x, n.y, n.z);
-    }
-    for t in mesh.indices.chunks_exact(3) {
-        let (a, b, c) = (t[0] + 1, t[1] + 1, t[2] + 1);
-        let _ = writeln!(s, "f {a}//{a} {b}//{b} {c}//{c}");
-    }
-    s
-}
-
-pub(super) fn sanitize(name: &str) -> String {
-    let n: String = name
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    if n.is_empty() { "surface".into() } else { n }
-}
-
-/// Binary STL bytes: an 80-byte header, the triangle count, then per triangle
-/// its face normal and three corners (little-endian `f32`) and a zero `u16`.
-pub fn stl_bytes(mesh: &SurfaceMesh) -> Vec<u8> {
-    let tris = mesh.indices.len() / 3;
-    let mut out = Vec::with_capacity(84 + tris * 50);
-    let mut header = [b' '; 80];
-    let title = b"Streamline Studio binary STL";
-    header[..title.len()].copy_from_slice(title);
-    out.extend_from_slice(&header);
-    out.extend_from_slice(&(tris as u32).to_le_bytes());
-    for t in mesh.indices.chunks_exact(3) {
-        let [a, b, c] = [0, 1, 2].map(|i| mesh.positions[t[i] as usize]);
-        let n = (b - a).cross(c - a).try_normalize().unwrap_or_default();
-        for v in [n, a, b, c] {
-            for x in [v.x, v.y, v.z] {
-                out.extend_from_slice(&(x as f32).to_le_bytes());
-            }
+/// Writes `parts` (a patch each, in the file's order; its name, mesh and,
+/// for glTF's `COLOR_0`, analysis colours) to `path` in the mesh format
+/// `format`: OBJ with one `o <name>` object a part, STL binary for one part
+/// and ASCII with one `solid <name>` a part for several (binary STL has no
+/// names), glTF with one node and one mesh a part. STEP and IGES hold the
+/// fitted surface ([`super::document_export::export_document`]). Nothing is
+/// written when a point is not finite or the write fails.
+pub fn write_meshes(path: &Path, format: Format, parts: &[GlbPart]) -> Result<(), SceneError> {
+    for p in parts {
+        if p.mesh.positions.iter().any(|x| !x.is_finite()) {
+            let what = match parts {
+                [_] => "the mesh".to_string(),
+                _ => format!("patch `{}`", p.name),
+            };
+            return Err(SceneError::file(
+                path,
+                format!("{what} has a non-finite point; nothing was written"),
+            ));
         }
-        out.extend_from_slice(&0u16.to_le_bytes());
     }
-    out
-}
-
-/// Writes `mesh` to `path` in the mesh format its extension names (OBJ,
-/// STL, glTF without colours); STEP and IGES need the scene
-/// ([`export_scene`]).
-pub fn export(mesh: &SurfaceMesh, name: &str, path: &Path) -> Result<Format, SceneError> {
-    let format = Format::of(path)?;
-    if format.is_cad() {
-        return Err(SceneError::file(
+    let named: Vec<(&str, &SurfaceMesh)> = parts.iter().map(|p| (p.name, p.mesh)).collect();
+    let count = parts.len();
+    match format {
+        Format::Obj => {
+            let text = obj_shell::obj_meshes_text(&named);
+            write_atomic(path, text.as_bytes(), |b| obj_shell::verify(b, count))
+        }
+        Format::Stl => match named.as_slice() {
+            [(_, mesh)] => write_atomic(path, &stl_shell::stl_bytes(mesh), |_| Ok(())),
+            _ => {
+                let text = stl_shell::stl_solids_text(&named);
+                write_atomic(path, text.as_bytes(), |b| stl_shell::verify(b, count))
+            }
+        },
+        Format::Glb => {
+            let bytes = glb::glb_parts_bytes(parts)
+                .map_err(|e| SceneError::file(path, format!("{e}; nothing was written")))?;
+            write_atomic(path, &bytes, glb::verify)
+        }
+        Format::Step | Format::Iges => Err(SceneError::file(
             path,
             "STEP and IGES hold the fitted B-spline surface, which needs the scene; export from a scene (build --export, a script's Export or the editor)",
-        ));
+        )),
     }
-    write_mesh(mesh, name, path, format, None)?;
-    Ok(format)
-}
-
-fn write_mesh(
-    mesh: &SurfaceMesh,
-    name: &str,
-    path: &Path,
-    format: Format,
-    colors: Option<&[[f32; 4]]>,
-) -> Result<(), SceneError> {
-    if mesh.positions.iter().any(|p| !p.is_finite()) {
-        return Err(SceneError::file(
-            path,
-            "the mesh has a non-finite point; nothing was written",
-        ));
-    }
-    let bytes = match format {
-        Format::Obj => obj_text(mesh, name).into_bytes(),
-        Format::Stl => stl_bytes(mesh),
-        Format::Glb => glb::glb_bytes(mesh, name, colors)
-            .map_err(|e| SceneError::file(path, format!("{e}; nothing was written")))?,
-        Format::Step | Format::Iges => unreachable!("mesh formats only"),
-    };
-    let verify = |b: &[u8]| match format {
-        Format::Glb => glb::verify(b),
-        _ => Ok(()),
-    };
-    write_atomic(path, &bytes, verify)
-}
-
-/// A check of written bytes.
-type Verify = fn(&[u8]) -> Result<(), String>;
-
-/// How to export a scene.
-#[derive(Debug, Clone, Default)]
-pub struct ExportOptions {
-    /// The fit of STEP and IGES files.
-    pub fit: FitOptions,
-    /// Analysis colours (linear RGBA, one per mesh vertex) for glTF's `COLOR_0`.
-    pub colors: Option<Vec<[f32; 4]>>,
-}
-
-/// What an export wrote.
-#[derive(Debug, Clone)]
-pub struct Exported {
-    /// The format.
-    pub format: Format,
-    /// For STEP and IGES, the fit written.
-    pub fit: Option<SceneFit>,
-}
-
-/// Writes the scene to `path` in the format its extension names: the mesh
-/// `mesh` (the scene built at `depth`) for OBJ, STL and glTF, the B-spline
-/// surface fitted at `depth` for STEP and IGES. Nothing is written when
-/// the fit or the write fails (the old file is kept).
-pub fn export_scene(
-    scene: &Scene,
-    mesh: &SurfaceMesh,
-    depth: u32,
-    path: &Path,
-    opts: &ExportOptions,
-) -> Result<Exported, SceneError> {
-    let format = Format::of(path)?;
-    if !format.is_cad() {
-        write_mesh(mesh, &scene.name, path, format, opts.colors.as_deref())?;
-        return Ok(Exported { format, fit: None });
-    }
-    let fitted = fit_scene(scene, depth, &opts.fit).map_err(|e| fit_refused(path, e))?;
-    let file_name = file_name(path);
-    let surface = &fitted.fit.surface;
-    // the distance uncertainty: a micron, or a tenth of a tighter tolerance
-    let uncertainty = (fitted.fit.report.tolerance / 10.0).min(1e-6);
-    let (y, mo, d, h, mi, se) = utc_now();
-    let (bytes, verify): (Vec<u8>, Verify) = match format {
-        Format::Step => {
-            let stamp = format!("{y:04}-{mo:02}-{d:02}T{h:02}:{mi:02}:{se:02}");
-            let info = step::StepInfo {
-                name: &scene.name,
-                file_name: &file_name,
-                uncertainty,
-                timestamp: &stamp,
-            };
-            (step::step_text(surface, &info).into_bytes(), step::verify)
-        }
-        _ => {
-            let stamp = format!("{y:04}{mo:02}{d:02}.{h:02}{mi:02}{se:02}");
-            let info = iges::IgesInfo {
-                name: &scene.name,
-                file_name: &file_name,
-                resolution: uncertainty,
-                timestamp: &stamp,
-            };
-            (iges::iges_text(surface, &info).into_bytes(), iges::verify)
-        }
-    };
-    write_atomic(path, &bytes, verify)?;
-    Ok(Exported {
-        format,
-        fit: Some(fitted),
-    })
 }
 
 /// Now in UTC: year, month, day, hour, minute, second (days to the civil

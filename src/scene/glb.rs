@@ -30,15 +30,6 @@ pub struct GlbPart<'a> {
     pub colors: Option<&'a [[f32; 4]]>,
 }
 
-/// The `.glb` bytes of `mesh`, with `colors` (linear RGBA, one per vertex) as `COLOR_0`.
-pub fn glb_bytes(
-    mesh: &SurfaceMesh,
-    name: &str,
-    colors: Option<&[[f32; 4]]>,
-) -> Result<Vec<u8>, String> {
-    glb_parts_bytes(&[GlbPart { name, mesh, colors }])
-}
-
 /// Where one part's arrays sit in the binary chunk, and its position bounds.
 struct Laid {
     positions: usize,

@@ -1,8 +1,8 @@
-//! IGES 5.3 with one entity 128, the rational B-spline surface, written
-//! polynomial (`PROP3 = 1`, all weights 1) (docs/math.md §10). Fixed 80-column
-//! records: Start, Global, Directory Entry, Parameter Data and Terminate
-//! sections; the global section declares metres (units flag 6) and the
-//! model's resolution.
+//! IGES 5.3 with one entity 128 per patch (a design of one patch is one
+//! entity), the rational B-spline surface, written polynomial (`PROP3 = 1`,
+//! all weights 1) (docs/math.md §10). Fixed 80-column records: Start,
+//! Global, Directory Entry, Parameter Data and Terminate sections; the
+//! global section declares metres (units flag 6) and the model's resolution.
 
 use super::cad_text::iges_string as hollerith;
 use super::numbers::real;
@@ -66,11 +66,6 @@ fn records(
         flush(&mut line, out);
     }
     count
-}
-
-/// The whole file.
-pub fn iges_text(surface: &BSplineSurface, info: &IgesInfo) -> String {
-    iges_faces_text(&[surface], info)
 }
 
 /// The parameter data of one entity 128.
@@ -195,13 +190,8 @@ pub fn iges_faces_text(surfaces: &[&BSplineSurface], info: &IgesInfo) -> String 
 }
 
 /// A check of what was written: every record 80 columns, the sections in
-/// order, the terminate counts right, one entity 128.
-pub fn verify(bytes: &[u8]) -> Result<(), String> {
-    verify_faces(bytes, 1)
-}
-
-/// As [`verify`], with `faces` entities 128.
-pub fn verify_faces(bytes: &[u8], faces: usize) -> Result<(), String> {
+/// order, the terminate counts right, `faces` entities 128.
+pub fn verify(bytes: &[u8], faces: usize) -> Result<(), String> {
     if !bytes.is_ascii() {
         return Err("not ASCII".into());
     }

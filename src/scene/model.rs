@@ -3,10 +3,7 @@
 
 use super::error::{SceneError, find_key};
 use super::format::*;
-use super::format_v3::{
-    DocumentFile, StartSpec, VERSION_PATCHES, declared_version, patch_name_problem,
-    placeholder_initial, scene_file_of,
-};
+use super::format_v3::{DocumentFile, patch_name_problem, placeholder_initial, scene_file_of};
 use super::patch_text::PatchText;
 use super::reference_link::{ReferenceLink, resolve_in};
 use std::path::Path;
@@ -396,66 +393,6 @@ impl Scene {
             reference: (self.reference.as_ref()).map(|r| r.to_spec_for(file)),
             ..self.to_file()
         }
-    }
-
-    /// Parses RON text.
-    pub fn parse(text: &str, file: &Path) -> Result<Self, SceneError> {
-        if text.trim().is_empty() {
-            return Err(SceneError::at(
-                file,
-                1,
-                1,
-                "the file is empty; a scene is a RON record `( version: 2, tangents: …, … )` — start from scenes/car1.ron",
-            ));
-        }
-        if declared_version(text) == Some(VERSION_PATCHES) {
-            return Scene::parse_one_patch(text, file);
-        }
-        let f: SceneFile = ron::Options::default()
-            .from_str(text)
-            .map_err(|e| SceneError::ron(file, text, &e))?;
-        Scene::from_file(f, file, text)
-    }
-
-    /// A version-3 file of one patch, which starts on its own curve, as a
-    /// scene; a file of several patches is refused saying so (the editor and
-    /// the one-surface commands open one surface; `scene::document` opens
-    /// every patch).
-    fn parse_one_patch(text: &str, file: &Path) -> Result<Self, SceneError> {
-        let f: DocumentFile = ron::Options::default()
-            .from_str(text)
-            .map_err(|e| SceneError::ron(file, text, &e))?;
-        let place = PatchText::new(text);
-        if f.patches.len() != 1 {
-            let names: Vec<String> = f.patches.iter().map(|p| format!("`{}`", p.name)).collect();
-            let (line, col) = place.top("patches");
-            let msg = if names.is_empty() {
-                "`patches` is empty; a design needs at least one patch, the first starting on its own curve (`initial: Curve(tangents: […], order: 3, length: L, origin: (x, y, z))`)".to_string()
-            } else {
-                format!(
-                    "this design has {} patches ({}), and this reader takes one surface only (the editor, `build` and a script's `Load` open several patches); open it there, or give a design of one patch or a version-2 scene",
-                    names.len(),
-                    names.join(", ")
-                )
-            };
-            return Err(SceneError::at(file, line, col, msg));
-        }
-        let patch = &f.patches[0];
-        if let StartSpec::Edge { patch: on, .. } = &patch.initial {
-            let (line, col) = place.in_patch(0, "initial");
-            return Err(SceneError::at(
-                file,
-                line,
-                col,
-                format!(
-                    "patch `{}` starts on patch `{on}`, which is not an earlier patch; the first patch starts on its own curve: give it `initial: Curve(tangents: […], order: 3, length: L, origin: (x, y, z))`",
-                    patch.name
-                ),
-            ));
-        }
-        let mut scene = Scene::from_patch(&f, 0, file, &place)?;
-        scene.reference = resolve_in(f.reference.as_ref(), file, || place.top("reference"))?;
-        Ok(scene)
     }
 
     /// Patch `i` of a version-3 file as a scene of its own: the design's

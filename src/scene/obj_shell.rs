@@ -1,17 +1,19 @@
-//! OBJ for several patches (docs/cad.md, "Several patches"): one `o <patch
-//! name>` object per patch, each written as a single patch's OBJ is
-//! ([`super::export::obj_text`]): its vertices row by row over the point
-//! grid (streamline by streamline), then its normals, then its triangles,
-//! whose indices count on from the patches before (OBJ's indices are
-//! global to the file).
+//! Wavefront OBJ of a design (docs/cad.md, "Several patches"): one `o <patch
+//! name>` object per patch (a design of one patch is one object), each
+//! with its vertices row by row over the point grid (streamline by
+//! streamline), then its normals (`vn`), then its triangles (`f a//a b//b
+//! c//c`), whose indices count on from the patches before (OBJ's indices
+//! are global to the file).
 
-use super::export::sanitize;
 use std::fmt::Write as _;
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 
 /// The OBJ text of `patches` (name, mesh), one object each.
 pub fn obj_meshes_text(patches: &[(&str, &SurfaceMesh)]) -> String {
-    let mut s = String::from("# Streamline Studio surface: several patches\n");
+    let mut s = String::from(match patches {
+        [_] => "# Streamline Studio surface\n",
+        _ => "# Streamline Studio surface: several patches\n",
+    });
     let mut offset = 0usize;
     for (name, mesh) in patches {
         let _ = writeln!(s, "o {}", sanitize(name));
@@ -28,6 +30,32 @@ pub fn obj_meshes_text(patches: &[(&str, &SurfaceMesh)]) -> String {
         offset += mesh.positions.len();
     }
     s
+}
+
+/// `name` as an OBJ object or STL solid name: ASCII letters, digits, `-`
+/// and `_`, anything else `_`; `surface` when empty.
+pub(super) fn sanitize(name: &str) -> String {
+    let n: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if n.is_empty() { "surface".into() } else { n }
+}
+
+/// A check of what was written: `objects` objects.
+pub fn verify(bytes: &[u8], objects: usize) -> Result<(), String> {
+    let text = std::str::from_utf8(bytes).map_err(|_| "not UTF-8".to_string())?;
+    let found = text.lines().filter(|l| l.starts_with("o ")).count();
+    if found != objects {
+        return Err(format!("{found} objects, not {objects}"));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

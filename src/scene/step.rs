@@ -1,23 +1,22 @@
-//! STEP (ISO 10303-21) with AP214's schema (`AUTOMOTIVE_DESIGN`): one
-//! `ADVANCED_FACE` on a `B_SPLINE_SURFACE_WITH_KNOTS`, bounded by its four
-//! boundary curves, in an `OPEN_SHELL` of a `SHELL_BASED_SURFACE_MODEL`
-//! (docs/math.md §10). Around it the entities a CAD system needs to import a face as
-//! a part: a product with its definition and shape, the length unit
-//! (metres), plane and solid angle units, and the distance uncertainty.
+//! STEP (ISO 10303-21) with AP214's schema (`AUTOMOTIVE_DESIGN`): what
+//! every file we write holds around its faces (docs/math.md §10) — a product
+//! with its definition and shape, the length unit (metres), plane and solid
+//! angle units, the distance uncertainty — and the entities the faces are
+//! made of: poles, B-spline curves and surfaces. The faces, their edges and
+//! their shell are written by [`super::step_shell`], one face per patch (a
+//! design of one patch is a shell of one face).
 //!
-//! The entity graph is the one OpenCascade writes for one B-spline face
+//! The entity graph is the one OpenCascade writes for B-spline faces
 //! (product → product definition → shape → manifold surface shape
-//! representation → shell based surface model → open shell → face), less
-//! what a reader does not need. The boundary is `v = 0`, `u = 1`, `v = 1`,
-//! `u = 0` (counter-clockwise in the parameter plane, so the face's normal
-//! is the surface's `∂F/∂u × ∂F/∂v`), each a B-spline curve whose poles are
-//! the surface's boundary poles: the edges lie on the surface exactly.
+//! representation → shell based surface model → open shell → faces), less
+//! what a reader does not need.
 
 use super::cad_text::step_string as string;
 use super::numbers::real;
 use std::fmt::Write as _;
 use streamline_kernel::DVec3;
-use streamline_kernel::nurbs::{BSplineSurface, KnotVector};
+use streamline_kernel::nurbs::BSplineSurface;
+use streamline_kernel::nurbs::curve::Curve;
 
 /// What goes into the file besides the surface.
 #[derive(Debug, Clone)]
@@ -46,7 +45,7 @@ impl Writer {
     }
 }
 
-pub(super) fn list<T>(items: impl IntoIterator<Item = T>, f: impl Fn(T) -> String) -> String {
+fn list<T>(items: impl IntoIterator<Item = T>, f: impl Fn(T) -> String) -> String {
     let v: Vec<String> = items.into_iter().map(f).collect();
     format!("({})", v.join(","))
 }
@@ -56,9 +55,9 @@ pub(super) fn refs(ids: &[usize]) -> String {
 }
 
 /// Distinct knots and their multiplicities.
-fn knots_and_multiplicities(k: &KnotVector) -> (Vec<usize>, Vec<f64>) {
+fn knots_and_multiplicities(k: &[f64]) -> (Vec<usize>, Vec<f64>) {
     let (mut mult, mut vals) = (Vec::new(), Vec::<f64>::new());
-    for &x in k.knots() {
+    for &x in k {
         if vals.last() == Some(&x) {
             *mult.last_mut().expect("one per value") += 1;
         } else {
@@ -78,12 +77,13 @@ pub(super) fn point(w: &mut Writer, p: DVec3) -> usize {
     ))
 }
 
-fn curve(w: &mut Writer, k: &KnotVector, poles: &[DVec3]) -> usize {
-    let ids: Vec<usize> = poles.iter().map(|&p| point(w, p)).collect();
-    let (mult, vals) = knots_and_multiplicities(k);
+/// A `B_SPLINE_CURVE_WITH_KNOTS` with its poles; returns its id.
+pub(super) fn curve(w: &mut Writer, c: &Curve) -> usize {
+    let ids: Vec<usize> = c.poles.iter().map(|&p| point(w, p)).collect();
+    let (mult, vals) = knots_and_multiplicities(&c.knots);
     w.add(format!(
         "B_SPLINE_CURVE_WITH_KNOTS('',{},{},.UNSPECIFIED.,.F.,.F.,{},{},.UNSPECIFIED.)",
-        k.degree(),
+        c.degree,
         refs(&ids),
         list(mult, |m| m.to_string()),
         list(vals, real),
@@ -172,8 +172,8 @@ pub(super) fn surface_entity(w: &mut Writer, surface: &BSplineSurface) -> usize 
         let col: Vec<usize> = (0..nv).map(|j| point(w, surface.poles.get(j, i))).collect();
         columns.push(refs(&col));
     }
-    let (mu, ku) = knots_and_multiplicities(&surface.knots_u);
-    let (mv, kv) = knots_and_multiplicities(&surface.knots_v);
+    let (mu, ku) = knots_and_multiplicities(surface.knots_u.knots());
+    let (mv, kv) = knots_and_multiplicities(surface.knots_v.knots());
     w.add(format!(
         "B_SPLINE_SURFACE_WITH_KNOTS('',{p},{q},({}),.UNSPECIFIED.,.F.,.F.,.F.,{},{},{},{},.UNSPECIFIED.)",
         columns.join(","),
@@ -184,57 +184,11 @@ pub(super) fn surface_entity(w: &mut Writer, surface: &BSplineSurface) -> usize 
     ))
 }
 
-/// The whole file.
-pub fn step_text(surface: &BSplineSurface, info: &StepInfo) -> String {
-    let mut w = Writer {
-        text: String::new(),
-        next: 1,
-    };
-    let frame = frame(&mut w, info);
-    // the surface
-    let srf = surface_entity(&mut w, surface);
-    let (nu, nv) = surface.pole_counts();
-    // corners, boundary curves, edges
-    let poles = &surface.poles;
-    let corner = |j: usize, i: usize| poles.get(j, i);
-    let c00 = point(&mut w, corner(0, 0));
-    let c10 = point(&mut w, corner(0, nu - 1));
-    let c11 = point(&mut w, corner(nv - 1, nu - 1));
-    let c01 = point(&mut w, corner(nv - 1, 0));
-    let [v00, v10, v11, v01] =
-        [c00, c10, c11, c01].map(|c| w.add(format!("VERTEX_POINT('',#{c})")));
-    let bottom = curve(&mut w, &surface.knots_u, poles.row(0));
-    let right = curve(&mut w, &surface.knots_v, &poles.column(nu - 1));
-    let top = curve(&mut w, &surface.knots_u, poles.row(nv - 1));
-    let left = curve(&mut w, &surface.knots_v, &poles.column(0));
-    let edges = [
-        (v00, v10, bottom, ".T."),
-        (v10, v11, right, ".T."),
-        (v01, v11, top, ".F."),
-        (v00, v01, left, ".F."),
-    ];
-    let mut oriented = Vec::new();
-    for (a, b, c, sense) in edges {
-        let e = w.add(format!("EDGE_CURVE('',#{a},#{b},#{c},.T.)"));
-        oriented.push(w.add(format!("ORIENTED_EDGE('',*,*,#{e},{sense})")));
-    }
-    let lp = w.add(format!("EDGE_LOOP('',{})", refs(&oriented)));
-    let bound = w.add(format!("FACE_OUTER_BOUND('',#{lp},.T.)"));
-    let face = w.add(format!("ADVANCED_FACE('',(#{bound}),#{srf},.T.)"));
-    let shell = w.add(format!("OPEN_SHELL('',(#{face}))"));
-    let model = w.add(format!("SHELL_BASED_SURFACE_MODEL('',(#{shell}))"));
-    finish(w, model, frame, info, "one B-spline face")
-}
-
-/// A check of what was written: ASCII, the envelope, one face, one
-/// surface, and every `#n` referenced is defined (all outside string
-/// literals, which may hold anything a name does but a `'`: cad_text.rs).
-pub fn verify(bytes: &[u8]) -> Result<(), String> {
-    verify_faces(bytes, 1)
-}
-
-/// [`verify`] for a file of `faces` faces, each on its own B-spline surface.
-pub(super) fn verify_faces(bytes: &[u8], faces: usize) -> Result<(), String> {
+/// A check of what was written: ASCII, the envelope, `faces` faces, each
+/// on its own B-spline surface, and every `#n` referenced is defined (all
+/// outside string literals, which may hold anything a name does but a `'`:
+/// cad_text.rs).
+pub fn verify(bytes: &[u8], faces: usize) -> Result<(), String> {
     if !bytes.is_ascii() {
         return Err("not ASCII".into());
     }

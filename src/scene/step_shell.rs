@@ -1,10 +1,14 @@
-//! STEP for several patches (docs/math.md §10, §11): one `ADVANCED_FACE` per
-//! patch in one `OPEN_SHELL` of a `SHELL_BASED_SURFACE_MODEL`, each face
-//! named for its patch, and each seam **one** `EDGE_CURVE` used by both
-//! faces in opposite directions, its vertices shared (the faces come from
-//! [`streamline_kernel::nurbs::fit_shell`], whose seams are one curve).
+//! The STEP file of a design (docs/math.md §10, §11): one `ADVANCED_FACE` per
+//! patch (a design of one patch is a shell of one face) in one `OPEN_SHELL`
+//! of a `SHELL_BASED_SURFACE_MODEL`, around it what [`super::step`] writes,
+//! each face named for its patch, and each seam **one** `EDGE_CURVE` used by
+//! both faces in opposite directions, its vertices shared (the faces come
+//! from [`streamline_kernel::nurbs::fit_shell`], whose seams are one curve).
 //!
-//! A face's loop is `v = 0`, `u = 1`, `v = 1`, `u = 0` as in [`super::step`].
+//! A face's loop is `v = 0`, `u = 1`, `v = 1`, `u = 0` (counter-clockwise in
+//! the parameter plane, so the face's normal is the surface's `∂F/∂u ×
+//! ∂F/∂v`), each edge a B-spline curve whose poles are the surface's
+//! boundary poles: the edges lie on the surface exactly.
 //! A chain's seam is `A`'s `u = 1` edge and `B`'s `u = 0` edge. A side seam
 //! covers the part `[u₀, u₁]` of `A`'s `v = 0` (`First`) or `v = 1` (`Last`)
 //! edge: that edge is split at `u₀` and `u₁` into up to three edges (each
@@ -18,10 +22,7 @@ use super::cad_text::step_string as string;
 use super::error::SceneError;
 use super::export::{file_name, fit_refused, utc_now};
 use super::io::write_atomic;
-use super::numbers::real;
-use super::step::{
-    StepInfo, Writer, finish, frame, list, point, refs, surface_entity, verify_faces,
-};
+use super::step::{StepInfo, Writer, curve, finish, frame, point, refs, surface_entity, verify};
 use std::path::Path;
 use streamline_kernel::DVec3;
 use streamline_kernel::joins::Edge;
@@ -29,32 +30,6 @@ use streamline_kernel::nurbs::curve::Curve;
 use streamline_kernel::nurbs::{
     FitOptions, PatchGrid, SeamSpec, ShellFace, ShellFit, ShellSeam, fit_shell,
 };
-
-/// Distinct knots and their multiplicities.
-fn knots_and_multiplicities(k: &[f64]) -> (Vec<usize>, Vec<f64>) {
-    let (mut mult, mut vals) = (Vec::new(), Vec::<f64>::new());
-    for &x in k {
-        if vals.last() == Some(&x) {
-            *mult.last_mut().expect("one per value") += 1;
-        } else {
-            vals.push(x);
-            mult.push(1);
-        }
-    }
-    (mult, vals)
-}
-
-fn curve(w: &mut Writer, c: &Curve) -> usize {
-    let ids: Vec<usize> = c.poles.iter().map(|&p| point(w, p)).collect();
-    let (mult, vals) = knots_and_multiplicities(&c.knots);
-    w.add(format!(
-        "B_SPLINE_CURVE_WITH_KNOTS('',{},{},.UNSPECIFIED.,.F.,.F.,{},{},.UNSPECIFIED.)",
-        c.degree,
-        refs(&ids),
-        list(mult, |m| m.to_string()),
-        list(vals, real),
-    ))
-}
 
 /// An edge written: its `EDGE_CURVE` and its start and end vertices.
 #[derive(Clone, Copy)]
@@ -101,12 +76,6 @@ fn split_side(
         .collect()
 }
 
-/// The whole file: `faces` in one shell, sharing the edges of `seams`
-/// (none: every face on its own edges, as separate exports would be).
-pub fn faces_text(faces: &[ShellFace], seams: &[ShellSeam], info: &StepInfo) -> String {
-    faces_text_mirrored(faces, seams, None, info)
-}
-
 /// The reflected half of a mirrored shell (docs/math.md §9, §11;
 /// [`super::document_mirror`]): faces `originals..` are the reflections of
 /// faces `0..originals`, in order, and each pair `(i, j)` of `shared` shares
@@ -119,11 +88,13 @@ pub struct MirrorFaces<'a> {
     pub shared: &'a [(usize, usize)],
 }
 
-/// [`faces_text`] with reflected faces: each written with the opposite
+/// The whole file: `faces` in one shell, sharing the edges of `seams`
+/// (none: every face on its own edges, as separate exports would be). With
+/// `mirror`, the reflected faces are each written with the opposite
 /// `same_sense` of its original (a reflection turns the orientation over),
 /// and the pairs of `mirror.shared` on one `v = 0` edge, used by both faces
 /// in opposite directions.
-pub fn faces_text_mirrored(
+pub fn faces_text(
     faces: &[ShellFace],
     seams: &[ShellSeam],
     mirror: Option<MirrorFaces>,
@@ -255,11 +226,6 @@ pub fn faces_text_mirrored(
     finish(w, model, frame, info, "B-spline faces in one shell")
 }
 
-/// A check of a shell's file: as [`super::step::verify`], with `faces` faces.
-pub fn verify(bytes: &[u8], faces: usize) -> Result<(), String> {
-    verify_faces(bytes, faces)
-}
-
 /// Fits `patches` as one shell whose `seams` are shared
 /// ([`fit_shell`]) and writes its STEP file to `path` atomically, verified;
 /// nothing is written when the fit or the write fails (the old file is kept).
@@ -298,7 +264,7 @@ pub fn write_fitted(
         uncertainty: (tol / 10.0).min(1e-6),
         timestamp: &stamp,
     };
-    let bytes = faces_text_mirrored(&shell.faces, &shell.seams, mirror, &info).into_bytes();
+    let bytes = faces_text(&shell.faces, &shell.seams, mirror, &info).into_bytes();
     let n = shell.faces.len();
     write_atomic(path, &bytes, |b| verify(b, n))
 }

@@ -1,9 +1,10 @@
-//! STL for several patches (docs/cad.md, "Several patches"): ASCII STL with
-//! one `solid <patch name>` per patch in one file (binary STL has no solids
-//! and no names; the one-patch export stays binary, [`super::export::stl_bytes`]).
-//! Each facet's normal is its triangle's, its corners as the mesh winds them.
+//! STL of a design (docs/cad.md, "Several patches"): for several patches,
+//! ASCII STL with one `solid <patch name>` per patch in one file
+//! ([`stl_solids_text`]); for one, binary STL ([`stl_bytes`]: binary STL
+//! has no solids and no names). Each facet's normal is its triangle's, its
+//! corners as the mesh winds them.
 
-use super::export::sanitize;
+use super::obj_shell::sanitize;
 use std::fmt::Write as _;
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 
@@ -26,6 +27,29 @@ pub fn stl_solids_text(patches: &[(&str, &SurfaceMesh)]) -> String {
         let _ = writeln!(s, "endsolid {name}");
     }
     s
+}
+
+/// Binary STL bytes: an 80-byte header, the triangle count, then per triangle
+/// its face normal and three corners (little-endian `f32`) and a zero `u16`.
+pub fn stl_bytes(mesh: &SurfaceMesh) -> Vec<u8> {
+    let tris = mesh.indices.len() / 3;
+    let mut out = Vec::with_capacity(84 + tris * 50);
+    let mut header = [b' '; 80];
+    let title = b"Streamline Studio binary STL";
+    header[..title.len()].copy_from_slice(title);
+    out.extend_from_slice(&header);
+    out.extend_from_slice(&(tris as u32).to_le_bytes());
+    for t in mesh.indices.chunks_exact(3) {
+        let [a, b, c] = [0, 1, 2].map(|i| mesh.positions[t[i] as usize]);
+        let n = (b - a).cross(c - a).try_normalize().unwrap_or_default();
+        for v in [n, a, b, c] {
+            for x in [v.x, v.y, v.z] {
+                out.extend_from_slice(&(x as f32).to_le_bytes());
+            }
+        }
+        out.extend_from_slice(&0u16.to_le_bytes());
+    }
+    out
 }
 
 /// A check of what was written: `solids` solids, each closed, and every

@@ -1,6 +1,7 @@
 //! Helpers shared by the ECS test files.
 #![allow(dead_code)]
 
+pub mod built;
 pub mod documents;
 pub mod headless_editor;
 

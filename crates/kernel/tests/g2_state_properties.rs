@@ -92,7 +92,8 @@ fn stretch(patches: &mut [Design], p: usize, row: usize, col: usize, by: f64) {
 }
 
 /// Updates `state` and `stacks` to `patches` and checks them against the
-/// whole build: the same bits, and `changed` exactly the stacks that differ.
+/// whole build: the same bits, `changed` every stack that differs and
+/// `rows` every finest row that moved.
 fn check_update(
     state: &mut G2State,
     stacks: &mut Vec<Stack>,
@@ -113,6 +114,19 @@ fn check_update(
             "patch {} changed unsaid",
             p
         );
+        // the finest points outside the rows it names kept their bits
+        let (old, new) = (before[p].finest_points(), got.finest_points());
+        if old.rows() == new.rows() && old.cols() == new.cols() {
+            for r in 0..new.rows() {
+                let named = u.rows[p].is_some_and(|s| s.lo <= r && r <= s.hi);
+                let kept = old
+                    .row(r)
+                    .iter()
+                    .zip(new.row(r))
+                    .all(|(a, b)| bits(*a) == bits(*b));
+                prop_assert!(named || kept, "patch {} row {} moved unnamed", p, r);
+            }
+        }
     }
     let total: usize = expect
         .iter()

@@ -1,8 +1,10 @@
 //! Bench rows of designs of several patches (docs/math.md §11): a tangent edit
-//! in the first of three chained cars at depth 5
-//! (`ecs/patches/car-x3/d5/edit-first`: the first patch's incremental pipeline,
-//! then the joined patches rebuilt through the kernel's joins) beside the same
-//! edit with the car alone (`ecs/patches/car-x1/d5/edit-first`);
+//! in the first, the middle and the last of three G1-chained cars at depth 5
+//! (`ecs/patches/car-x3/d5/edit-first`: the first patch's incremental
+//! pipeline, then the cars on it placed again on its moved end;
+//! `…/edit-middle`, `…/edit-last`: that car's kept levels re-blended in the
+//! edit's window, `joins::patch_state`) beside the same edit with the car
+//! alone (`ecs/patches/car-x1/d5/edit-first`);
 //! the same three cars G2-chained, edited in the first car and in the last
 //! (`ecs/patches/car-g2x3/d5/edit-first`, `…/edit-last`: the run kept
 //! between edits, `joins::g2_state`), and the kernel's G2 run after an edit
@@ -76,11 +78,17 @@ pub fn rows() -> Vec<Workload> {
     let rows = [
         ("car-x1", 1, Continuity::G1, 0),
         ("car-x3", 3, Continuity::G1, 0),
+        ("car-x3", 3, Continuity::G1, 1),
+        ("car-x3", 3, Continuity::G1, 2),
         ("car-g2x3", 3, Continuity::G2, 0),
         ("car-g2x3", 3, Continuity::G2, 2),
     ];
     for (name, n, continuity, patch) in rows {
-        let which = if patch == 0 { "first" } else { "last" };
+        let which = match patch {
+            0 => "first",
+            p if p + 1 == n => "last",
+            _ => "middle",
+        };
         let row = format!("ecs/patches/{name}/d{depth}/edit-{which}");
         out.push(Workload::lazy(row, move || {
             let doc = chained_cars_with(n, depth, continuity);

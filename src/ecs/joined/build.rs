@@ -2,21 +2,23 @@
 //! [`crate::ecs::ModelSet::Mesh`]:
 //! * [`track_joined`] writes a joined patch's changed net handles into its
 //!   [`JoinedDesign`] (only the cells that differ; nothing when nothing does);
-//! * [`build_joined`] rebuilds, through the kernel's joins as
-//!   [`crate::scene::document_build::stacks`] does (`chain`, `side`,
-//!   `g2_run`), exactly the patches whose own design changed or whose G2
-//!   run has a changed member, and the seam report of every join with a
-//!   rebuilt side. A patch whose parent was rebuilt while its own design
-//!   did not change goes through [`rejoin`]: its levels are kept when what
-//!   they read of the parent (a chain's `t` and G1 seam column, a side G1
-//!   join's edge curve) did not change, and only its points are placed
-//!   again on the parent's moved edge (bit for bit the whole join's); it is
-//!   left alone, and so are the patches on it, when nothing it reads moved.
-//!   What a patch's children read of it before and after is compared as
-//!   [`Edges`], taken before any stack is changed in place. The first
-//!   patch's stack is kept between edits and brought up to date in place
-//!   from its incremental pipeline ([`super::first`]) when its
-//!   [`PatchKernel`] or the display depth changes.
+//! * [`build_joined`] brings up to date, as
+//!   [`crate::scene::document_build::stacks`] builds them (`chain`, `side`,
+//!   `g2_run`), exactly the patches whose own design changed, whose G2 run
+//!   has a changed member or whose parent was rebuilt, and the seam report
+//!   of every join with a rebuilt side. Every patch but a G2 run's members
+//!   and the first patch's pipeline is kept between edits ([`super::kept`]):
+//!   its levels are re-blended inside the edit's window, a join's fix (a
+//!   chain's `t` and G1 seam column, a side join's `σ` and G1 projection)
+//!   is made again and compared, and only the rows whose tangents,
+//!   parameters or start moved are placed again, bit for bit the whole
+//!   join's; a patch none of whose rows moved is left as it was (not marked
+//!   changed), and so are the patches on it. A G2 run is kept as one merged
+//!   net ([`super::g2`]). The first patch's stack is kept between edits and
+//!   brought up to date in place from its incremental pipeline
+//!   ([`super::first`]) when its [`PatchKernel`] or the display depth
+//!   changes; with details, fine tuning or interpolated tangents it is kept
+//!   as the others are.
 //!
 //! A G2 run from the first patch: the run is one merged net (docs/math.md
 //! §11.1), so the first patch's cut of it ([`PatchSurface`]) differs from
@@ -29,6 +31,7 @@
 use super::components::*;
 use super::first::FirstPipeline;
 use super::g2::G2RunState;
+use super::kept::{KeptPatch, PatchWork};
 use crate::ecs::patch::{
     ArcParam, Direction, PatchIndex, PatchKernel, PatchStructure, PatchTuning, SurfaceHandle,
 };
@@ -37,13 +40,11 @@ use bevy::prelude::*;
 use std::collections::HashMap;
 use streamline_kernel::finetune::SurfaceTuning;
 use streamline_kernel::joins::PatchParts;
-use streamline_kernel::joins::chain::chain;
-use streamline_kernel::joins::edges::Edges;
+use streamline_kernel::joins::RowSpan;
 use streamline_kernel::joins::g2_state::G2State;
-use streamline_kernel::joins::rejoin::{Rejoin, RowSpan, rejoin};
+use streamline_kernel::joins::patch_state::{PatchState, PatchUpdate, Start};
 use streamline_kernel::joins::seam::{PatchMesh, chain_seam, side_seam};
-use streamline_kernel::joins::side::side;
-use streamline_kernel::joins::{Continuity, Edge, JoinError, Stack};
+use streamline_kernel::joins::{Continuity, Edge, Stack};
 use streamline_kernel::levels::multires::Details;
 use streamline_kernel::streamline::surface_mesh::normals_window;
 use streamline_kernel::{DVec3, Design};
@@ -117,6 +118,7 @@ type PatchRow = (
     Option<&'static mut G2RunState>,
     Option<Ref<'static, JoinedFeatures>>,
     Option<Ref<'static, PatchTuning>>,
+    Option<&'static mut KeptPatch>,
 );
 
 /// Rebuilds the patches whose inputs changed and the seams they touch
@@ -180,37 +182,33 @@ pub(crate) fn build_joined(
     if !run_changed.contains(&true) {
         return;
     }
-    // the stacks a rejoin may keep, moved out (and put back unless replaced)
-    // so that their levels are moved, not copied
-    let mut kept: Vec<Option<Stack>> = (0..n)
-        .map(|i| {
-            if parent[i].is_none() || run_changed[i] || !matches!(rows[i].5.built, Some(Ok(_))) {
-                return None;
-            }
-            match rows[i].5.bypass_change_detection().built.take() {
-                Some(Ok(s)) => Some(s),
-                _ => None,
-            }
-        })
-        .collect();
-    // what the patches on a patch read of it as it was (`Edges`: a few
-    // hundred values per depth), before any stack is changed in place
-    let on = |i: usize, side: bool| {
-        (0..n).any(|j| parent[j].is_some_and(|(a, e, _)| a == i && (e != Edge::End) == side))
-    };
-    // whether side joins start on a patch (they read its edge curves)
-    let sides: Vec<bool> = (0..n).map(|i| on(i, true)).collect();
-    let old_edges: Vec<Option<Edges>> = (0..n)
-        .map(|i| {
-            let s = kept[i].as_ref().or(rows[i].5.stack());
-            s.filter(|_| sides[i] || on(i, false))
-                .map(|s| Edges::of(s, sides[i]))
-        })
-        .collect();
-    // a G2 run's state and its members' stacks, moved out to be updated in
-    // place (super::g2)
+    // a G2 run's members, by their run's first patch
     let head = |i: usize| parent[i].is_none() && run.iter().filter(|&&r| r == i).count() > 1;
     let heads: Vec<bool> = (0..n).map(head).collect();
+    // the stacks and states of the patches kept between edits (every patch
+    // but a G2 run's members and the first patch's pipeline), moved out to
+    // be updated in place (super::kept), and put back unless replaced
+    let kept_path: Vec<bool> = (0..n)
+        .map(|i| !heads[run[i]] && (parent[i].is_some() || rows[i].3.is_none()))
+        .collect();
+    let mut kept: Vec<Option<Stack>> = vec![None; n];
+    let mut kstates: Vec<Option<PatchState>> = vec![None; n];
+    for i in 0..n {
+        if let Some(k) = rows[i].10.as_mut() {
+            kstates[i] = k.bypass_change_detection().0.take();
+        }
+        if !kept_path[i] {
+            continue;
+        }
+        if let Some(Ok(s)) = rows[i].5.bypass_change_detection().built.take() {
+            kept[i] = Some(s);
+        }
+    }
+    // the patches built through their state this frame (the others' states
+    // are dropped when another path builds them)
+    let mut by_state = vec![false; n];
+    // a G2 run's state and its members' stacks, moved out to be updated in
+    // place (super::g2)
     let mut g2_old: Vec<Option<Stack>> = vec![None; n];
     let mut states: Vec<Option<G2State>> = vec![None; n];
     for i in 0..n {
@@ -231,9 +229,18 @@ pub(crate) fn build_joined(
         if parent[i].is_some() || heads[i] || !run_changed[i] || rows[i].3.is_none() {
             continue;
         }
+        // with details, fine tuning or interpolated tangents it is kept as
+        // the others are (super::kept), its normals redone in its moved rows
+        let adds = rows[i].3.as_ref().is_some_and(|k| {
+            !k.details.is_empty() || interpolates(&k.design, st.interpolate_tangents)
+        }) || rows[i].9.as_ref().is_some_and(|t| t.0.is_some());
         let r = rows[i].5.bypass_change_detection();
         if let Some(Ok(s)) = r.built.take() {
-            first_old[i] = Some((s, std::mem::take(&mut r.normals)));
+            let normals = match adds {
+                true => Vec::new(),
+                false => std::mem::take(&mut r.normals),
+            };
+            first_old[i] = Some((s, normals));
         }
     }
     let mut in_run = vec![false; n];
@@ -286,11 +293,11 @@ pub(crate) fn build_joined(
         None => format!("patch `{}`: {e}", name(i)),
     };
     let mut new: Vec<Option<Result<Stack, String>>> = vec![None; n];
-    // what the patches on a rebuilt patch read of it now
-    let mut new_edges: Vec<Option<Edges>> = vec![None; n];
+    // what each patch's update through its state did
+    let mut work: Vec<Option<PatchWork>> = vec![None; n];
     // the display depth's mesh normals of a rebuilt patch, when it has them already
     let mut normals: Vec<Option<Vec<DVec3>>> = vec![None; n];
-    // the display depth's rows a rejoin placed again (`None`: all)
+    // the display depth's rows an update placed again (`None`: all)
     let mut moved: Vec<Option<RowSpan>> = vec![None; n];
     for i in 0..n {
         // a patch is rebuilt when its G2 run changed, or (below) when its
@@ -325,10 +332,13 @@ pub(crate) fn build_joined(
                     .collect();
                 let old: Option<Vec<Stack>> = members.iter().map(|&k| g2_old[k].take()).collect();
                 match super::g2::run(&mut states[i], &designs, depth, old) {
-                    Ok((stacks, changed)) => {
-                        for ((&k, s), moved) in members.iter().zip(stacks).zip(changed) {
+                    Ok((stacks, changed, spans)) => {
+                        for (((&k, s), ch), span) in
+                            members.iter().zip(stacks).zip(changed).zip(spans)
+                        {
                             in_run[k] = true;
-                            if moved {
+                            if ch {
+                                moved[k] = span;
                                 new[k] = Some(Ok(s));
                             } else {
                                 // not changed: put back as it is
@@ -363,11 +373,30 @@ pub(crate) fn build_joined(
                         if rows[i].3.is_some() {
                             pipeline.forget();
                         }
-                        Stack::build_parts(PatchParts::new(b, details(i), tuning(i)), depth)
-                            .map_err(|e| located(i, &JoinError::Kernel(e)))
+                        // a patch on its own curve, kept between edits
+                        let old = kept[i].take().or(first_old[i].take().map(|(s, _)| s));
+                        let parts = PatchParts::new(b, details(i), tuning(i));
+                        let mut state = kstates[i].take();
+                        by_state[i] = true;
+                        let done = super::kept::update(&mut state, parts, Start::Curve, depth, old);
+                        kstates[i] = state;
+                        match done {
+                            Ok(done) => match settle(i, done, &mut work, &mut moved) {
+                                Ok(s) => Ok(s),
+                                Err(s) => {
+                                    kept[i] = Some(s);
+                                    continue;
+                                }
+                            },
+                            Err(e) => Err(located(i, &e)),
+                        }
                     }
                 }
             }
+            Some((_, Edge::End, Continuity::G2)) => Err(located(
+                i,
+                &"a G2 chain is one net from a patch with its own curve; join it with G1",
+            )),
             Some((a, edge, c)) => {
                 let (kept_lo, kept_hi) = kept.split_at_mut(i);
                 // A as it is now: rebuilt, or as it was
@@ -394,42 +423,26 @@ pub(crate) fn build_joined(
                 } else {
                     b
                 };
-                // only the parent moved: keep the levels if what they read of
-                // it did not change (A before and after, as its edges)
-                if new[a].is_some() && new_edges[a].is_none() {
-                    new_edges[a] = Some(Edges::of(sa, sides[a]));
-                }
-                let (old_a, new_a) = (old_edges[a].as_ref(), new_edges[a].as_ref());
-                // (a patch with details or fine tuning is built whole)
-                let old_b = kept_hi[0].take().filter(|_| !adds(i));
-                if let (Some(old_b), Some(old_a), Some(new_a)) = (old_b, old_a, new_a) {
-                    match rejoin(da, old_a, new_a, b, old_b, edge, c) {
-                        Rejoin::Unchanged(s) => {
+                let parts = PatchParts::new(b, details(i), tuning(i));
+                let start = Start::Edge {
+                    a_design: da,
+                    a: sa,
+                    edge,
+                    continuity: c,
+                };
+                let mut state = kstates[i].take();
+                by_state[i] = true;
+                let done = super::kept::update(&mut state, parts, start, depth, kept_hi[0].take());
+                kstates[i] = state;
+                match done {
+                    Ok(done) => match settle(i, done, &mut work, &mut moved) {
+                        Ok(s) => Ok(s),
+                        Err(s) => {
                             kept_hi[0] = Some(s);
                             continue;
                         }
-                        Rejoin::Moved { stack, rows: spans } => {
-                            moved[i] = spans.last().copied().flatten();
-                            new[i] = Some(Ok(stack));
-                            continue;
-                        }
-                        // built whole below
-                        Rejoin::Rebuild(_) => {}
-                    }
-                }
-                match (edge, c) {
-                    (Edge::End, Continuity::G2) => Err(located(
-                        i,
-                        &"a G2 chain is one net from a patch with its own curve; join it with G1",
-                    )),
-                    (Edge::End, c) => {
-                        let parts = PatchParts::new(b, details(i), tuning(i));
-                        chain(da, sa, parts, c).map_err(|e| located(i, &e))
-                    }
-                    (edge, c) => {
-                        let parts = PatchParts::new(b, details(i), tuning(i));
-                        side(sa, parts, edge, c).map_err(|e| located(i, &e))
-                    }
+                    },
+                    Err(e) => Err(located(i, &e)),
                 }
             }
         };
@@ -487,6 +500,7 @@ pub(crate) fn build_joined(
             _ => None,
         });
     }
+    let new_was: Vec<Option<()>> = new.iter().map(|b| b.as_ref().map(|_| ())).collect();
     for (i, r) in rows.iter_mut().enumerate() {
         if let Some(b) = new[i].take() {
             r.5.built = Some(b);
@@ -495,6 +509,21 @@ pub(crate) fn build_joined(
         } else if let Some(s) = kept[i].take() {
             // not rebuilt: put back, not marked changed
             r.5.bypass_change_detection().built = Some(Ok(s));
+        }
+        // the kept levels back (a new one inserted), or dropped when
+        // another path built the patch
+        let st = kstates[i]
+            .take()
+            .filter(|_| by_state[i] || new_was[i].is_none());
+        match r.10.as_mut() {
+            Some(k) => k.bypass_change_detection().0 = st,
+            None if st.is_some() => {
+                commands.entity(r.0).try_insert(KeptPatch(st));
+            }
+            None => {}
+        }
+        if let Some(w) = work[i].take() {
+            commands.entity(r.0).try_insert(w);
         }
         if let (Some(report), Some(state)) = (seams[i].take(), r.6.as_mut()) {
             state.report = report;
@@ -512,6 +541,26 @@ pub(crate) fn build_joined(
             _ => {}
         }
     }
+}
+
+/// A kept patch's update settled: `Ok(stack)` when it moved (its work and
+/// the display depth's rows it placed again recorded for patch `i`),
+/// `Err(stack)` when nothing moved (put back as it was, not marked changed).
+fn settle(
+    i: usize,
+    (stack, u): (Stack, PatchUpdate),
+    work: &mut [Option<PatchWork>],
+    moved: &mut [Option<RowSpan>],
+) -> Result<Stack, Stack> {
+    work[i] = Some(PatchWork::of(&u));
+    if !u.whole && u.rows.iter().all(Option::is_none) {
+        return Err(stack);
+    }
+    moved[i] = match u.whole {
+        true => None,
+        false => u.rows.last().copied().flatten(),
+    };
+    Ok(stack)
 }
 
 /// For a G1 or G2 chain, `B` with its first control column `A`'s last: the

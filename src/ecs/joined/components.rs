@@ -9,7 +9,7 @@
 pub use crate::ecs::patch::{Joined, JoinedHandle};
 use bevy::prelude::*;
 use streamline_kernel::Design;
-use streamline_kernel::joins::rejoin::RowSpan;
+use streamline_kernel::joins::RowSpan;
 use streamline_kernel::joins::{Continuity, Edge, SeamReport, Stack};
 
 /// A patch's name in the document (`main` for a version-1 or -2 design)
@@ -36,6 +36,16 @@ pub enum PatchStart {
         /// The continuity across it.
         continuity: Continuity,
     },
+}
+
+/// Whether patch `first` heads a G2 run: some patch among `starts` is
+/// G2-chained on its `End` (docs/math.md §11.1). Its drawn surface is then
+/// the run's cut of the merged net, not its own one-patch surface.
+pub fn heads_g2_run<'a>(first: Entity, starts: impl IntoIterator<Item = &'a PatchStart>) -> bool {
+    starts.into_iter().any(|s| {
+        matches!(s, PatchStart::Edge { parent, edge: Edge::End, continuity: Continuity::G2 }
+            if *parent == first)
+    })
 }
 
 /// A joined patch's kernel design, derived from its handles by

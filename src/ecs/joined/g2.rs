@@ -9,6 +9,7 @@
 
 use bevy::prelude::*;
 use streamline_kernel::joins::PatchParts;
+use streamline_kernel::joins::RowSpan;
 use streamline_kernel::joins::g2_state::G2State;
 use streamline_kernel::joins::{JoinError, Stack};
 
@@ -17,8 +18,9 @@ use streamline_kernel::joins::{JoinError, Stack};
 #[derive(Component, Debug, Default)]
 pub struct G2RunState(pub Option<G2State>);
 
-/// Each member's stack and whether it changed.
-pub(crate) type RunBuilt = (Vec<Stack>, Vec<bool>);
+/// Each member's stack, whether it changed and the rows of its finest
+/// points placed again (`None` with a change: all of them).
+pub(crate) type RunBuilt = (Vec<Stack>, Vec<bool>, Vec<Option<RowSpan>>);
 
 /// The run of `designs` (each one's seam column the previous one's last,
 /// with its details) at
@@ -33,7 +35,7 @@ pub(crate) fn run(
 ) -> Result<RunBuilt, JoinError> {
     if let (Some(st), Some(mut stacks)) = (state.as_mut(), old) {
         return match st.update_parts(designs, depth, &mut stacks) {
-            Ok(u) => Ok((stacks, u.changed)),
+            Ok(u) => Ok((stacks, u.changed, u.rows)),
             Err(e) => {
                 *state = None;
                 Err(e)
@@ -43,7 +45,8 @@ pub(crate) fn run(
     match G2State::build_parts(designs, depth) {
         Ok((st, stacks)) => {
             *state = Some(st);
-            Ok((stacks, vec![true; designs.len()]))
+            let n = designs.len();
+            Ok((stacks, vec![true; n], vec![None; n]))
         }
         Err(e) => {
             *state = None;

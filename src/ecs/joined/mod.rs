@@ -10,12 +10,14 @@ pub mod census;
 pub mod components;
 pub mod first;
 pub mod g2;
+pub mod kept;
 pub mod patch_ops;
 pub mod spawn;
 pub mod world_io;
 
 pub use crate::ecs::edit_state::{DocState, JoinedState, StartState, same_design};
 pub use components::*;
+pub use kept::{KeptPatch, PatchWork};
 pub use spawn::{adopt_first, spawn_joined, spawn_joined_patch, spawn_joined_with};
 pub use world_io::{JoinedRead, doc_state, document};
 

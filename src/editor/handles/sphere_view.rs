@@ -4,7 +4,9 @@
 //! highlighted), great arcs between neighbours in blue, the handles of the edit
 //! depth in red, and the subdivided tangents of the display depth as small
 //! points (at most a level-4 density: [`CLOUD_LEVEL`]), all of the active
-//! patch (docs/math.md §11: a joined patch's from its built stack). Each handle entity's point (with its arcs) is a retained gizmo of
+//! patch (docs/math.md §11: a joined patch's from its built stack, and so
+//! the first patch's when it heads a G2 run, whose drawn surface is its cut
+//! of the run, §11.1). Each handle entity's point (with its arcs) is a retained gizmo of
 //! its own, redrawn only when the handle moved, a neighbour its arcs end at
 //! moved, or it turned to or from the eye. Dragging a point moves that tangent to the point under the pointer.
 
@@ -14,7 +16,7 @@ use super::super::interaction::{
     HandleSettings, MainCamera, OrbitCamera, Selection, SphereArea, ViewArea,
 };
 use crate::ecs::components::{LevelData, SubdivisionLevel};
-use crate::ecs::joined::PatchSurface;
+use crate::ecs::joined::{PatchStart, PatchSurface, heads_g2_run};
 use crate::ecs::patch::PatchRef;
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::Viewport;
@@ -246,7 +248,8 @@ pub fn cloud_count(rows: usize, cols: usize, depth: u32) -> usize {
 
 /// The display depth's tangents as a point cloud ([`cloud_points`]: at most
 /// a level-4 density), of the active patch (a joined one's from its built
-/// stack, docs/math.md §11), rewritten when that level changes.
+/// stack, docs/math.md §11, and a G2 run's head's from its cut), rewritten
+/// when that level changes.
 #[allow(clippy::too_many_arguments)]
 fn update_points(
     meter: Res<crate::ecs::meter::CpuMeter>,
@@ -255,6 +258,7 @@ fn update_points(
     layout: Res<HandleLayout>,
     levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
     joined: Query<Ref<PatchSurface>>,
+    starts: Query<&PatchStart>,
     points: Single<(&Mesh3d, &mut Visibility), With<SubdividedPoints>>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut shown: Local<Option<(u32, Option<Entity>)>>,
@@ -270,7 +274,16 @@ fn update_points(
         *vis = want;
     }
     let depth = patch.structure().display_depth;
-    let of = layout.active.filter(|_| layout.active_joined);
+    // a G2 run's head is drawn as its cut of the run: its stack's level
+    let first = patch.entity();
+    let cut = heads_g2_run(first, starts.iter())
+        && joined
+            .get(first)
+            .is_ok_and(|s| s.stack().is_some_and(|s| s.levels.len() > depth as usize));
+    let of = match layout.active_joined {
+        true => layout.active,
+        false => cut.then_some(first),
+    };
     let (tangents, changed) = match of {
         Some(e) => {
             let Ok(surface) = joined.get(e) else {

@@ -168,7 +168,7 @@ impl Plugin for StructurePlugin {
                     keys.run_if(
                         not(egui_wants_any_keyboard_input)
                             .and_then(in_state(EditorMode::Streamline))
-                            .and_then(super::super::document::files::no_file_dialog),
+                            .and_then(super::super::files::open_save::no_file_dialog),
                     ),
                 )
                     .in_set(EditorSet::Input),

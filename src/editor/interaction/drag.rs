@@ -9,8 +9,8 @@
 //! each initial-curve tangent), all in the drag's undo group. Shift-click
 //! adds a handle to the selection or takes it out, and starts no drag.
 
+use super::handle_id::HandleId;
 use super::handle_query::HandleQuery;
-use super::handles::HandleId;
 use super::selection::Selection;
 use crate::ecs::{Edit, EditMessage};
 use bevy::prelude::*;

@@ -6,7 +6,7 @@
 //! placement ran); the other patches' handles are drawn dimmed and never
 //! found nor picked here, and a hidden active patch has none to pick.
 
-use super::handles::{Handle, HandleId, HandleKind, HandleSettings, segment_distance};
+use super::handle_id::{Handle, HandleId, HandleKind, HandleSettings, segment_distance};
 use super::placed::{HandleLayout, MirroredHandle, Placed};
 use crate::ecs::joined::PatchHidden;
 use crate::ecs::patch::{Joined, Patch, PatchIndex};
@@ -107,6 +107,8 @@ impl HandleQuery<'_, '_> {
         }
         match (&self.layout.refined, self.layout.edit_depth) {
             (Some((shape, _)), d) if d > 0 => *shape,
+            // no refined cells placed (a stack without the edit depth's level)
+            (None, d) if d > 0 => (0, 0),
             _ => self
                 .index()
                 .map_or((0, 0), |i| (i.surface.rows(), i.surface.cols())),
@@ -120,12 +122,13 @@ impl HandleQuery<'_, '_> {
     }
 
     /// The handles of the edit depth, row-major: the control tangents at
-    /// depth 0, the refined cells deeper.
+    /// depth 0, the refined cells deeper (none while none are placed).
     pub fn editable(&self) -> Box<dyn Iterator<Item = Handle> + '_> {
         match &self.layout.refined {
             Some((_, v)) if self.layout.edit_depth > 0 => {
                 Box::new(v.iter().filter_map(|&e| self.get(e)))
             }
+            _ if self.layout.edit_depth > 0 => Box::new(std::iter::empty()),
             _ => Box::new(self.controls()),
         }
     }

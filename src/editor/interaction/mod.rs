@@ -12,12 +12,11 @@
 
 mod active_switch;
 mod drag;
+mod handle_id;
 mod handle_query;
-mod handles;
 mod mode;
 mod placed;
 mod placement;
-mod placement_joined;
 mod roles;
 mod selection;
 mod view;
@@ -26,11 +25,11 @@ use crate::ecs::ModelSet;
 use bevy::prelude::*;
 use bevy_state::app::{AppExtStates, StatesPlugin};
 pub use drag::{ActiveDrag, Drag, DragGroups, DragKind, DragTo, HandlePressed};
+pub use handle_id::{Handle, HandleId, HandleKind, HandleSettings, segment_distance};
 pub use handle_query::HandleQuery;
-pub use handles::{Handle, HandleId, HandleKind, HandleSettings, segment_distance};
 pub use mode::EditorMode;
 pub use placed::{HandleLayout, MirroredHandle, PatchRole, Placed, RefinedHandle};
-pub use placement_joined::{joined_places, shares_first_column};
+pub use placement::{DrawnLevel, shares_first_column, stack_handles};
 pub use roles::role_of;
 pub use selection::{Selected, Selection};
 pub use view::{FrameRequest, MainCamera, OrbitCamera, SceneBounds, SphereArea, ViewArea};
@@ -88,7 +87,6 @@ impl Plugin for InteractionPlugin {
                 Update,
                 (
                     placement::place,
-                    placement_joined::place_joined,
                     roles::mark_roles,
                     active_switch::follow_active,
                     selection::keep_valid,

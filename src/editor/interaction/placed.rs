@@ -12,7 +12,7 @@
 //! [`RefinedHandle`] entity; a mirrored copy is a [`MirroredHandle`] entity
 //! with a [`Placed`] and no [`HandleId`], so that nothing picks it.
 
-use super::handles::{Handle, HandleId};
+use super::handle_id::{Handle, HandleId};
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
 
@@ -64,9 +64,10 @@ impl From<&Handle> for Placed {
     }
 }
 
-/// A tangent of the edit depth's level (above 0): one entity per cell,
-/// spawned when the edit depth or that level's shape changes, despawned
-/// when the edit depth goes back to 0. Its direction is the level's
+/// A tangent of the edit depth's level (above 0) of the active patch: one
+/// entity per cell, a child of that patch, spawned when the edit depth, the
+/// active patch or that level's shape changes, despawned when the edit
+/// depth goes back to 0. Its direction is the level's
 /// tangent; turning it edits the detail at its cell (`docs/math.md §5`).
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct RefinedHandle {
@@ -115,8 +116,9 @@ pub struct HandleLayout {
     pub cap: f64,
     /// Whether a placement ran (the handles have their [`Placed`]).
     pub placed: bool,
-    /// The edit depth's cells (above 0): `(rows, cols)` and their entities,
-    /// row-major.
+    /// The active patch's cells of the edit depth (above 0): `(rows, cols)`
+    /// and their entities, row-major, children of that patch (a chain's
+    /// seam column's cells have no place: neither drawn nor picked).
     pub refined: Option<((usize, usize), Vec<Entity>)>,
     /// The mirrored copies, in the order they are placed.
     pub mirrored: Vec<Entity>,
@@ -127,10 +129,10 @@ pub struct HandleLayout {
     /// picked, [`crate::ecs::joined::ActivePatch`] resolved: the first
     /// patch when it names none or no patch); `None` before a placement.
     pub active: Option<Entity>,
-    /// Whether that patch is a joined one (docs/math.md §11): then the edit
-    /// depth is 0 (the editor turns a joined patch's base net;
-    /// docs/math.md §11.4 keeps its details) and the first patch's
-    /// handles are dimmed.
+    /// Whether that patch is a joined one (docs/math.md §11): its handles
+    /// are placed at the edit depth on its stack, as the first patch's are
+    /// on its levels (its details are kept and built, docs/math.md §11.4),
+    /// and the first patch's handles are dimmed.
     pub active_joined: bool,
 }
 

@@ -1,8 +1,8 @@
 //! The selection: the handles chosen (a list, the first primary: Shift-click
 //! and a Shift box add to it) and the one under the pointer.
 
+use super::handle_id::{HandleId, HandleKind};
 use super::handle_query::HandleQuery;
-use super::handles::{HandleId, HandleKind};
 use crate::ecs::patch::PatchRef;
 use bevy::prelude::*;
 

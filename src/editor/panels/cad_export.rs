@@ -6,7 +6,7 @@
 
 use super::PanelCtx;
 use crate::ecs::Edit;
-use crate::editor::document::files::{self, FileUi, PathAction};
+use crate::editor::files::open_save::{self, FileUi, PathAction};
 use crate::scene::export::Format;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
@@ -40,7 +40,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut CadExportSection, files
             format: Format::Step,
             relative: 1e-4,
             degree: 3,
-            path: files::suggested(&p.model, p.patch.name(), "step"),
+            path: open_save::suggested(&p.model, p.patch.name(), "step"),
         });
     egui::CollapsingHeader::new("CAD export")
         .default_open(true)
@@ -57,7 +57,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut CadExportSection, files
                         .clicked()
                     {
                         f.format = format;
-                        f.path = files::suggested(&p.model, p.patch.name(), ext);
+                        f.path = open_save::suggested(&p.model, p.patch.name(), ext);
                     }
                 }
             });
@@ -98,7 +98,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut CadExportSection, files
                     .clicked()
                 {
                     s.export.fit = fit;
-                    files::browse(files_ui, PathAction::Export(f.format), f.path.trim(), None);
+                    open_save::browse(files_ui, PathAction::Export(f.format), f.path.trim(), None);
                 }
             });
             match &s.last_export.written {

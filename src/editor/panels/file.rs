@@ -4,8 +4,8 @@
 
 use super::PanelCtx;
 use crate::ecs::runner::ScriptRun;
-use crate::editor::document::files::{self, FileUi, PathAction, Pending};
-use crate::editor::document::new_design::NewDesignForm;
+use crate::editor::files::new_design::NewDesignForm;
+use crate::editor::files::open_save::{self, FileUi, PathAction, Pending};
 use crate::editor::surface::reference_ghost::ReferenceGhost;
 use crate::scene::builtin;
 use crate::scene::export::Format;
@@ -54,8 +54,8 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
                 )
                 .clicked()
             {
-                let folder = files::scene_folder(&p.model);
-                files::browse(&mut s.files, PathAction::ImportSurface, folder, None);
+                let folder = open_save::scene_folder(&p.model);
+                open_save::browse(&mut s.files, PathAction::ImportSurface, folder, None);
                 ui.close();
             }
             ui.separator();
@@ -67,7 +67,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
                     .clicked()
                 {
                     let (model, ui_state) = (&p.model, &mut *s.files);
-                    files::request(
+                    open_save::request(
                         Pending::New(name.into()),
                         model,
                         ui_state,
@@ -85,23 +85,23 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
             .on_hover_text("Open a scene file (.ron), Ctrl+O")
             .clicked()
         {
-            let folder = files::scene_folder(&p.model);
-            files::browse(&mut s.files, PathAction::Open, folder, None);
+            let folder = open_save::scene_folder(&p.model);
+            open_save::browse(&mut s.files, PathAction::Open, folder, None);
         }
         if ui
             .button("Save")
             .on_hover_text("Save to the scene's file (Ctrl+S); atomic and verified")
             .clicked()
         {
-            files::save(&p.model, p.patch.name(), &mut s.files, &mut p.edits);
+            open_save::save(&p.model, p.patch.name(), &mut s.files, &mut p.edits);
         }
         if ui
             .button("Save as…")
             .on_hover_text("Save under a new name (Ctrl+Shift+S)")
             .clicked()
         {
-            let start = files::suggested_path(&p.model, p.patch.name(), "ron");
-            files::browse(&mut s.files, PathAction::SaveAs, start, None);
+            let start = open_save::suggested_path(&p.model, p.patch.name(), "ron");
+            open_save::browse(&mut s.files, PathAction::SaveAs, start, None);
         }
     });
     ui.horizontal(|ui| {
@@ -120,8 +120,8 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
             ),
         ] {
             if ui.button(label).on_hover_text(tip).clicked() {
-                let start = files::suggested_path(&p.model, p.patch.name(), ext);
-                files::browse(&mut s.files, PathAction::Export(format), start, None);
+                let start = open_save::suggested_path(&p.model, p.patch.name(), ext);
+                open_save::browse(&mut s.files, PathAction::Export(format), start, None);
             }
         }
     });
@@ -138,13 +138,13 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
                 .clicked()
             {
                 let (model, ui_state) = (&p.model, &mut *s.files);
-                files::request(Pending::Open(r), model, ui_state, &mut p.edits, &mut s.exit);
+                open_save::request(Pending::Open(r), model, ui_state, &mut p.edits, &mut s.exit);
             }
         }
     }
     reference(ui, p, s);
     ui.separator();
-    let folder = files::scene_folder(&p.model);
+    let folder = open_save::scene_folder(&p.model);
     script(ui, &mut s.script, &mut s.files, folder);
 }
 
@@ -171,8 +171,8 @@ fn reference(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut FileSection) {
             .on_hover_text("Attach a face of a STEP or IGES file or an OBJ grid, without fitting")
             .clicked()
         {
-            let folder = files::scene_folder(&p.model);
-            files::browse(&mut s.files, PathAction::AttachReference, folder, None);
+            let folder = open_save::scene_folder(&p.model);
+            open_save::browse(&mut s.files, PathAction::AttachReference, folder, None);
         }
         if link.is_some()
             && ui
@@ -235,7 +235,7 @@ fn script(ui: &mut egui::Ui, run: &mut ResMut<ScriptRun>, files_ui: &mut FileUi,
             .on_hover_text("Pick the script in the file browser and run it")
             .clicked()
         {
-            files::browse(files_ui, PathAction::RunScript, folder, None);
+            open_save::browse(files_ui, PathAction::RunScript, folder, None);
         }
     });
     let mut cancel = false;

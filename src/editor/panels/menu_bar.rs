@@ -1,14 +1,14 @@
 //! The menu bar: File, Edit, View and Help, each entry with its shortcut
 //! beside it. An entry does what the panel's button for it does (the same
-//! calls: `files::request`, `files::save`, `files::browse`, `Edit::Undo`, a
+//! calls: `open_save::request`, `open_save::save`, `open_save::browse`, `Edit::Undo`, a
 //! frame request…); the keys stay where they are handled (`files.rs`,
 //! `camera.rs`, `structure.rs`), and [`KEYS`] lists them all for Help ▸ Keys.
 
 use super::{PanelCtx, Sections};
 use crate::ecs::Edit;
-use crate::editor::document::files::{self, PathAction, Pending};
+use crate::editor::files::open_save::{self, PathAction, Pending};
 use crate::editor::handles::structure::{self, StructureAction};
-use crate::editor::surface::analysis::SurfaceMode;
+use crate::editor::surface::analysis_display::SurfaceMode;
 use crate::scene::builtin;
 use crate::scene::export::Format;
 use bevy::prelude::*;
@@ -130,14 +130,14 @@ fn file_menu(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut Sections) {
         for (name, _) in builtin::SCENES {
             if ui.button(name).clicked() {
                 let pending = Pending::New(name.into());
-                files::request(pending, &p.model, &mut f.files, &mut p.edits, &mut f.exit);
+                open_save::request(pending, &p.model, &mut f.files, &mut p.edits, &mut f.exit);
             }
         }
     });
     ui.separator();
     if entry(ui, "Open…", OPEN, true) {
-        let folder = files::scene_folder(&p.model);
-        files::browse(&mut f.files, PathAction::Open, folder, None);
+        let folder = open_save::scene_folder(&p.model);
+        open_save::browse(&mut f.files, PathAction::Open, folder, None);
     }
     let recent = f.files.recent.clone();
     ui.add_enabled_ui(!recent.is_empty(), |ui| {
@@ -149,18 +149,18 @@ fn file_menu(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut Sections) {
                     .clicked()
                 {
                     let pending = Pending::Open(r);
-                    files::request(pending, &p.model, &mut f.files, &mut p.edits, &mut f.exit);
+                    open_save::request(pending, &p.model, &mut f.files, &mut p.edits, &mut f.exit);
                 }
             }
         });
     });
     ui.separator();
     if entry(ui, "Save", SAVE, true) {
-        files::save(&p.model, p.patch.name(), &mut f.files, &mut p.edits);
+        open_save::save(&p.model, p.patch.name(), &mut f.files, &mut p.edits);
     }
     if entry(ui, "Save as…", SAVE_AS, true) {
-        let start = files::suggested_path(&p.model, p.patch.name(), "ron");
-        files::browse(&mut f.files, PathAction::SaveAs, start, None);
+        let start = open_save::suggested_path(&p.model, p.patch.name(), "ron");
+        open_save::browse(&mut f.files, PathAction::SaveAs, start, None);
     }
     ui.menu_button("Export", |ui| {
         for (format, ext, what) in [
@@ -171,34 +171,34 @@ fn file_menu(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut Sections) {
             (Format::Iges, "igs", "IGES B-spline surface…"),
         ] {
             if entry(ui, what, "", true) {
-                let start = files::suggested_path(&p.model, p.patch.name(), ext);
-                files::browse(&mut f.files, PathAction::Export(format), start, None);
+                let start = open_save::suggested_path(&p.model, p.patch.name(), ext);
+                open_save::browse(&mut f.files, PathAction::Export(format), start, None);
             }
         }
     });
     ui.separator();
     if entry(ui, "Run script…", "", !f.script.busy()) {
-        let folder = files::scene_folder(&p.model);
-        files::browse(&mut f.files, PathAction::RunScript, folder, None);
+        let folder = open_save::scene_folder(&p.model);
+        open_save::browse(&mut f.files, PathAction::RunScript, folder, None);
     }
     if entry(ui, "Open mesh (Loop)…", "", true) {
         let folder = std::env::current_dir().unwrap_or_default();
-        files::browse(&mut f.files, PathAction::OpenMesh, folder, None);
+        open_save::browse(&mut f.files, PathAction::OpenMesh, folder, None);
     }
     if entry(ui, "Import surface…", "", true) {
-        let folder = files::scene_folder(&p.model);
-        files::browse(&mut f.files, PathAction::ImportSurface, folder, None);
+        let folder = open_save::scene_folder(&p.model);
+        open_save::browse(&mut f.files, PathAction::ImportSurface, folder, None);
     }
     if entry(ui, "Reference…", "", true) {
-        let folder = files::scene_folder(&p.model);
-        files::browse(&mut f.files, PathAction::AttachReference, folder, None);
+        let folder = open_save::scene_folder(&p.model);
+        open_save::browse(&mut f.files, PathAction::AttachReference, folder, None);
     }
     if entry(ui, "Detach reference", "", p.patch.reference().is_some()) {
         p.send(Edit::SetReference(None));
     }
     ui.separator();
     if entry(ui, "Quit", QUIT, true) {
-        files::request(
+        open_save::request(
             Pending::Quit,
             &p.model,
             &mut f.files,
@@ -264,7 +264,7 @@ fn view_menu(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut Sections) {
     ] {
         ui.radio_value(&mut a.mode, m, title);
     }
-    super::analysis::reference_radio(ui, &mut a, s.analysis.reference.has_reference);
+    super::analysis_section::reference_radio(ui, &mut a, s.analysis.reference.has_reference);
     ui.checkbox(&mut a.comb, "Curvature comb");
     s.analysis.settings.set_if_neq(a);
     ui.separator();

@@ -7,7 +7,7 @@
 //! [`PanelCtx`]; what only one section touches is that section's own
 //! parameter (`FileSection`, `DisplaySection`, …), defined beside it.
 
-mod analysis;
+mod analysis_section;
 mod cad_export;
 mod curvature;
 mod display;
@@ -15,8 +15,8 @@ mod file;
 mod group;
 mod initial;
 mod lengths;
+mod loop_mesh;
 mod menu_bar;
-mod mesh;
 mod patch_actions;
 mod patches;
 mod seam_table;
@@ -207,8 +207,8 @@ pub struct Sections<'w, 's> {
     file: file::FileSection<'w>,
     cad: cad_export::CadExportSection<'w>,
     display: display::DisplaySection<'w>,
-    analysis: analysis::AnalysisSection<'w>,
-    mesh: mesh::MeshSection<'w>,
+    analysis: analysis_section::AnalysisSection<'w>,
+    mesh: loop_mesh::MeshSection<'w>,
     stats: stats::StatsSection<'w, 's>,
     curvature: curvature::CurvatureSection<'w, 's>,
     patches: patches::PatchesSection<'w, 's>,
@@ -463,9 +463,9 @@ fn panel(
                         }
                         PanelName::Display => display::show(ui, &mut sections.display),
                         PanelName::Tuning => tuning::show(ui, &mut p),
-                        PanelName::Analysis => analysis::show(ui, &mut sections.analysis),
+                        PanelName::Analysis => analysis_section::show(ui, &mut sections.analysis),
                         PanelName::Mesh => {
-                            mesh::show(ui, &mut sections.mesh, &mut sections.file.files)
+                            loop_mesh::show(ui, &mut sections.mesh, &mut sections.file.files)
                         }
                         PanelName::Stats => {
                             stats::show(ui, &text.stats, &sections.stats.warnings.lines)

@@ -2,9 +2,10 @@
 //! distance to the B-spline surface the CAD export fits (docs/math.md §10),
 //! green within the tolerance, yellow up to twice it, red beyond. A design
 //! of several patches is measured against the faces of the one STEP shell
-//! it exports (seams held, docs/math.md §11): every patch gets its map
-//! ([`DeviationField::refit_document`], drawn on the other patches by
-//! `super::patch_maps`).
+//! it exports (seams held, docs/math.md §11). One map holds every patch's
+//! distances, by its entity, the first patch's as any other's
+//! ([`DeviationField::maps`], made by [`DeviationField::refit`]); each
+//! patch's mesh takes its coordinates from it ([`DeviationField::uv`]).
 //!
 //! The fit is redone at the display depth after each edit when the last one
 //! took less than [`FRAME_BUDGET_S`]; a slower fit waits until no mouse
@@ -24,9 +25,9 @@ pub const FRAME_BUDGET_S: f64 = 1.0 / 60.0;
 /// The last fit behind the map and its figures.
 #[derive(Resource, Debug, Default)]
 pub struct DeviationField {
-    /// Distance of each shown point to the fitted surface (row-major, as the
-    /// surface's points), `None` until the map is shown or when the fit failed.
-    pub values: Option<Vec<f64>>,
+    /// Every measured patch's distances, by its entity: empty until the map
+    /// is shown or when the fit failed.
+    pub maps: HashMap<Entity, PatchDistances>,
     /// Absolute tolerance, largest and mean deviation (checked one depth
     /// finer), poles `(u, v)`.
     pub tolerance: f64,
@@ -39,9 +40,6 @@ pub struct DeviationField {
     pub error: Option<String>,
     /// The surface changed since the map was computed.
     pub stale: bool,
-    /// With several patches, the map of each patch after the first (its
-    /// entity's distances, as its mesh's points, and its face's tolerance).
-    pub joined: HashMap<Entity, (Vec<f64>, f64)>,
     /// With several patches, each face's figures, in the document's order
     /// (empty for one patch: the figures above are its face's).
     pub faces: Vec<FaceFigures>,
@@ -55,6 +53,15 @@ pub struct DeviationField {
     /// of a mirrored document: its one-patch fit's figures, which its
     /// colours are measured against.
     pub first_alone: Option<FaceFigures>,
+}
+
+/// A patch's part of the map: the distance of each shown point to its
+/// fitted surface (row-major, as its mesh's points) and the tolerance it is
+/// coloured against (its face's).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PatchDistances {
+    pub distances: Vec<f64>,
+    pub tolerance: f64,
 }
 
 /// One face of a shell: the patch's name, its tolerance, largest and mean
@@ -74,15 +81,28 @@ impl DeviationField {
         self.seconds <= FRAME_BUDGET_S
     }
 
+    /// The map's coordinates on patch `p`'s mesh ([`band_u`] of each
+    /// distance against its tolerance); `None` when it was not measured.
+    pub fn uv(&self, p: Entity) -> Option<Vec<[f32; 2]>> {
+        let m = self.maps.get(&p)?;
+        Some(
+            m.distances
+                .iter()
+                .map(|&d| [band_u(d, m.tolerance), 0.5])
+                .collect(),
+        )
+    }
+
     /// Refits `doc`, whose patches are the entities `ids` (in its order)
-    /// and whose first patch's scene is `first`, as the STEP export fits its
-    /// shell, sampled at the display depth, and measures every patch's
-    /// points there: the first patch's distances go to [`Self::values`], the
-    /// others' to [`Self::joined`]. A first patch shown with `first_points`
-    /// points other than its face's (a mirrored document shows it over both
-    /// halves, one surface) is measured against its one-patch fit instead,
-    /// which is that surface's ([`Self::first_alone`]).
-    pub fn refit_document(
+    /// and whose first patch's scene is `first`, and measures every patch's
+    /// points at the display depth into [`Self::maps`]. One patch is fitted
+    /// as the one-face export fits it; several as the STEP export fits its
+    /// shell, each patch against its face ([`Self::faces`]). A first patch
+    /// shown with `first_points` points other than its face's (a mirrored
+    /// document shows it over both halves, one surface) is measured against
+    /// its one-patch fit instead, which is that surface's
+    /// ([`Self::first_alone`]).
+    pub fn refit(
         &mut self,
         first: &Scene,
         doc: &Document,
@@ -90,6 +110,12 @@ impl DeviationField {
         first_points: usize,
         opts: &FitOptions,
     ) {
+        if doc.patches.len() < 2 {
+            if let Some(&e) = ids.first() {
+                self.refit_one(first, e, opts);
+            }
+            return;
+        }
         let depth = first.display_depth;
         self.begin();
         let t0 = std::time::Instant::now();
@@ -112,23 +138,36 @@ impl DeviationField {
                         poles: p.poles,
                     });
                     let field = p.field;
-                    match i {
-                        0 if field.data().len() == first_points => {
-                            self.values = Some(field.into_data());
-                        }
-                        0 => alone = true,
-                        _ => {
-                            self.joined.insert(*e, (field.into_data(), p.tolerance));
-                        }
+                    if i == 0 && field.data().len() != first_points {
+                        alone = true;
+                        continue;
                     }
+                    let distances = field.into_data();
+                    (self.maps).insert(
+                        *e,
+                        PatchDistances {
+                            distances,
+                            tolerance: p.tolerance,
+                        },
+                    );
                 }
                 self.max = self.faces.iter().map(|f| f.max).fold(0.0, f64::max);
                 let n = self.faces.len().max(1) as f64;
                 self.mean = self.faces.iter().map(|f| f.mean).sum::<f64>() / n;
-                if alone && let Ok((f, field)) = cad::fit_shown(first, opts) {
+                if alone
+                    && let (Some(&e), Ok((f, field))) = (ids.first(), cad::fit_shown(first, opts))
+                {
                     let r = &f.fit.report;
                     self.tolerance = r.tolerance;
-                    self.values = Some(field.into_data());
+                    let distances = field.into_data();
+                    let tolerance = r.tolerance;
+                    self.maps.insert(
+                        e,
+                        PatchDistances {
+                            distances,
+                            tolerance,
+                        },
+                    );
                     self.first_alone = Some(FaceFigures {
                         name: self.faces[0].name.clone(),
                         tolerance: r.tolerance,
@@ -144,8 +183,9 @@ impl DeviationField {
         self.seconds = t0.elapsed().as_secs_f64();
     }
 
-    /// Refits `scene` at its display depth with `opts`.
-    pub fn refit(&mut self, scene: &Scene, opts: &FitOptions) {
+    /// Refits a one-patch design, `scene`, whose patch is the entity `e`,
+    /// at its display depth with `opts`.
+    fn refit_one(&mut self, scene: &Scene, e: Entity, opts: &FitOptions) {
         self.begin();
         let t0 = std::time::Instant::now();
         let result = cad::fit_shown(scene, opts);
@@ -157,7 +197,15 @@ impl DeviationField {
                 self.max = r.deviation.max;
                 self.mean = r.deviation.mean;
                 self.poles = r.poles;
-                self.values = Some(field.into_data());
+                let distances = field.into_data();
+                let tolerance = r.tolerance;
+                self.maps.insert(
+                    e,
+                    PatchDistances {
+                        distances,
+                        tolerance,
+                    },
+                );
                 self.error = None;
             }
             Err(e) => self.error = Some(e.to_string()),
@@ -168,8 +216,7 @@ impl DeviationField {
     fn begin(&mut self) {
         self.stale = false;
         self.generation += 1;
-        self.values = None;
-        self.joined.clear();
+        self.maps.clear();
         self.faces.clear();
         self.deeper = None;
         self.first_alone = None;
@@ -206,8 +253,8 @@ mod tests {
             .len()
     }
 
-    /// The fields go to their patches' entities, each face's figures in the
-    /// document's order; a shell sampled deeper than shown still colours
+    /// The fields go to their patches' entities, the first's as the
+    /// others', each face's figures in the document's order; a shell sampled deeper than shown still colours
     /// the points shown and says how deep; a refusal says why, timed like a
     /// fit.
     #[test]
@@ -221,21 +268,24 @@ mod tests {
         let first = doc.patch_scene(0);
         let n = shown_points(&first);
         let mut d = DeviationField::default();
-        d.refit_document(&first, &doc, &ids, n, &FitOptions::default());
+        d.refit(&first, &doc, &ids, n, &FitOptions::default());
         assert_eq!(d.generation, 1);
         assert!(d.error.is_none() && d.deeper.is_none() && d.first_alone.is_none());
         let names: Vec<&str> = d.faces.iter().map(|f| f.name.as_str()).collect();
         assert_eq!(names, ["hood", "screen", "wing"]);
         assert_eq!(
-            d.values.as_ref().map(Vec::len),
+            d.maps.get(&ids[0]).map(|m| m.distances.len()),
             Some(n),
             "the first patch's distances"
         );
-        assert_eq!(d.joined.len(), 2);
-        for (e, f) in ids[1..].iter().zip(&d.faces[1..]) {
-            let (values, tolerance) = &d.joined[e];
-            assert_eq!(*tolerance, f.tolerance);
-            assert!(values.iter().all(|v| v.is_finite() && *v >= 0.0));
+        assert_eq!(d.maps.len(), 3);
+        for (e, f) in ids.iter().zip(&d.faces) {
+            let m = &d.maps[e];
+            assert_eq!(m.tolerance, f.tolerance);
+            assert!(m.distances.iter().all(|v| v.is_finite() && *v >= 0.0));
+            let uv = d.uv(*e).unwrap();
+            assert_eq!(uv.len(), m.distances.len());
+            assert_eq!(uv[0][0], band_u(m.distances[0], m.tolerance));
         }
         assert_eq!(d.tolerance, d.faces[0].tolerance);
         assert_eq!(d.max, d.faces.iter().map(|f| f.max).fold(0.0, f64::max));
@@ -244,7 +294,7 @@ mod tests {
         // depth 0's points cannot carry the tolerance: sampled at depth 4
         let mut shallow = first.clone();
         shallow.display_depth = 0;
-        d.refit_document(
+        d.refit(
             &shallow,
             &doc,
             &ids,
@@ -253,10 +303,10 @@ mod tests {
         );
         assert_eq!(d.deeper, Some(4));
         assert_eq!(
-            d.values.as_ref().map(Vec::len),
+            d.maps.get(&ids[0]).map(|m| m.distances.len()),
             Some(shown_points(&shallow))
         );
-        assert_eq!(d.joined.len(), 2);
+        assert_eq!(d.maps.len(), 3);
         assert_eq!(d.faces.len(), 3);
 
         // a tolerance no depth meets: refused, with the reason
@@ -264,11 +314,12 @@ mod tests {
             tolerance: Tolerance::Absolute(1e-12),
             ..FitOptions::default()
         };
-        d.refit_document(&first, &doc, &ids, n, &tight);
+        d.refit(&first, &doc, &ids, n, &tight);
         assert_eq!(d.generation, 3);
         let e = d.error.as_deref().expect("refused");
         assert!(e.contains("loosen the tolerance"), "{e}");
-        assert!(d.values.is_none() && d.joined.is_empty() && d.faces.is_empty());
+        assert!(d.maps.is_empty() && d.faces.is_empty());
+        assert!(d.uv(ids[0]).is_none());
         assert!(d.seconds > 0.0, "a refusal is timed");
 
         // mirrored: the first patch is shown over both halves, one surface,
@@ -276,15 +327,17 @@ mod tests {
         doc.mirror = true;
         let first = doc.patch_scene(0);
         let n = shown_points(&first);
-        d.refit_document(&first, &doc, &ids, n, &FitOptions::default());
+        d.refit(&first, &doc, &ids, n, &FitOptions::default());
         let alone = d.first_alone.clone().expect("measured over both halves");
         let mut one = DeviationField::default();
-        one.refit(&first, &FitOptions::default());
-        assert_eq!(d.values, one.values);
-        assert_eq!(d.values.as_ref().map(Vec::len), Some(n));
+        let alone_doc = Document::from_scene(first.clone());
+        one.refit(&first, &alone_doc, &ids[..1], n, &FitOptions::default());
+        assert_eq!(d.maps[&ids[0]], one.maps[&ids[0]]);
+        assert_eq!(d.maps[&ids[0]].distances.len(), n);
+        assert!(one.faces.is_empty(), "one patch: no shell");
         assert_eq!((alone.tolerance, alone.max), (one.tolerance, one.max));
         assert_eq!(d.tolerance, one.tolerance);
-        assert_eq!(d.joined.len(), 2, "the other patches against their faces");
+        assert_eq!(d.maps.len(), 3, "the other patches against their faces");
         assert_eq!(d.faces.len(), 3);
     }
 }

@@ -1,13 +1,17 @@
-//! The streamline surface as drawn: the shaded mesh that mirrors the model's
-//! surface (`shaded`), and the analysis displays over it (`analysis`: the
-//! curvature comb, Gaussian and mean curvature maps, zebra stripes; and
-//! `deviation`: the deviation map against the CAD export's fit;
-//! `reference_map`: the distance to the design's reference), the
-//! reference drawn as a ghost (`reference_ghost`), and the
-//! shaded surfaces of a document's other patches (`patches`) with the same
-//! maps on them (`patch_maps`).
+//! The streamline surface as drawn: every patch's shaded mesh, kept up to
+//! date by one sync (`patches`: from the patch's stack, or the first
+//! patch's incremental surface; `patch_mesh`: the rows written in place;
+//! `shaded`: the material, the lights, the first patch's mesh entity), the
+//! analysis displays over it (`analysis_display`: the display mode, the
+//! curvature comb, Gaussian and mean curvature maps, zebra stripes on the
+//! first patch, with `colour_maps`, their ramps and coordinates; and
+//! `patch_maps`: the same maps on the other patches;
+//! `deviation`: the one deviation map of every patch against the CAD
+//! export's fit; `reference_map`: the distance to the design's reference),
+//! and the reference drawn as a ghost (`reference_ghost`).
 
-pub(super) mod analysis;
+pub(super) mod analysis_display;
+pub(super) mod colour_maps;
 pub(super) mod deviation;
 pub(super) mod patch_maps;
 mod patch_mesh;

@@ -16,16 +16,17 @@
 //! reference is the first patch's only (the others stay shaded: a later
 //! patch is a surface of its own, not on the reference). The deviation map
 //! colours each patch by its distance to its own face of the STEP shell,
-//! within that face's tolerance ([`DeviationField::joined`]); a patch
+//! within that face's tolerance: its part of the one map that holds every
+//! patch's distances, the first's too ([`DeviationField::uv`]); a patch
 //! without distances (the fit was refused) stays shaded.
 
-use super::analysis::{
-    AnalysisMaterials, AnalysisSettings, CurvatureField, SurfaceMode, apply_mode, colormap_uv,
-    eye_point, zebra_uv,
+use super::analysis_display::{
+    AnalysisMaterials, AnalysisSettings, CurvatureField, SurfaceMode, apply_mode, eye_point,
 };
-use super::deviation::{DeviationField, band_u};
+use super::colour_maps::{colormap_uv, zebra_uv};
+use super::deviation::DeviationField;
 use super::patches::PatchSurfaceMesh;
-use super::shaded::ShadedMaterial;
+use super::shaded::{ShadedMaterial, SurfaceEntity};
 use crate::ecs::joined::PatchSurface;
 use crate::editor::interaction::{EditorSet, MainCamera, OrbitCamera};
 use bevy::prelude::*;
@@ -63,7 +64,7 @@ struct MapKey {
 fn patch_uv(
     key: &MapKey,
     surface: &PatchSurface,
-    deviation: Option<&(Vec<f64>, f64)>,
+    deviation: Option<Vec<[f32; 2]>>,
 ) -> Option<Vec<[f32; 2]>> {
     let points = surface.stack()?.finest_points();
     match key.mode {
@@ -88,14 +89,25 @@ fn patch_uv(
             key.stripes,
             key.eye.unwrap_or(DVec3::ZERO),
         )),
-        SurfaceMode::Deviation => {
-            let (d, tolerance) = deviation?;
-            Some(d.iter().map(|&d| [band_u(d, *tolerance), 0.5]).collect())
-        }
+        SurfaceMode::Deviation => deviation,
         // only the first patch is measured against the reference
         SurfaceMode::Shaded | SurfaceMode::Reference => None,
     }
 }
+
+/// The other patches' mesh entities, with their materials.
+type DrawnMaps<'w, 's> = Query<
+    'w,
+    's,
+    (
+        Entity,
+        &'static PatchSurfaceMesh,
+        &'static Mesh3d,
+        &'static mut MeshMaterial3d<StandardMaterial>,
+        &'static Visibility,
+    ),
+    Without<SurfaceEntity>,
+>;
 
 /// Gives every patch mesh the mode's material and, for a map, its
 /// coordinates (module documentation).
@@ -106,13 +118,7 @@ fn color_patch_maps(
     (field, deviation): (Res<CurvatureField>, Res<DeviationField>),
     (shaded, mats): (Res<ShadedMaterial>, Res<AnalysisMaterials>),
     patches: Query<Ref<PatchSurface>>,
-    mut drawn: Query<(
-        Entity,
-        &PatchSurfaceMesh,
-        &Mesh3d,
-        &mut MeshMaterial3d<StandardMaterial>,
-        &Visibility,
-    )>,
+    mut drawn: DrawnMaps,
     camera: Query<&OrbitCamera, With<MainCamera>>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut made: Local<HashMap<Entity, MapKey>>,
@@ -146,8 +152,8 @@ fn color_patch_maps(
             made.remove(&e);
             continue;
         }
-        let distances = deviation.joined.get(&of.0);
-        if !shows_map(mode) || (mode == SurfaceMode::Deviation && distances.is_none()) {
+        let measured = deviation.maps.contains_key(&of.0);
+        if !shows_map(mode) || (mode == SurfaceMode::Deviation && !measured) {
             // no map here: shaded (a patch the fit did not measure too)
             if material.0 != shaded.0 {
                 material.0 = shaded.0.clone();
@@ -163,6 +169,9 @@ fn color_patch_maps(
         if made.get(&e) == Some(&key) && has_uv && !surface.is_changed() {
             continue;
         }
+        let distances = (mode == SurfaceMode::Deviation)
+            .then(|| deviation.uv(of.0))
+            .flatten();
         let Some(uv) = patch_uv(&key, &surface, distances) else {
             continue; // not built: nothing drawn
         };
@@ -190,6 +199,7 @@ fn shows_map(mode: SurfaceMode) -> bool {
 
 #[cfg(test)]
 mod tests {
+    use super::super::deviation::band_u;
     use super::super::patches::{PatchMeshes, PatchSurfacesPlugin};
     use super::*;
     use crate::ecs::{ModelConfig, ModelSet};
@@ -214,6 +224,7 @@ mod tests {
             .init_resource::<CurvatureField>()
             .init_resource::<DeviationField>()
             .init_resource::<PatchMeshes>()
+            .init_resource::<super::super::shaded::ShownSurface>()
             .configure_sets(
                 Update,
                 (EditorSet::Sync, EditorSet::Present)
@@ -237,8 +248,10 @@ mod tests {
                 ramp,
             });
         app.world_mut().resource_mut::<CurvatureField>().limit = limit;
+        let mesh = (app.world_mut().resource_mut::<Assets<Mesh>>())
+            .add(super::super::shaded::to_bevy_mesh(&[], &[], &[]));
         app.world_mut()
-            .spawn((super::super::shaded::SurfaceEntity, Visibility::Inherited));
+            .spawn((SurfaceEntity, Mesh3d(mesh), Visibility::Inherited));
         app.update();
         app.update();
         app
@@ -356,9 +369,13 @@ mod tests {
             .unwrap();
         assert_eq!(ids.len(), 3);
         let opts = streamline_kernel::nurbs::FitOptions::default();
-        app.world_mut()
-            .resource_mut::<DeviationField>()
-            .refit_document(&first, &doc, &ids, first_points, &opts);
+        app.world_mut().resource_mut::<DeviationField>().refit(
+            &first,
+            &doc,
+            &ids,
+            first_points,
+            &opts,
+        );
         app.update();
         // independently: the shell fitted here, each patch's field from it
         let want = document_deviation(&doc, depth, &opts).unwrap();
@@ -383,7 +400,7 @@ mod tests {
         assert!(coloured > 0, "every distance is zero: nothing was measured");
         // a fit without their distances (refused): shaded again
         let mut d = app.world_mut().resource_mut::<DeviationField>();
-        d.joined.clear();
+        d.maps.clear();
         d.generation += 1;
         app.update();
         for (_, _, mat) in drawn(&mut app) {

@@ -9,7 +9,7 @@ use crate::ecs::vertex_mirror::{stream_f32, streamed};
 use bevy::mesh::VertexAttributeValues;
 use bevy::prelude::Mesh;
 use std::borrow::Cow;
-use streamline_kernel::joins::rejoin::RowSpan;
+use streamline_kernel::joins::RowSpan;
 use streamline_kernel::streamline::surface_mesh::{SurfaceMesh, write_indices};
 use streamline_kernel::{DVec3, Grid};
 

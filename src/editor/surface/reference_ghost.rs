@@ -65,7 +65,7 @@ pub struct ReferenceGhost {
 
 /// The face chosen in an open dialog (File ▸ Import surface…, File ▸
 /// Reference…): its file, the face, and the file as read. The dialogs keep
-/// it (`document::reference`); the ghost draws it before the reference.
+/// it (`files::reference`); the ghost draws it before the reference.
 #[derive(Resource, Debug, Default, Clone)]
 pub struct GhostPreview(pub Option<(PathBuf, usize, Arc<ReferenceFile>)>);
 

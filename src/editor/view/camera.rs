@@ -32,7 +32,7 @@ impl Plugin for OrbitCameraPlugin {
                     orbit.run_if(not(egui_wants_any_pointer_input)),
                     keys.run_if(
                         not(egui_wants_any_keyboard_input)
-                            .and_then(super::super::document::files::no_file_dialog),
+                            .and_then(super::super::files::open_save::no_file_dialog),
                     ),
                     apply_frame_and_view,
                 )

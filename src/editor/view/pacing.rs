@@ -7,7 +7,7 @@
 //! the GUI tests built on them) draw continuously, as they count frames.
 
 use super::super::interaction::Drag;
-use super::super::mesh_mode::MeshView;
+use super::super::loop_mesh::MeshView;
 use crate::ecs::EditLog;
 use crate::ecs::runner::ScriptRun;
 use bevy::input::keyboard::KeyboardInput;

@@ -11,7 +11,6 @@
 //! starts and ends inside `A`'s level-0 range at depth `d > 0`; outside its
 //! points the curve continues along its end segments.
 
-use crate::bits::same;
 use crate::grid::Grid;
 use crate::joins::kinds::Edge;
 use crate::joins::stack::Stack;
@@ -78,21 +77,6 @@ impl EdgeCurve {
             arc,
             cross,
         })
-    }
-
-    /// Bit for bit the same curve as `other` (points, tangents, arc
-    /// lengths and cross derivatives), as [`super::rejoin`] needs to know
-    /// that a side join's inputs did not change.
-    pub fn same_bits(&self, other: &EdgeCurve) -> bool {
-        same(&self.points, &other.points)
-            && same(&self.tangents, &other.tangents)
-            && same(&self.cross, &other.cross)
-            && self.arc.len() == other.arc.len()
-            && self
-                .arc
-                .iter()
-                .zip(&other.arc)
-                .all(|(x, y)| x.to_bits() == y.to_bits())
     }
 
     /// The arc length of the streamline's last point: at level 0 its length

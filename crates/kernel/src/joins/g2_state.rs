@@ -21,6 +21,7 @@ use crate::joins::merged::{
     MergedRun, check_no_tuning, cut, cut_row_from, cuts, merge_g2, merged_details,
 };
 use crate::joins::parts::PatchParts;
+use crate::joins::stack::RowSpan;
 use crate::joins::stack::Stack;
 use crate::levels::design::Design;
 use crate::levels::dirty_window::{DirtyWindow, Span};
@@ -48,12 +49,23 @@ pub struct G2Update {
     /// changed, and those whose rows were cut again; a patch left of the
     /// edit's window, whose points read nothing it changed, is not).
     pub changed: Vec<bool>,
+    /// Per patch, the rows of the finest depth whose points were placed
+    /// again (`None`: none; a whole build, every row), so that what reads
+    /// the points (the mesh normals, the drawing) can be local too.
+    pub rows: Vec<Option<RowSpan>>,
     /// Merged tangents re-blended, over all levels (a whole build counts
     /// every entry of levels `1 ..= d`).
     pub reblended: usize,
     /// Whether the run was built whole (its shape, depth, scheme, blend
     /// order or anchor changed, or an update failed).
     pub whole: bool,
+}
+
+/// What a level's recut marks of each patch: whether it was written, and
+/// (at the finest depth) the rows of its points placed again.
+struct Marks<'a> {
+    changed: &'a mut [bool],
+    rows: Option<&'a mut [Option<RowSpan>]>,
 }
 
 /// The tangents of levels `1 ..= d` (what a whole build re-blends).
@@ -182,11 +194,18 @@ impl G2State {
             }
         }
         let mut changed = vec![false; n];
+        let mut rows = vec![None; n];
+        let last = self.levels.len() - 1;
         for (d, w) in prop_dirty.into_iter().enumerate() {
-            self.recut_level(d, w, params, same_curve && !params, stacks, &mut changed);
+            let marks = Marks {
+                changed: &mut changed,
+                rows: (d == last).then_some(&mut rows[..]),
+            };
+            self.recut_level(d, w, params, same_curve && !params, stacks, marks);
         }
         Ok(G2Update {
             changed,
+            rows,
             reblended,
             whole: false,
         })
@@ -207,8 +226,12 @@ impl G2State {
         params: bool,
         same_starts: bool,
         stacks: &mut [Stack],
-        changed: &mut [bool],
+        marks: Marks,
     ) {
+        let Marks {
+            changed,
+            rows: mut placed,
+        } = marks;
         let scheme = self.run.design.scheme();
         let level = &self.levels[d];
         let origins = if same_starts {
@@ -263,6 +286,12 @@ impl G2State {
                 let to = stack.points[d].row_mut(r);
                 cut_row_from(level, &row, r, &cuts, p, start, to);
                 changed[p] = true;
+                if let Some(out) = placed.as_deref_mut() {
+                    out[p] = Some(out[p].map_or(RowSpan { lo: r, hi: r }, |s| RowSpan {
+                        lo: s.lo.min(r),
+                        hi: s.hi.max(r),
+                    }));
+                }
             }
         }
         if let Some(w) = window {
@@ -291,6 +320,12 @@ impl G2State {
         *stacks = built;
         Ok(G2Update {
             changed: vec![true; patches.len()],
+            rows: (stacks.iter())
+                .map(|s| {
+                    let n = s.finest_points().rows();
+                    (n > 0).then(|| RowSpan { lo: 0, hi: n - 1 })
+                })
+                .collect(),
             reblended: whole_count(&self.levels),
             whole: true,
         })

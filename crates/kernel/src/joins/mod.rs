@@ -8,26 +8,24 @@
 //!   [`parts`]: a patch's net with its details and fine tuning, what is built.
 //! - [`chain`]: `edge: End` with G0 or G1 (§11.1); [`merged`]: G2 chains as
 //!   one merged net cut at the seams (§11.1); [`g2_state`]: a G2 run kept
-//!   between edits, re-blended inside the edit's window.
+//!   between edits, re-blended inside the edit's window; [`patch_state`]:
+//!   one patch (on its own curve, a chain or a side join) kept the same way,
+//!   brought up to date after an edit of its own or of its parent.
 //! - [`edge_curve`]: `A`'s first or last streamline as a curve with normals;
 //!   [`side`]: joins on it, G0 or G1 (§11.2).
 //! - [`build`]: one join built whole; [`seam`]: the seam report (§11.3).
-//! - [`edges`]: what the patches on a patch read of it; [`rejoin`]: a
-//!   joined patch brought up to date after its parent changed (a side G1
-//!   join's levels re-blended where the new projections reach, `reproject`).
 //! - [`error`]: why a join is refused, and what to do.
 
 pub mod build;
 pub mod chain;
 pub mod edge_curve;
-pub mod edges;
 pub mod error;
 pub mod g2_state;
 pub mod kinds;
 pub mod merged;
 pub mod parts;
-pub mod rejoin;
-mod reproject;
+mod patch_start;
+pub mod patch_state;
 pub mod seam;
 pub mod side;
 pub mod stack;
@@ -37,4 +35,4 @@ pub use error::JoinError;
 pub use kinds::{Continuity, Edge, Join};
 pub use parts::PatchParts;
 pub use seam::{SeamReport, seam_at};
-pub use stack::Stack;
+pub use stack::{RowSpan, Stack};

@@ -152,3 +152,13 @@ pub(crate) fn place_at_starts(
     }
     Grid::new(rows, cols + 1, data).expect("sizes agree")
 }
+
+/// The first and last row (inclusive) of a grid that an update placed
+/// again (`crate::joins::patch_state`, `crate::joins::g2_state`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RowSpan {
+    /// The first moved row.
+    pub lo: usize,
+    /// The last moved row.
+    pub hi: usize,
+}

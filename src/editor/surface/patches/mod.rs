@@ -1,44 +1,52 @@
-//! The shaded surfaces of a document's several patches (docs/math.md §11):
-//! one Bevy mesh per patch drawn from its [`PatchSurface`] stack's finest
-//! points (the display depth), with the normals and triangles the first
-//! patch's mesh has ([`SurfaceMesh::from_points`], docs/math.md §4),
-//! rebuilt only on `Changed<PatchSurface>`, despawned with the patch,
-//! hidden while the patch has [`PatchHidden`] (and in mesh mode).
+//! Every patch's shaded surface, by one path (docs/math.md §4, §11): each
+//! patch has one mesh entity, [`PatchSurfaceMesh`], which one system keeps
+//! up to date ([`sync_surfaces`]), writing only what changed. A patch's
+//! vertices come from its [`PatchSurface`] stack's finest points (the
+//! display depth) with the normals its build kept, the rows the last write
+//! changed ([`PatchSurface::rows`]) written in place; the first patch's come
+//! from its incremental pipeline instead ([`incremental`]: the staging pair
+//! swapped in, or the changed window written in place), which is the same
+//! surface made without a copy, and what a one-patch design has. A patch's
+//! mesh is made whole only for a new grid shape; it is despawned with the
+//! patch and hidden while the patch has [`PatchHidden`] (and in mesh mode).
+//! The first patch's mesh entity is also the [`SurfaceEntity`], which mesh
+//! mode hides and the analysis maps colour.
 //!
-//! Which surface shows the first patch. The first patch keeps its
-//! incremental surface ([`crate::ecs::SurfaceData`], drawn by
-//! [`super::shaded`]) unless it heads a G2 chain: a G2 run is one merged net
-//! (docs/math.md §11.1, Eqs. 68–70), so the first patch's cut of it (its
-//! `PatchSurface`) differs near the seam from its one-patch surface, and
-//! the second patch starts on the cut's last points, not on the one-patch
-//! surface's. On `scenes/hood-screen-wing.ron` at depth 4 the two agree
-//! bit for bit on the hood's first half and differ by up to 0.011 (0.5 %
-//! of the scene's size) near the seam: a crack of a few pixels between
-//! the hood and the screen if the one-patch surface were drawn (test
+//! Which surface shows the first patch. Its incremental surface, unless it
+//! heads a G2 chain: a G2 run is one merged net (docs/math.md §11.1, Eqs.
+//! 68–70), so the first patch's cut of it (its `PatchSurface`) differs near
+//! the seam from its one-patch surface, and the second patch starts on the
+//! cut's last points, not on the one-patch surface's. On
+//! `scenes/hood-screen-wing.ron` at depth 4 the two agree bit for bit on
+//! the hood's first half and differ by up to 0.011 (0.5 % of the scene's
+//! size) near the seam: a crack of a few pixels between the hood and the
+//! screen if the one-patch surface were drawn (test
 //! `the_g2_head_cut_differs_from_its_own_surface_near_the_seam`). The
-//! editor draws what the seam report measures and what
-//! every export writes: the cut. So in the shaded display the first patch
-//! of a G2 run is drawn from its stack here and the incremental mesh is
-//! hidden; the analysis maps (which read the incremental surface) show that
-//! one instead, and `super::patch_maps` puts the same maps on the joined
-//! patches.
+//! editor draws what the seam report measures and what every export
+//! writes: the cut. So in the shaded display the first patch of a G2 run
+//! is drawn from its stack (its pipeline's staging paused); the analysis
+//! maps (which read the incremental surface) show that one instead, and
+//! `super::patch_maps` puts the same maps on the other patches.
 
 use super::super::interaction::{EditorMode, EditorSet};
-use super::analysis::{AnalysisSettings, SurfaceMode};
+use super::analysis_display::{AnalysisSettings, SurfaceMode};
 use super::patch_mesh::{Triangles, normals_for, write_rows};
 use super::shaded::{ShadedMaterial, SurfaceEntity, set_visible, to_bevy_mesh};
 use crate::ecs::SurfaceData;
-use crate::ecs::joined::{Joined, PatchHidden, PatchStart, PatchSurface};
+use crate::ecs::joined::{Joined, PatchHidden, PatchStart, PatchSurface, heads_g2_run};
+use crate::ecs::patch::Patch;
 use bevy::prelude::*;
 use bevy_state::prelude::State;
+use incremental::Incremental;
 use std::collections::HashMap;
-use streamline_kernel::joins::rejoin::RowSpan;
-use streamline_kernel::joins::{Continuity, Edge};
+use streamline_kernel::joins::RowSpan;
 use streamline_kernel::{DVec3, Grid};
 
 use super::super::coords::kernel_to_view;
 
-/// A mesh entity that draws patch `.0`'s [`PatchSurface`].
+pub(super) mod incremental;
+
+/// The mesh entity that draws patch `.0`.
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
 pub struct PatchSurfaceMesh(pub Entity);
 
@@ -122,16 +130,8 @@ pub struct PatchSurfacesPlugin;
 impl Plugin for PatchSurfacesPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<PatchMeshes>()
-            .add_systems(Update, sync_patch_meshes.in_set(EditorSet::Sync));
+            .add_systems(Update, sync_surfaces.in_set(EditorSet::Sync));
     }
-}
-
-/// Whether patch `first` heads a G2 run: a patch starts on its `End` with G2.
-pub fn heads_g2_run(first: Entity, starts: impl IntoIterator<Item = PatchStart>) -> bool {
-    starts.into_iter().any(|s| {
-        matches!(s, PatchStart::Edge { parent, edge: Edge::End, continuity: Continuity::G2 }
-            if parent == first)
-    })
 }
 
 /// Whether the first patch is drawn from its stack (module documentation):
@@ -140,16 +140,16 @@ pub fn first_from_stack(g2_head: bool, mode: SurfaceMode) -> bool {
     g2_head && mode == SurfaceMode::Shaded
 }
 
-/// What [`sync_patch_meshes`] reads of every patch with a surface.
+/// What [`sync_surfaces`] reads of every patch.
 type PatchRow = (
     Entity,
-    Ref<'static, PatchSurface>,
-    &'static PatchStart,
+    Option<Ref<'static, PatchSurface>>,
+    Option<&'static PatchStart>,
     Has<Joined>,
     Has<PatchHidden>,
 );
 
-/// The patch mesh entities.
+/// The other patches' mesh entities.
 type Shown<'w, 's> = Query<
     'w,
     's,
@@ -162,17 +162,31 @@ type Shown<'w, 's> = Query<
     Without<SurfaceEntity>,
 >;
 
-/// Spawns, rebuilds, shows, hides and despawns the patch meshes (module
-/// documentation), and shows or hides the first patch's incremental mesh.
+/// The first patch's mesh entity (the [`SurfaceEntity`]).
+type FirstMesh<'w, 's> = Query<
+    'w,
+    's,
+    (
+        Entity,
+        Option<&'static Mesh3d>,
+        Option<&'static mut Visibility>,
+        Option<&'static mut PatchSurfaceMesh>,
+    ),
+    With<SurfaceEntity>,
+>;
+
+/// Keeps every patch's mesh up to date, spawns, shows, hides and despawns
+/// them (module documentation).
 #[allow(clippy::too_many_arguments)]
-fn sync_patch_meshes(
+pub(super) fn sync_surfaces(
     meter: Res<crate::ecs::meter::CpuMeter>,
     mut commands: Commands,
-    patches: Query<PatchRow>,
+    patches: Query<PatchRow, With<Patch>>,
     mut shown: Shown,
-    mut first_mesh: Query<&mut Visibility, (With<SurfaceEntity>, Without<PatchSurfaceMesh>)>,
+    mut first_mesh: FirstMesh,
+    mut incremental: Incremental,
     (mode, analysis, material): (
-        Res<State<EditorMode>>,
+        Option<Res<State<EditorMode>>>,
         Res<AnalysisSettings>,
         Res<ShadedMaterial>,
     ),
@@ -180,109 +194,164 @@ fn sync_patch_meshes(
     mut kernel: ResMut<PatchMeshes>,
 ) {
     let _meter = meter.start();
-    let streamline = *mode.get() == EditorMode::Streamline;
-    let first = patches.iter().find(|r| !r.3).map(|r| r.0);
+    // without the editor's mode (tests), the first patch's visibility is
+    // left as it is
+    let managed = mode.map(|m| *m.get() == EditorMode::Streamline);
+    let streamline = managed.unwrap_or(true);
+    let first = incremental.patch.entity();
+    let first_row = patches.get(first).ok();
+    let first_surface = first_row.as_ref().and_then(|r| r.1.as_ref());
     // a G2 head whose run failed to build keeps its incremental surface
-    let g2_head = first.is_some_and(|f| {
-        heads_g2_run(f, patches.iter().map(|r| *r.2))
-            && patches.get(f).is_ok_and(|r| r.1.stack().is_some())
-    });
+    let g2_head = heads_g2_run(first, patches.iter().filter_map(|r| r.2))
+        && first_surface.is_some_and(|s| s.stack().is_some());
     let first_stack = first_from_stack(g2_head, analysis.mode);
-    // the first patch's incremental mesh (mesh mode shows and hides it itself)
-    if streamline {
-        let first_hidden = first.is_some_and(|f| patches.get(f).is_ok_and(|r| r.4));
-        for mut v in &mut first_mesh {
-            set_visible(&mut v, !first_hidden && !first_stack);
+    let first_hidden = first_row.as_ref().is_some_and(|r| r.4);
+    if let Ok((e, mesh, visibility, of)) = first_mesh.single_mut() {
+        match of {
+            Some(mut of) if of.0 != first => of.0 = first,
+            Some(_) => {}
+            None => {
+                commands.entity(e).insert(PatchSurfaceMesh(first));
+            }
+        }
+        let visible = match visibility {
+            Some(mut v) => {
+                // mesh mode shows and hides it itself
+                if managed == Some(true) {
+                    set_visible(&mut v, !first_hidden);
+                }
+                *v != Visibility::Hidden
+            }
+            None => true,
+        };
+        // hidden, or drawn from its stack: the pipeline's staging waits
+        let hidden = !visible && incremental.shown.built;
+        incremental.pause(hidden || first_stack);
+        let mesh = mesh.and_then(|m| meshes.get_mut(&m.0));
+        match (mesh, first_surface) {
+            (Some(mut m), Some(surface)) if first_stack => {
+                let whole = !incremental.shown.from_stack;
+                stack_into(&mut m, first, surface, whole, &mut kernel);
+                incremental.shown.from_stack = true;
+                incremental.shown.built = true;
+            }
+            (Some(mut m), _) if !hidden => {
+                kernel.triangles.remove(&first);
+                let whole = incremental.shown.from_stack;
+                if incremental.draw(&mut m, whole) {
+                    incremental.shown.from_stack = false;
+                }
+            }
+            _ => {}
         }
     }
-    let drawn = |r: &(Entity, Ref<PatchSurface>, &PatchStart, bool, bool)| r.3 || first_stack;
-    // despawn the meshes of patches gone or no longer drawn from a stack
+    // the other patches: despawn the meshes of patches gone
     let mut have: HashMap<Entity, (Entity, Handle<Mesh>)> = HashMap::new();
     for (e, of, mesh, _) in &shown {
         match patches.get(of.0) {
-            Ok(r) if drawn(&r) && !have.contains_key(&of.0) => {
+            Ok(r) if r.3 && r.1.is_some() && !have.contains_key(&of.0) => {
                 have.insert(of.0, (e, mesh.0.clone()));
             }
             _ => {
                 commands.entity(e).despawn();
-                kernel.triangles.remove(&of.0);
+                if of.0 != first {
+                    kernel.triangles.remove(&of.0);
+                }
             }
         }
     }
-    for r in patches.iter().filter(|r| drawn(r)) {
-        let (patch, surface, hidden) = (r.0, &r.1, r.4);
+    for r in patches.iter().filter(|r| r.3) {
+        let (patch, hidden) = (r.0, r.4);
+        let Some(surface) = r.1.as_ref() else {
+            continue;
+        };
         let visible = streamline && !hidden && surface.stack().is_some();
         let fresh = !have.contains_key(&patch);
-        // a surface of the same shape is written into the mesh in place
-        // (its triangles are for the grid's shape): a rejoin's moved rows
-        // only, every row of a patch built again (a G2 run's members on
-        // every frame of a drag); no new mesh, no new triangles
-        let in_place = !fresh
-            && surface.is_changed()
-            && kernel.mesh(patch, surface).is_some()
-            && match (
-                surface.stack(),
-                have.get(&patch).and_then(|(_, h)| meshes.get_mut(h)),
-            ) {
-                (Some(s), Some(mut mesh)) => {
-                    let p = s.finest_points();
-                    let all = RowSpan {
-                        lo: 0,
-                        hi: p.rows().saturating_sub(1),
-                    };
-                    write_rows(&mut mesh, p, &surface.normals, surface.rows.unwrap_or(all))
-                }
-                _ => false,
-            };
-        if in_place {
-            kernel.rebuilt += 1;
-            kernel.partial += u64::from(surface.rows.is_some());
-            kernel.in_place += 1;
-        } else if fresh || surface.is_changed() || !kernel.is_drawn(patch) {
-            let old = kernel.triangles.remove(&patch);
-            let (bevy_mesh, triangles) = match surface.stack() {
-                Some(s) => {
-                    let p = s.finest_points();
-                    let t = Triangles::of(p.rows(), p.cols(), old);
-                    let normals = normals_for(p, &surface.normals);
-                    (to_bevy_mesh(p.data(), &normals, &t.indices), t)
-                }
-                None => (to_bevy_mesh(&[], &[], &[]), Triangles::default()),
-            };
-            match have.get(&patch) {
-                Some((_, h)) => {
-                    if let Some(mut mesh) = meshes.get_mut(h) {
-                        *mesh = bevy_mesh;
-                    }
-                }
-                None => {
-                    let e = commands
-                        .spawn((
-                            PatchSurfaceMesh(patch),
-                            Mesh3d(meshes.add(bevy_mesh)),
-                            MeshMaterial3d(material.0.clone()),
-                            Transform::from_rotation(kernel_to_view()),
-                            if visible {
-                                Visibility::Inherited
-                            } else {
-                                Visibility::Hidden
-                            },
-                        ))
-                        .id();
-                    have.insert(patch, (e, Handle::default()));
-                }
-            }
-            kernel.triangles.insert(patch, triangles);
-            kernel.rebuilt += 1;
+        if fresh {
+            // filled below, before the renderer sees it
+            let h = meshes.add(to_bevy_mesh(&[], &[], &[]));
+            let e = commands
+                .spawn((
+                    PatchSurfaceMesh(patch),
+                    Mesh3d(h.clone()),
+                    MeshMaterial3d(material.0.clone()),
+                    Transform::from_rotation(kernel_to_view()),
+                    Visibility::Hidden,
+                ))
+                .id();
+            have.insert(patch, (e, h));
         }
-        if let Ok((_, _, _, mut v)) = shown.get_mut(have[&patch].0) {
+        let (e, h) = &have[&patch];
+        if let Some(mut m) = meshes.get_mut(h) {
+            stack_into(&mut m, patch, surface, fresh, &mut kernel);
+        }
+        if fresh {
+            if visible {
+                commands.entity(*e).insert(Visibility::Inherited);
+            }
+        } else if let Ok((_, _, _, mut v)) = shown.get_mut(*e) {
             set_visible(&mut v, visible);
         }
     }
     // a patch no longer drawn from its stack leaves the picking
-    let keep: Vec<Entity> = patches.iter().filter(|r| drawn(r)).map(|r| r.0).collect();
-    kernel.triangles.retain(|p, _| keep.contains(p));
+    kernel.triangles.retain(|p, _| {
+        if *p == first {
+            first_stack
+        } else {
+            patches.get(*p).is_ok_and(|r| r.3 && r.1.is_some())
+        }
+    });
 }
 
+/// Brings `mesh`, which draws patch `patch`, up to date with its `surface`:
+/// the rows the last write changed ([`PatchSurface::rows`], or every row of
+/// a surface built again whole) written in place when the mesh has the
+/// grid's shape, its triangles kept; else made whole, as it is when
+/// `whole` (the mesh shows something else, or nothing yet).
+fn stack_into(
+    mesh: &mut Mesh,
+    patch: Entity,
+    surface: &Ref<PatchSurface>,
+    whole: bool,
+    kernel: &mut PatchMeshes,
+) {
+    let changed = surface.is_changed();
+    let in_place = !whole
+        && changed
+        && kernel.mesh(patch, surface).is_some()
+        && surface.stack().is_some_and(|s| {
+            let p = s.finest_points();
+            let all = RowSpan {
+                lo: 0,
+                hi: p.rows().saturating_sub(1),
+            };
+            write_rows(mesh, p, &surface.normals, surface.rows.unwrap_or(all))
+        });
+    if in_place {
+        kernel.rebuilt += 1;
+        kernel.partial += u64::from(surface.rows.is_some());
+        kernel.in_place += 1;
+    } else if whole || changed || !kernel.is_drawn(patch) {
+        let old = kernel.triangles.remove(&patch);
+        let triangles = match surface.stack() {
+            Some(s) => {
+                let p = s.finest_points();
+                let t = Triangles::of(p.rows(), p.cols(), old);
+                let normals = normals_for(p, &surface.normals);
+                *mesh = to_bevy_mesh(p.data(), &normals, &t.indices);
+                t
+            }
+            None => {
+                *mesh = to_bevy_mesh(&[], &[], &[]);
+                Triangles::default()
+            }
+        };
+        kernel.triangles.insert(patch, triangles);
+        kernel.rebuilt += 1;
+    }
+}
+
+#[cfg(test)]
+mod incremental_tests;
 #[cfg(test)]
 mod tests;

@@ -29,12 +29,11 @@ fn app_of(doc: &crate::scene::Document, mode: SurfaceMode) -> App {
         .insert_resource(AnalysisSettings { mode, ..default() })
         .insert_resource(ShadedMaterial(Handle::default()))
         .init_resource::<PatchMeshes>()
-        .add_systems(
-            Update,
-            sync_patch_meshes.after(crate::ecs::ModelSet::Output),
-        );
+        .init_resource::<super::super::shaded::ShownSurface>()
+        .add_systems(Update, sync_surfaces.after(crate::ecs::ModelSet::Output));
+    let mesh = (app.world_mut().resource_mut::<Assets<Mesh>>()).add(to_bevy_mesh(&[], &[], &[]));
     app.world_mut()
-        .spawn((SurfaceEntity, Visibility::Inherited));
+        .spawn((SurfaceEntity, Mesh3d(mesh), Visibility::Inherited));
     app.update();
     app.update();
     app
@@ -118,9 +117,10 @@ fn f32s(v: &[DVec3]) -> Vec<[f32; 3]> {
     v.iter().map(|n| n.as_vec3().to_array()).collect()
 }
 
-/// Every joined patch is drawn, its mesh being its stack's finest
-/// points (as `f32`), with a normal per point equal to the kernel's
-/// mesh normals (computed independently of the sync here).
+/// Every patch is drawn, by one mesh entity each, its mesh being its
+/// stack's finest points (as `f32`), with a normal per point equal to the
+/// kernel's mesh normals (computed independently of the sync here); the
+/// G2 head's is the first patch's mesh entity, showing its cut.
 #[test]
 fn every_patch_is_drawn_from_its_stack() {
     let mut app = app(SurfaceMode::Shaded);
@@ -132,34 +132,44 @@ fn every_patch_is_drawn_from_its_stack() {
     }
     // the hood heads a G2 run (the screen): shaded, it is drawn from its cut
     let hood = by_name(&mut app, "hood");
-    let (pos, _) = drawn(&mut app, hood).expect("the G2 head is drawn from its stack");
+    let (pos, vis) = drawn(&mut app, hood).expect("the G2 head is drawn from its stack");
     assert_eq!(pos, stack_points(&app, hood));
+    assert_eq!(vis, Visibility::Inherited);
     let w = app.world_mut();
-    let v = *w
-        .query_filtered::<&Visibility, With<SurfaceEntity>>()
+    let of = *w
+        .query_filtered::<&PatchSurfaceMesh, With<SurfaceEntity>>()
         .single(w)
         .unwrap();
-    assert_eq!(
-        v,
-        Visibility::Hidden,
-        "the incremental mesh gives way to the cut"
-    );
+    assert_eq!(of.0, hood, "the first patch's mesh entity draws the cut");
+    let meshes = w.query::<&PatchSurfaceMesh>().iter(w).count();
+    assert_eq!(meshes, 3, "one mesh entity a patch");
     assert_eq!(app.world().resource::<PatchMeshes>().triangles.len(), 3);
+    let shown = app.world().resource::<super::super::shaded::ShownSurface>();
+    assert!(shown.built && shown.from_stack, "built, from the stack");
 }
 
-/// Negative control of the G2 choice: in an analysis map the hood's
-/// incremental mesh is shown again and its stack mesh goes away.
+/// Negative control of the G2 choice: in an analysis map the hood's mesh
+/// shows its incremental surface again (not picked from its stack).
 #[test]
 fn an_analysis_map_shows_the_incremental_first_patch() {
     let mut app = app(SurfaceMode::Zebra);
     let hood = by_name(&mut app, "hood");
-    assert!(drawn(&mut app, hood).is_none());
-    let w = app.world_mut();
-    let v = *w
-        .query_filtered::<&Visibility, With<SurfaceEntity>>()
-        .single(w)
-        .unwrap();
-    assert_eq!(v, Visibility::Inherited);
+    assert!(!app.world().resource::<PatchMeshes>().is_drawn(hood));
+    let (pos, vis) = drawn(&mut app, hood).expect("the first patch is drawn");
+    assert_eq!(vis, Visibility::Inherited);
+    let own = f32s(app.world().resource::<SurfaceData>().points.data());
+    assert_eq!(pos, own);
+    assert_ne!(pos, stack_points(&app, hood), "control: not the cut");
+    // back to shaded: the cut again, made whole on the same mesh
+    let handle = mesh_handle(&mut app, hood);
+    app.world_mut().resource_mut::<AnalysisSettings>().mode = SurfaceMode::Shaded;
+    app.update();
+    assert_eq!(drawn(&mut app, hood).unwrap().0, stack_points(&app, hood));
+    assert_eq!(mesh_handle(&mut app, hood), handle);
+    // and to a map again: the incremental surface, whole
+    app.world_mut().resource_mut::<AnalysisSettings>().mode = SurfaceMode::Mean;
+    app.update();
+    assert_eq!(drawn(&mut app, hood).unwrap().0, own);
 }
 
 /// Hiding a patch hides its mesh; a patch despawned takes its mesh.

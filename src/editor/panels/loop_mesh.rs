@@ -2,8 +2,8 @@
 //! surface (method, tolerance, depth shown), read the iteration count and the
 //! errors, export the surface or its control mesh, close.
 
-use crate::editor::document::files::{self, FileUi, PathAction};
-use crate::editor::mesh_mode::MeshView;
+use crate::editor::files::open_save::{self, FileUi, PathAction};
+use crate::editor::loop_mesh::MeshView;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::egui;
@@ -46,7 +46,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
                 Some(d) if d.is_dir() => d.to_path_buf(),
                 _ => std::env::current_dir().unwrap_or_default(),
             };
-            files::browse(files_ui, PathAction::OpenMesh, start, None);
+            open_save::browse(files_ui, PathAction::OpenMesh, start, None);
         }
     });
     if let Some(job) = &v.work.job {
@@ -131,7 +131,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
     }
     let mut depth = v.settings.depth;
     if ui
-        .add(egui::Slider::new(&mut depth, 0..=crate::editor::mesh_mode::MAX_DEPTH).text("depth"))
+        .add(egui::Slider::new(&mut depth, 0..=crate::editor::loop_mesh::MAX_DEPTH).text("depth"))
         .on_hover_text("Loop subdivision levels of the control mesh shown (each multiplies the triangles by 4)")
         .changed()
     {
@@ -184,7 +184,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
             let to = v.doc.path.as_ref().map_or(PathBuf::from("."), |p| {
                 p.with_file_name(format!("{stem}-loop.obj"))
             });
-            files::browse(files_ui, PathAction::ExportMeshSurface, to, None);
+            open_save::browse(files_ui, PathAction::ExportMeshSurface, to, None);
         }
         if ui
             .button("Export control")
@@ -196,7 +196,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
             let to = v.doc.path.as_ref().map_or(PathBuf::from("."), |p| {
                 p.with_file_name(format!("{stem}-control.obj"))
             });
-            files::browse(files_ui, PathAction::ExportMeshControl, to, None);
+            open_save::browse(files_ui, PathAction::ExportMeshControl, to, None);
         }
         if ui
             .button("Export USD")
@@ -208,7 +208,7 @@ pub fn show(ui: &mut egui::Ui, p: &mut MeshSection, files_ui: &mut FileUi) {
             let to = v.doc.path.as_ref().map_or(PathBuf::from("."), |p| {
                 p.with_file_name(format!("{stem}-control.usda"))
             });
-            files::browse(files_ui, PathAction::ExportMeshUsd, to, None);
+            open_save::browse(files_ui, PathAction::ExportMeshUsd, to, None);
         }
         if ui
             .button("Close")

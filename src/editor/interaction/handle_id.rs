@@ -1,8 +1,11 @@
-//! Handles: what the pointer turns. A handle has a kind (a tangent of the
-//! surface's net at a subdivision level, or a control tangent of the initial
-//! curve), a place (its streamline point, its unit direction on the Gaussian
-//! sphere, the length it is drawn with: [`super::placed::Placed`] on its
-//! entity) and whether it is shown (and so can be picked).
+//! What a handle is, apart from its entity: its identity ([`HandleId`]:
+//! a tangent of the surface's net at a subdivision level, or a control
+//! tangent of the initial curve, and its cell), the edits that turn it, a
+//! handle where it is placed ([`Handle`]: its streamline point, its unit
+//! direction on the Gaussian sphere, the length it is drawn with, as
+//! [`super::placed::Placed`] holds them on its entity), and which handles
+//! are shown and so can be picked ([`HandleSettings`]). The drawing and
+//! picking of handles is `crate::editor::handles`.
 
 use crate::ecs::Edit;
 use crate::ecs::authoring::AuthorEdit;

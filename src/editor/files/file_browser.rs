@@ -5,15 +5,15 @@
 //! is for, and still takes a typed path: a full path in the name field of a
 //! save, or in the path field (the pen button, or `/`) of an open.
 //!
-//! A feature asks for a file with [`files::browse`]; this plugin opens the
+//! A feature asks for a file with [`open_save::browse`]; this plugin opens the
 //! browser and hands the file picked to the feature: a scene to the model
 //! (after the unsaved-changes question; a failed open keeps the current
 //! scene), a script to the script runner, a mesh to the Loop mesh view, a
 //! STEP, IGES or OBJ surface to the Import surface dialog.
 
-use super::super::mesh_mode::MeshView;
-use super::files::{self, Browse, FileUi, PathAction, Pending};
+use super::super::loop_mesh::MeshView;
 use super::import::ImportForm;
+use super::open_save::{self, Browse, FileUi, PathAction, Pending};
 use crate::ecs::runner::ScriptRun;
 use crate::ecs::{Edit, EditMessage, Model};
 use bevy::ecs::system::SystemParam;
@@ -133,9 +133,9 @@ impl Receivers<'_> {
         let (model, ui, edits) = (&self.model, &mut *self.files_ui, &mut self.edits);
         match req.action {
             PathAction::Open => {
-                files::request(Pending::Open(path), model, ui, edits, &mut self.exit)
+                open_save::request(Pending::Open(path), model, ui, edits, &mut self.exit)
             }
-            PathAction::SaveAs => files::save_as(path, req.then, ui, edits),
+            PathAction::SaveAs => open_save::save_as(path, req.then, ui, edits),
             PathAction::Export(_) => {
                 edits.write(EditMessage::from(Edit::Export(path)));
             }

@@ -2,7 +2,8 @@
 //! range), zebra stripes, the deviation map (with its fit's figures), the
 //! map to the reference (with its largest and mean distance), and the seams of a design of several patches (`seam_table`).
 
-use crate::editor::surface::analysis::{AnalysisSettings, CurvatureField, SurfaceMode, diverging};
+use crate::editor::surface::analysis_display::{AnalysisSettings, CurvatureField, SurfaceMode};
+use crate::editor::surface::colour_maps::diverging;
 use crate::editor::surface::deviation::{BANDS, DeviationField, FRAME_BUDGET_S};
 use crate::editor::surface::reference_map::{LIVE_POINTS, ReferenceField, TOLERANCE_SHARE};
 use bevy::ecs::system::SystemParam;
@@ -293,7 +294,7 @@ fn reference_legend(ui: &mut egui::Ui, r: &ReferenceField) {
     let n = 64;
     for i in 0..n {
         let [cr, cg, cb] =
-            crate::editor::surface::analysis::reference_ramp(i as f64 / (n - 1) as f64);
+            crate::editor::surface::colour_maps::reference_ramp(i as f64 / (n - 1) as f64);
         let x0 = rect.left() + rect.width() * i as f32 / n as f32;
         let x1 = rect.left() + rect.width() * (i + 1) as f32 / n as f32;
         painter.rect_filled(

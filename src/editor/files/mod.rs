@@ -1,5 +1,5 @@
-//! The document: new, open, save, export and recent files with the
-//! unsaved-changes prompt (`files`), the File ▸ New ▸ New design… dialog
+//! The file dialogs: new, open, save, export and recent files with the
+//! unsaved-changes prompt (`open_save`), the File ▸ New ▸ New design… dialog
 //! (`new_design`), File ▸ Import surface… (`import`: a design fitted to a
 //! STEP, IGES or OBJ face, on a thread of its own: `fit_job`), File ▸
 //! Reference… (`reference`: a reference attached without a fit), and the file
@@ -8,8 +8,8 @@
 //! `autosave.rs` stands beside the editor's `mod.rs`, above every room.
 
 pub(super) mod file_browser;
-pub mod files;
 pub mod fit_job;
 pub mod import;
 pub mod new_design;
+pub mod open_save;
 pub mod reference;

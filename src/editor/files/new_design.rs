@@ -6,7 +6,7 @@
 //! does); the new scene comes unsaved, with display and edit depths chosen
 //! for its size and a view that frames it.
 
-use super::files::{self, FileUi, Pending};
+use super::open_save::{self, FileUi, Pending};
 use crate::ecs::authoring::AuthorEdit;
 use crate::ecs::{EditMessage, Model};
 use bevy::prelude::*;
@@ -260,7 +260,7 @@ fn dialog(
         f.open = false;
     }
     if create {
-        files::request(
+        open_save::request(
             Pending::NewDesign(Box::new(f.edit())),
             &model,
             &mut files_ui,

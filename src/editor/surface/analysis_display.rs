@@ -2,13 +2,17 @@
 //! curvature colour maps with a legend, zebra stripes, the deviation map
 //! ([`super::deviation`]) and the map to the reference
 //! ([`super::reference_map`], which measures; the colours are put on here). The numbers come from
-//! the kernel ([`streamline_kernel::analysis`]); the GPU only looks a value up
+//! the kernel ([`streamline_kernel::analysis`]), the ramps and coordinates
+//! from [`super::colour_maps`]; the GPU only looks a value up
 //! in a texture through the vertex's `u` coordinate, so stripes and colour bands
 //! stay crisp inside large triangles.
 
 use super::super::coords::to_view;
 use super::super::interaction::{Drag, EditorSet, MainCamera, OrbitCamera, SceneBounds};
-use super::deviation::{BANDS, DeviationField, band_u};
+use super::colour_maps::{
+    STRIPES, colormap_uv, diverging, ramp_uv, reference_ramp, texture, zebra_uv,
+};
+use super::deviation::{BANDS, DeviationField};
 use super::reference_map::{ReferenceField, ReferenceMeasure};
 use super::shaded::{ShadedMaterial, SurfaceEntity};
 use crate::ecs::components::{LevelData, SubdivisionLevel};
@@ -17,11 +21,9 @@ use crate::ecs::joined::g2::G2RunState;
 use crate::ecs::joined::{PatchHidden, PatchSurface};
 use crate::ecs::patch::Joined;
 use crate::ecs::{DeferNormals, ModelSet, SurfaceChanges, SurfaceData};
-use bevy::asset::RenderAssetUsages;
-use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
+use bevy::image::{ImageFilterMode, ImageSampler};
 use bevy::prelude::*;
-use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
-use streamline_kernel::analysis::{SurfaceCurvature, comb, surface_curvature, zebra_coordinate};
+use streamline_kernel::analysis::{SurfaceCurvature, comb, surface_curvature};
 use streamline_kernel::{DVec3, Grid};
 
 /// What the surface shows.
@@ -161,64 +163,6 @@ impl Plugin for AnalysisPlugin {
     }
 }
 
-/// The colour map: blue (negative) – white (zero) – red (positive), 256 texels.
-pub fn diverging(u: f64) -> [u8; 3] {
-    let u = u.clamp(0.0, 1.0);
-    let (lo, mid, hi) = ([0.15, 0.3, 0.85], [0.97, 0.97, 0.97], [0.85, 0.15, 0.15]);
-    let (a, b, t) = if u < 0.5 {
-        (lo, mid, u * 2.0)
-    } else {
-        (mid, hi, (u - 0.5) * 2.0)
-    };
-    let c = |i: usize| ((a[i] + (b[i] - a[i]) * t) * 255.0).round() as u8;
-    [c(0), c(1), c(2)]
-}
-
-/// The reference map's ramp: green (0) through yellow to red (1), the
-/// deviation map's three colours ([`BANDS`]) blended.
-pub fn reference_ramp(u: f64) -> [u8; 3] {
-    let u = u.clamp(0.0, 1.0);
-    let (a, b, t) = if u < 0.5 {
-        (BANDS[0], BANDS[1], u * 2.0)
-    } else {
-        (BANDS[1], BANDS[2], (u - 0.5) * 2.0)
-    };
-    let c = |i: usize| (a[i] as f64 + (b[i] as f64 - a[i] as f64) * t).round() as u8;
-    [c(0), c(1), c(2)]
-}
-
-fn texture(pixels: Vec<[u8; 3]>, repeat: bool) -> Image {
-    let w = pixels.len() as u32;
-    let data: Vec<u8> = pixels
-        .iter()
-        .flat_map(|p| [p[0], p[1], p[2], 255])
-        .collect();
-    let mut image = Image::new(
-        Extent3d {
-            width: w,
-            height: 1,
-            depth_or_array_layers: 1,
-        },
-        TextureDimension::D2,
-        data,
-        TextureFormat::Rgba8UnormSrgb,
-        RenderAssetUsages::default(),
-    );
-    let mode = if repeat {
-        ImageAddressMode::Repeat
-    } else {
-        ImageAddressMode::ClampToEdge
-    };
-    image.sampler = ImageSampler::Descriptor(ImageSamplerDescriptor {
-        address_mode_u: mode,
-        address_mode_v: ImageAddressMode::ClampToEdge,
-        mag_filter: ImageFilterMode::Linear,
-        min_filter: ImageFilterMode::Linear,
-        ..default()
-    });
-    image
-}
-
 fn setup(
     mut commands: Commands,
     mut images: ResMut<Assets<Image>>,
@@ -271,8 +215,9 @@ fn show_reference(settings: Res<AnalysisSettings>, mut field: ResMut<ReferenceFi
 /// ([`DeferNormals`]) while a handle is dragged and nothing shown reads
 /// them: the zebra stripes do, and so do the joined patches (their meshes
 /// and maps start from the first patch's), unless the first patch heads a
-/// G2 run (the run makes its surface; the incremental one is hidden while
-/// shaded, so its normals are not made at all then). The drawn surface has
+/// G2 run (the run makes its surface; while shaded the first patch is drawn
+/// from its stack, the incremental one's staging paused, so its normals are
+/// not made at all then). The drawn surface has
 /// its own `f32` normals all along; the `f64` ones are made in the frame
 /// the drag ends, or the frame the stripes are turned on.
 fn defer_normals(
@@ -338,7 +283,9 @@ pub(super) fn apply_mode(
         SurfaceMode::Zebra => &mats.zebra,
         // a fit that measured nothing here (refused) leaves the surface
         // shaded, not the last fit's colours
-        SurfaceMode::Deviation if deviation.values.is_none() && deviation.generation > 0 => {
+        SurfaceMode::Deviation
+            if !deviation.maps.contains_key(&model.entity()) && deviation.generation > 0 =>
+        {
             &shaded.0
         }
         SurfaceMode::Deviation => &mats.bands,
@@ -410,14 +357,13 @@ pub(super) fn apply_mode(
         SurfaceMode::Deviation => {
             if deviation.stale || deviation.generation == 0 {
                 match model.scene() {
-                    // several patches: the faces of the STEP shell
-                    Ok(scene) if joined.several() => {
+                    // one patch: its one-face fit; several: the STEP shell's faces
+                    Ok(scene) => {
                         let doc = joined.document(scene.clone());
                         let ids = joined.ids();
                         let n = data.points.data().len();
-                        deviation.refit_document(&scene, &doc, &ids, n, &export.fit);
+                        deviation.refit(&scene, &doc, &ids, n, &export.fit);
                     }
-                    Ok(scene) => deviation.refit(&scene, &export.fit),
                     Err(e) => {
                         deviation.generation += 1;
                         deviation.stale = false;
@@ -425,7 +371,9 @@ pub(super) fn apply_mode(
                     }
                 }
             }
-            let Some(v) = deviation.values.as_ref() else {
+            // the first patch's part of the one map (`patch_maps` colours
+            // the others from it)
+            let Some(uv) = deviation.uv(model.entity()) else {
                 if material.0 != shaded.0 {
                     material.0 = shaded.0.clone();
                 }
@@ -434,9 +382,7 @@ pub(super) fn apply_mode(
             if material.0 != mats.bands {
                 material.0 = mats.bands.clone();
             }
-            v.iter()
-                .map(|&d| [band_u(d, deviation.tolerance), 0.5])
-                .collect()
+            uv
         }
         SurfaceMode::Reference => {
             let Some(v) = reference.values.as_ref() else {
@@ -484,48 +430,6 @@ fn vertex_color(mode: SurfaceMode, u: f32) -> [f32; 4] {
         }
     };
     [linear(srgb[0]), linear(srgb[1]), linear(srgb[2]), 1.0]
-}
-
-/// The zebra texture's two colours (dark, light), half its width each.
-const STRIPES: [[u8; 3]; 2] = [[20, 20, 24], [245, 245, 245]];
-
-/// The colour map's `u` of curvature values: `[−limit, limit]` onto the
-/// ramp, clamped beyond.
-pub(super) fn colormap_uv(values: &[f64], limit: f64) -> Vec<[f32; 2]> {
-    values
-        .iter()
-        .map(|&x| [(0.5 + 0.5 * (x / limit).clamp(-1.0, 1.0)) as f32, 0.5])
-        .collect()
-}
-
-/// The reference map's `u` of distances: `[0, tolerance]` onto the ramp,
-/// clamped beyond.
-pub(super) fn ramp_uv(distances: &[f64], tolerance: f64) -> Vec<[f32; 2]> {
-    let t = tolerance.max(f64::MIN_POSITIVE);
-    distances
-        .iter()
-        .map(|&d| [(d / t).clamp(0.0, 1.0) as f32, 0.5])
-        .collect()
-}
-
-/// Zebra `u` coordinates of points with their unit normals for an eye point
-/// (kernel coordinates): `stripes` stripes over the half circle of
-/// reflected directions.
-pub(super) fn zebra_uv(
-    points: &[DVec3],
-    normals: &[DVec3],
-    stripes: f64,
-    eye: DVec3,
-) -> Vec<[f32; 2]> {
-    points
-        .iter()
-        .zip(normals)
-        .map(|(&p, &n)| {
-            let view = (p - eye).normalize_or(DVec3::NEG_Z);
-            let z = zebra_coordinate(n, view, DVec3::Z, stripes);
-            [(z * 0.5) as f32, 0.5]
-        })
-        .collect()
 }
 
 /// The eye point of the main camera (kernel coordinates): zebra stripes
