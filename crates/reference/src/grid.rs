@@ -166,6 +166,16 @@ fn grid_face(
     .map_err(|e| ReferenceError::whole(path, format!("{e}; re-export the grid")))?;
     let surface = fit_grid(&points).map_err(|why| ReferenceError::whole(path, why))?;
     let (area, bbox) = geom::area_and_bbox(&surface);
+    if !area.is_finite() || bbox.iter().flatten().any(|x| !x.is_finite()) {
+        return Err(ReferenceError::at(
+            path,
+            line,
+            1,
+            format!(
+                "the surface through the grid of {rows} × {cols} points is too large to measure (its area overflows); write the file in a unit that keeps its coordinates below about 1e150"
+            ),
+        ));
+    }
     Ok(GridFile {
         unit: "metre".into(),
         metres_per_unit: 1.0,

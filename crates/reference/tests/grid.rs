@@ -142,6 +142,61 @@ proptest! {
     }
 }
 
+/// A grid whose points are finite but so large that its surface's area
+/// overflows is refused at its line, never read with an infinite area (the
+/// `reference_obj` fuzz target found one): at every scale from 1e140 to
+/// 1e160 the file reads with a finite area or is refused with its name.
+#[test]
+fn a_grid_too_large_to_measure_is_refused() {
+    let (rows, cols) = (4, 4);
+    let n = rows * cols;
+    let good = obj(
+        rows,
+        cols,
+        &(0..n).collect::<Vec<_>>(),
+        &(0..9).collect::<Vec<_>>(),
+        &[],
+    );
+    let mut refused = Vec::new();
+    for e in 140..=160 {
+        let k = 10f64.powi(e);
+        let scaled: String = good
+            .lines()
+            .map(|l| match l.strip_prefix("v ") {
+                Some(xyz) => {
+                    let v: Vec<f64> = xyz
+                        .split(' ')
+                        .map(|x| x.parse::<f64>().unwrap() * k)
+                        .collect();
+                    format!("v {:e} {:e} {:e}\n", v[0], v[1], v[2])
+                }
+                None => format!("{l}\n"),
+            })
+            .collect();
+        match read(&write("huge.obj", &scaled)) {
+            Ok(f) => assert!(
+                f.faces[0].info.area.is_finite(),
+                "1e{e}: area {}",
+                f.faces[0].info.area
+            ),
+            Err(err) => {
+                let msg = err.to_string();
+                assert!(msg.contains("huge.obj:"), "{msg}");
+                if msg.contains("too large to measure") {
+                    refused.push(e);
+                }
+            }
+        }
+    }
+    assert!(
+        !refused.is_empty(),
+        "some scale reaches the overflow this refuses"
+    );
+    // control: the same grid at its own size reads, with a finite area
+    let f = read(&write("fine.obj", &good)).unwrap();
+    assert!(f.faces[0].info.area.is_finite() && f.faces[0].info.area > 0.0);
+}
+
 #[test]
 fn what_is_not_one_grid_is_refused_at_its_line() {
     // what is not one grid reads as a triangle mesh (for measuring, tests/mesh.rs),
