@@ -186,13 +186,14 @@ impl PatchState {
             Start::Edge { a, .. } => a.depth(),
             Start::Curve => depth,
         };
-        let same_details = parts.details.cloned().unwrap_or_default() == self.details;
-        let seed = (same_details && self.fits(design, start, depth, stack))
-            .then(|| self.seed(design))
-            .flatten();
-        let Some(seed) = seed else {
+        // (compared, not cloned: an edit's update runs every frame of a drag)
+        let same_details = parts
+            .details
+            .map_or(self.details.is_empty(), |d| *d == self.details);
+        if !(same_details && self.fits(design, start, depth, stack)) {
             return self.rebuild(parts, start, depth, stack);
-        };
+        }
+        let seed = self.seed(design);
         let parent = Parent::of(design, start)?;
         match self.update_levels(parts, &parent, seed, stack) {
             Ok(u) => Ok(u),
@@ -245,9 +246,8 @@ impl PatchState {
     }
 
     /// The window of level 0 that `design` changed against the design as
-    /// last built (`Some(None)`: nothing), `None` when its parameters'
-    /// rows changed in a way the window cannot say.
-    fn seed(&self, design: &Design) -> Option<Option<DirtyWindow>> {
+    /// last built (`None`: nothing).
+    fn seed(&self, design: &Design) -> Option<DirtyWindow> {
         let (old, new) = (&self.design, design);
         let (rows, cols) = (new.net().rows(), new.net().cols());
         let mut rs: Option<Span> = None;
@@ -268,7 +268,7 @@ impl PatchState {
                 cs = add_row(cs, 0);
             }
         }
-        Some(rs.zip(cs).map(|(rows, cols)| DirtyWindow { rows, cols }))
+        rs.zip(cs).map(|(rows, cols)| DirtyWindow { rows, cols })
     }
 
     /// The update in place (module documentation).
