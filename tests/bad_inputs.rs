@@ -10,7 +10,7 @@
 mod expectations;
 
 use std::path::{Path, PathBuf};
-use streamline_studio::scene::{document_io, obj, script::Script};
+use streamline_studio::scene::{design::document_io, edits::script::Script, loop_mesh::obj};
 
 const CATALOGUE: &str = "tests/bad/catalogue.txt";
 

@@ -1,5 +1,5 @@
 //! Export of a design of several patches (docs/cad.md, "Several patches";
-//! docs/math.md §9, §11) through `scene::document_export::export_document`,
+//! docs/math.md §9, §11) through `scene::export::document::export_document`,
 //! on the shipped `scenes/hood-screen-wing.ron` (a G2 chain and a G1 side
 //! join), as it is and mirrored (its first streamline projected into the
 //! mirror plane, as turning the mirror on does), read back by outside
@@ -18,14 +18,14 @@ use streamline_kernel::Design;
 use streamline_kernel::grid::Grid;
 use streamline_kernel::nurbs::{FitOptions, PatchGrid, SeamSpec, fit_shell};
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
-use streamline_studio::scene::document::{Document, Start};
-use streamline_studio::scene::document_export::{
+use streamline_studio::scene::design::document::{Document, Start};
+use streamline_studio::scene::design::document_io::load;
+use streamline_studio::scene::design::document_mirror::mirrored;
+use streamline_studio::scene::export::document::{
     DocumentExportSettings, DocumentExported, export_document, turned,
 };
-use streamline_studio::scene::document_io::load;
-use streamline_studio::scene::document_mirror::mirrored;
-use streamline_studio::scene::export::{Format, write_meshes};
-use streamline_studio::scene::glb::{GlbPart, glb_parts_bytes};
+use streamline_studio::scene::export::format::{Format, write_meshes};
+use streamline_studio::scene::export::glb::{GlbPart, glb_parts_bytes};
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("streamline-doc-{name}-{}", std::process::id()));
@@ -485,7 +485,7 @@ fn obj_and_stl_hold_one_object_per_patch_and_bad_names_say_what_to_do() {
     assert!(e.to_string().contains(".step/.stp"), "{e}");
     assert!(!bad.exists());
     // one patch: one object named for the design, the surface shown
-    let car = streamline_studio::scene::builtin::scene("car1").unwrap();
+    let car = streamline_studio::scene::design::builtin::scene("car1").unwrap();
     let one = Document::from_scene(car.clone());
     let one_built = one.build(one.display_depth).unwrap();
     let (a, b) = (dir.join("one.obj"), dir.join("mesh.obj"));

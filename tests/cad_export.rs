@@ -11,12 +11,12 @@ use streamline_kernel::authoring::Template;
 use streamline_kernel::levels::surface::SurfaceScheme;
 use streamline_kernel::nurbs::FitOptions;
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
-use streamline_studio::scene::document_export::{
+use streamline_studio::scene::export::document::{
     DocumentExportSettings, DocumentExported, export_document,
 };
-use streamline_studio::scene::export::{Format, write_meshes};
-use streamline_studio::scene::glb::GlbPart;
-use streamline_studio::scene::{Document, Scene, SceneError, builtin, cad};
+use streamline_studio::scene::export::format::{Format, write_meshes};
+use streamline_studio::scene::export::glb::GlbPart;
+use streamline_studio::scene::{Document, Scene, SceneError, design::builtin, fit::surface};
 
 /// A fresh scratch folder for one test.
 fn scratch(name: &str) -> PathBuf {
@@ -59,12 +59,12 @@ fn export(mesh: &SurfaceMesh, name: &str, path: &Path) -> Result<Format, SceneEr
 }
 
 fn mesh_of(scene: &Scene, depth: u32) -> SurfaceMesh {
-    let s = cad::samples(scene, depth).unwrap();
+    let s = surface::samples(scene, depth).unwrap();
     SurfaceMesh::from_points(&s.points)
 }
 
 fn write_points(path: &Path, scene: &Scene, depth: u32) {
-    let s = cad::samples(scene, depth).unwrap();
+    let s = surface::samples(scene, depth).unwrap();
     let text: String = s
         .points
         .data()
@@ -79,7 +79,7 @@ fn write_points(path: &Path, scene: &Scene, depth: u32) {
 /// radius 0.5); car1 mirrored (docs/math.md §9), fitted as one surface over
 /// both halves, at depth 5; and the exports a fit at the display depth alone
 /// would refuse, which sample as deep as the default tolerance needs
-/// (`cad::fit_scene`): qi-side, qi-up and car1 shown at depth 3, qi-side at
+/// (`surface::fit_scene`): qi-side, qi-up and car1 shown at depth 3, qi-side at
 /// 4, and car1 after random turns of every control tangent at 3 and 4.
 fn scenes() -> Vec<(&'static str, Scene, u32)> {
     let mut out: Vec<(&'static str, Scene, u32)> = ["car1", "car2", "qi-side"]
@@ -154,8 +154,8 @@ fn a_mirrored_scene_is_fitted_over_both_halves() {
     let half = builtin::scene("car1").unwrap();
     let both = mirrored("car1");
     let (h, b) = (
-        cad::samples(&half, 5).unwrap().points,
-        cad::samples(&both, 5).unwrap().points,
+        surface::samples(&half, 5).unwrap().points,
+        surface::samples(&both, 5).unwrap().points,
     );
     assert_eq!(b.cols(), h.cols());
     assert_eq!(b.rows(), 2 * h.rows() - 1, "the doubled grid");
@@ -181,7 +181,7 @@ fn a_mirrored_scene_is_fitted_over_both_halves() {
             assert!((p - q).length() < 1e-9, "({r}, {c}): {p} vs {q}");
         }
     }
-    let fit = cad::fit_scene(&both, 5, &Default::default()).unwrap();
+    let fit = surface::fit_scene(&both, 5, &Default::default()).unwrap();
     assert!(fit.fit.report.deviation.max <= fit.fit.report.tolerance);
 }
 
@@ -232,7 +232,7 @@ fn opencascade_reads_every_step_and_iges_file_we_write() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// What IGES holds of a name in this file's test names (scene/cad_text.rs):
+/// What IGES holds of a name in this file's test names (scene/export/cad_text.rs):
 /// its first 1000 characters in ASCII, these letters transliterated,
 /// whitespace a space, anything else `?`.
 fn iges_name(name: &str) -> String {
@@ -452,7 +452,7 @@ fn the_fitted_points_are_the_edited_surface() {
         let scene = ecs::patch::scene(app.world());
         assert_eq!(scene.details.len(), 1, "{name}: one detail");
         let ecs_points = app.world().resource::<SurfaceData>().points.clone();
-        let ours = cad::samples(&scene, 3).unwrap().points;
+        let ours = surface::samples(&scene, 3).unwrap().points;
         assert_eq!(
             (ours.rows(), ours.cols()),
             (ecs_points.rows(), ecs_points.cols())

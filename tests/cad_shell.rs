@@ -20,9 +20,9 @@ use streamline_kernel::joins::edge_curve::EdgeCurve;
 use streamline_kernel::joins::merged::g2_run;
 use streamline_kernel::joins::{Continuity, Edge, Join, Stack, join};
 use streamline_kernel::nurbs::{FitOptions, PatchGrid, SeamSpec, fit_alone};
-use streamline_studio::scene::builtin;
-use streamline_studio::scene::step::StepInfo;
-use streamline_studio::scene::step_shell::{faces_text, write_shell};
+use streamline_studio::scene::design::builtin;
+use streamline_studio::scene::export::step::StepInfo;
+use streamline_studio::scene::export::step_shell::{faces_text, write_shell};
 
 const DEPTH: u32 = 5;
 

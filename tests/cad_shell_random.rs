@@ -21,14 +21,14 @@ mod common;
 
 use glam::DVec3;
 use std::path::{Path, PathBuf};
-use streamline_studio::scene::document::Document;
-use streamline_studio::scene::document_export::{
+use streamline_studio::scene::design::document::Document;
+use streamline_studio::scene::export::document::{
     DocumentExportSettings, DocumentExported, export_document,
 };
-use streamline_studio::scene::format::{
+use streamline_studio::scene::files::format::{
     Dir, Finite, Omega, OrderSpec, Point, SRow, SchemeSpec, ViewSpec,
 };
-use streamline_studio::scene::format_v3::{
+use streamline_studio::scene::files::format_v3::{
     ContinuitySpec, DocumentFile, EdgeSpec, PatchFile, StartSpec, Version3,
 };
 
@@ -97,9 +97,13 @@ impl Draw {
                 Kind::Side(e, _) => Kind::Side(e, ContinuitySpec::G0),
             };
         }
-        // Catmull–Clark and Doo–Sabin on G2 chains only: on their side joins
-        // and G1 chains the later patch may stay over the default tolerance
-        // up to the deepest depth (docs/cad.md, "Several patches")
+        // Catmull–Clark and Doo–Sabin on G2 chains only: their points drift
+        // between depths over the whole patch, halving per depth, and on
+        // their side joins and G0/G1 chains the check grid one depth finer
+        // reads that drift as 5 to 20 tolerances inside the later patch at
+        // depth 6, beyond what any depth within 2²¹ check points removes
+        // (docs/math.md §11.5, "Where it does not reach";
+        // crates/kernel/tests/shell_random.rs draws them on request)
         let pick = r.below(6);
         let g2 = kind == Kind::Chain(ContinuitySpec::G2);
         let scheme = match pick {

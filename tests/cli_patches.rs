@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use streamline_kernel::joins::{Continuity, Edge, Join};
 use streamline_kernel::{DQuat, DVec3};
-use streamline_studio::scene::document::{Document, Start};
-use streamline_studio::scene::document_io::{load, save};
+use streamline_studio::scene::design::document::{Document, Start};
+use streamline_studio::scene::design::document_io::{load, save};
 
 fn shipped() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron")

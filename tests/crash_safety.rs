@@ -1,7 +1,7 @@
 //! Crash-safe saving (docs/reliability.md): a process saving a large scene over
 //! and over is killed with SIGKILL at pseudo-random moments; after every kill
 //! the scene file is the old or the new version, whole, never a broken one.
-//! (Autosave writes the recovery file through the same `io::save`.) The
+//! (Autosave writes the recovery file through the same `document_io::save_scene`.) The
 //! saves are slowed by a test hook (`STREAMLINE_STUDIO_SLOW_SAVE`) so that
 //! most kills land inside a write: writing straight over the file instead
 //! fails this test.
@@ -10,7 +10,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::Duration;
 use streamline_kernel::levels::presets;
-use streamline_studio::scene::{Scene, io};
+use streamline_studio::scene::{Scene, design::document_io};
 
 #[test]
 fn sigkill_during_saves_leaves_the_old_or_the_new_file() {
@@ -18,10 +18,10 @@ fn sigkill_during_saves_leaves_the_old_or_the_new_file() {
     std::fs::create_dir_all(&dir).unwrap();
     // two large scenes (a 120×120 net: about 1.5 MB of RON each)
     let (a, b) = two_large_scenes();
-    io::save(&a, &dir.join("a.ron")).unwrap();
-    io::save(&b, &dir.join("b.ron")).unwrap();
+    document_io::save_scene(&a, &dir.join("a.ron")).unwrap();
+    document_io::save_scene(&b, &dir.join("b.ron")).unwrap();
     let target = dir.join("target.ron");
-    io::save(&a, &target).unwrap();
+    document_io::save_scene(&a, &target).unwrap();
     let size = std::fs::metadata(&target).unwrap().len();
     assert!(size > 1_000_000, "a large scene: {size} bytes");
     let mut steps = String::from("(steps: [\n");
@@ -53,7 +53,7 @@ fn sigkill_during_saves_leaves_the_old_or_the_new_file() {
         }
         child.kill().unwrap(); // SIGKILL on Unix
         child.wait().unwrap();
-        let back = io::load(&target)
+        let back = document_io::load_scene(&target)
             .unwrap_or_else(|e| panic!("round {round}: the file is broken after SIGKILL: {e}"));
         let f = back.to_file();
         if f == want_a {
@@ -168,7 +168,7 @@ fn autosave_survives_sigkill() {
         if !dirs.recovery_file().exists() {
             continue; // killed before the first autosave landed
         }
-        let back = io::load(&dirs.recovery_file()).unwrap_or_else(|e| {
+        let back = document_io::load_scene(&dirs.recovery_file()).unwrap_or_else(|e| {
             panic!("round {round}: the recovery file is broken after SIGKILL: {e}")
         });
         let f = back.to_file();

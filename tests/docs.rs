@@ -23,7 +23,7 @@
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use streamline_studio::scene::export::Format;
+use streamline_studio::scene::export::format::Format;
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -496,7 +496,7 @@ fn help_names_every_built_in_scene() {
         .output()
         .unwrap();
     let help = String::from_utf8(out.stdout).unwrap();
-    for (name, _) in streamline_studio::scene::builtin::SCENES {
+    for (name, _) in streamline_studio::scene::design::builtin::SCENES {
         assert!(
             help.contains(name),
             "--help lacks the built-in scene {name}:\n{help}"

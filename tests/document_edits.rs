@@ -14,12 +14,12 @@ use streamline_studio::ecs::joined::{
 };
 use streamline_studio::ecs::patch::Patch;
 use streamline_studio::ecs::{self, Edit, EditError, History, Model, ModelConfig, SurfaceData};
-use streamline_studio::scene::document::Document;
-use streamline_studio::scene::document_io;
-use streamline_studio::scene::format::Finite;
-use streamline_studio::scene::format_v3::{ContinuitySpec, EdgeSpec};
-use streamline_studio::scene::patch_edit::PatchEdit;
-use streamline_studio::scene::{builtin, io};
+use streamline_studio::scene::design::builtin;
+use streamline_studio::scene::design::document::Document;
+use streamline_studio::scene::design::document_io;
+use streamline_studio::scene::edits::patch_edit::PatchEdit;
+use streamline_studio::scene::files::format::Finite;
+use streamline_studio::scene::files::format_v3::{ContinuitySpec, EdgeSpec};
 
 fn hood() -> Document {
     document_io::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron"))
@@ -329,7 +329,7 @@ fn an_edit_of_the_first_patch_that_breaks_a_join_is_refused() {
     let before = doc_state(app.world()).unwrap();
     let e = ecs::apply(
         &mut app,
-        Edit::Author(streamline_studio::scene::edit::AuthorEdit::InsertRow { at: 1 }),
+        Edit::Author(streamline_studio::scene::edits::edit::AuthorEdit::InsertRow { at: 1 }),
     )
     .unwrap_err();
     assert!(e.to_string().contains("refused"), "{e}");
@@ -358,7 +358,7 @@ fn save_writes_every_patch_and_one_patch_as_version_2() {
     let mut one = ecs::headless_app(scene.clone());
     let (a, b) = (tmp("car-ecs.ron"), tmp("car-io.ron"));
     ecs::apply(&mut one, Edit::Save(a.clone())).unwrap();
-    io::save(&scene, &b).unwrap();
+    document_io::save_scene(&scene, &b).unwrap();
     assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
     // one renamed patch: still version 2 (one patch saves as version 2), and the save
     // says that the name is not kept
@@ -404,7 +404,7 @@ fn load_and_recover_replace_every_patch_and_a_failed_load_keeps_the_design() {
     assert!(same(&shown(&mut app), &loaded));
     // loading a one-patch scene over it leaves one patch
     let car = tmp("car.ron");
-    io::save(&builtin::scene("car1").unwrap(), &car).unwrap();
+    document_io::save_scene(&builtin::scene("car1").unwrap(), &car).unwrap();
     ecs::apply(&mut app, Edit::Load(car)).unwrap();
     app.update();
     assert_eq!(entities(&mut app).len(), 1);
@@ -432,7 +432,7 @@ fn load_and_recover_replace_every_patch_and_a_failed_load_keeps_the_design() {
 fn the_census_counts_every_patch_and_what_each_owns() {
     let doc = hood();
     let mut app = app(&doc);
-    let c = streamline_studio::ecs::joined::census::census(app.world_mut());
+    let c = streamline_studio::ecs::census::census(app.world_mut());
     assert_eq!(c.patches, 3);
     let names: Vec<&str> = c.per_patch.iter().map(|p| p.name.as_str()).collect();
     assert_eq!(names, ["hood", "screen", "wing"]);
@@ -441,7 +441,7 @@ fn the_census_counts_every_patch_and_what_each_owns() {
     assert_eq!(first.levels, c.levels);
     assert_eq!(first.streamlines, c.streamlines);
     let curve = match &doc.patches[0].start {
-        streamline_studio::scene::document::Start::Curve(c) => c.tangents.len(),
+        streamline_studio::scene::design::document::Start::Curve(c) => c.tangents.len(),
         _ => unreachable!(),
     };
     assert_eq!(
@@ -473,7 +473,7 @@ fn the_first_patch_is_found_before_the_first_update() {
     let first = ecs::patch::patch_entity(app.world()).expect("found before any update");
     streamline_studio::ecs::joined::spawn_joined(app.world_mut(), &doc, first);
     app.update();
-    let c = streamline_studio::ecs::joined::census::census(app.world_mut());
+    let c = streamline_studio::ecs::census::census(app.world_mut());
     assert_eq!(c.patches, 3);
 }
 

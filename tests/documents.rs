@@ -5,9 +5,12 @@
 
 use std::path::Path;
 use streamline_studio::kernel::DVec3;
-use streamline_studio::scene::document::{Document, MAIN_PATCH, Start};
-use streamline_studio::scene::document_io::{load, save};
-use streamline_studio::scene::{Scene, builtin, io};
+use streamline_studio::scene::design::document::{Document, MAIN_PATCH, Start};
+use streamline_studio::scene::design::document_io::{load, save};
+use streamline_studio::scene::{
+    Scene,
+    design::{builtin, document_io},
+};
 
 mod common;
 use common::documents::{bits, shipped, tmpdir};
@@ -20,10 +23,10 @@ fn versions_1_and_2_open_as_one_patch_and_save_the_same_bytes() {
         let doc = load(&path).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(doc.patches.len(), 1);
         assert_eq!(doc.patches[0].name, MAIN_PATCH);
-        let scene = io::load(&path).unwrap();
+        let scene = document_io::load_scene(&path).unwrap();
         let (a, b) = (dir.join("doc.ron"), dir.join("scene.ron"));
         save(&doc, &a).unwrap();
-        io::save(&scene, &b).unwrap();
+        document_io::save_scene(&scene, &b).unwrap();
         let (ba, bb) = (std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
         assert_eq!(
             ba, bb,
@@ -37,7 +40,7 @@ fn versions_1_and_2_open_as_one_patch_and_save_the_same_bytes() {
     let mut scene = builtin::scene("minimal").unwrap();
     scene.mirror = true;
     let v2 = dir.join("mirror.ron");
-    io::save(&scene, &v2).unwrap();
+    document_io::save_scene(&scene, &v2).unwrap();
     let doc = load(&v2).unwrap();
     assert!(doc.mirror);
     let again = dir.join("mirror-again.ron");
@@ -85,7 +88,7 @@ fn the_shipped_three_patch_scene_is_in_saved_form() {
 #[test]
 fn the_one_surface_loader_says_the_file_has_several_patches() {
     let path = shipped("hood-screen-wing");
-    let e = io::load(&path).unwrap_err();
+    let e = document_io::load_scene(&path).unwrap_err();
     assert!(
         e.message.contains("3 patches (`hood`, `screen`, `wing`)")
             && e.message.contains("this reader takes one surface only"),

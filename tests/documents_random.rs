@@ -6,13 +6,13 @@
 use proptest::prelude::*;
 use std::path::Path;
 use streamline_studio::kernel::DVec3;
-use streamline_studio::scene::document::Document;
-use streamline_studio::scene::document_io::{load, save};
-use streamline_studio::scene::format::{Dir, Finite, Point, SRow, SchemeSpec, ViewSpec};
-use streamline_studio::scene::format_v3::{
+use streamline_studio::scene::design::document::Document;
+use streamline_studio::scene::design::document_io;
+use streamline_studio::scene::design::document_io::{load, save};
+use streamline_studio::scene::files::format::{Dir, Finite, Point, SRow, SchemeSpec, ViewSpec};
+use streamline_studio::scene::files::format_v3::{
     ContinuitySpec, DocumentFile, EdgeSpec, PatchFile, StartSpec, Version3,
 };
-use streamline_studio::scene::io;
 
 mod common;
 use common::documents::{bits, shipped, tmpdir};
@@ -67,7 +67,7 @@ fn random_document(seed: u64, n: usize, kinds: &[(usize, u8)], depth: u32) -> Do
     let mut rnd = rng(seed);
     let scheme = match seed % 3 {
         0 => SchemeSpec::Kobbelt {
-            omega: streamline_studio::scene::format::Omega(1.0),
+            omega: streamline_studio::scene::files::format::Omega(1.0),
         },
         1 => SchemeSpec::CatmullClark,
         _ => SchemeSpec::DooSabin,
@@ -245,7 +245,9 @@ fn the_document_loader_gives_the_scene_loaders_errors_for_versions_1_and_2() {
         if p.file_name().unwrap().to_string_lossy().starts_with("v3-") {
             continue;
         }
-        let a = io::load(&p).map(|_| ()).map_err(|e| e.to_string());
+        let a = document_io::load_scene(&p)
+            .map(|_| ())
+            .map_err(|e| e.to_string());
         let b = load(&p).map(|_| ()).map_err(|e| e.to_string());
         assert_eq!(a, b, "{}", p.display());
         compared += 1;

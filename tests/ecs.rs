@@ -308,7 +308,7 @@ fn multiresolution_details() {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("detail.ron");
     ecs::apply(&mut app, Edit::Save(path.clone())).unwrap();
-    let loaded = streamline_studio::scene::io::load(&path).unwrap();
+    let loaded = streamline_studio::scene::design::document_io::load_scene(&path).unwrap();
     assert_eq!(loaded.details.len(), 1);
     let app2 = ecs::headless_app(loaded);
     assert_eq!(

@@ -12,8 +12,8 @@ use bevy::prelude::*;
 use common::{max_diff, points, scene};
 use streamline_kernel::levels::presets;
 use streamline_kernel::{DVec3, Grid};
+use streamline_studio::ecs::census::census;
 use streamline_studio::ecs::components::{LevelData, Streamline, SubdivisionLevel};
-use streamline_studio::ecs::patch::census::census;
 use streamline_studio::ecs::patch::{
     ArcParam, DetailHandle, DetailRotation, Direction, InitialHandle, Patch, PatchIndex,
     SurfaceHandle,
@@ -189,7 +189,7 @@ fn loading_a_scene_that_differs_in_one_tangent_reblends_its_window_only() {
     let edit = last(&probe);
     let dir = tempdir("load-one");
     let path = dir.join("one-tangent.ron");
-    streamline_studio::scene::io::save(&scene(&probe), &path).unwrap();
+    streamline_studio::scene::design::document_io::save_scene(&scene(&probe), &path).unwrap();
     ecs::apply(&mut app, Edit::Load(path.clone())).unwrap();
     let load = last(&app);
     assert!(!load.full_rebuild, "{load:?}");
@@ -197,12 +197,12 @@ fn loading_a_scene_that_differs_in_one_tangent_reblends_its_window_only() {
     assert_eq!(load.streamlines_reintegrated, edit.streamlines_reintegrated);
     assert_eq!(bits(&points(&app)), bits(&points(&probe)));
     // and against a fresh build of the file
-    let fresh = app_of(streamline_studio::scene::io::load(&path).unwrap());
+    let fresh = app_of(streamline_studio::scene::design::document_io::load_scene(&path).unwrap());
     assert_eq!(max_diff(&points(&fresh), &points(&app)), 0.0);
     // a scene of another shape is a structural change: a full build
     let grid = Scene::from_design("grid", presets::wavy(7, 7), 3);
     let other = dir.join("grid.ron");
-    streamline_studio::scene::io::save(&grid, &other).unwrap();
+    streamline_studio::scene::design::document_io::save_scene(&grid, &other).unwrap();
     ecs::apply(&mut app, Edit::Load(other)).unwrap();
     assert!(last(&app).full_rebuild);
     let _ = std::fs::remove_dir_all(&dir);

@@ -116,9 +116,9 @@ fn interpolated_control_tangents_are_reached_at_the_limit() {
             let dir = std::env::temp_dir().join(format!("streamline-pi-{}", std::process::id()));
             std::fs::create_dir_all(&dir).unwrap();
             let path = dir.join("s.ron");
-            streamline_studio::scene::io::save(&s, &path).unwrap();
+            streamline_studio::scene::design::document_io::save_scene(&s, &path).unwrap();
             assert!(
-                streamline_studio::scene::io::load(&path)
+                streamline_studio::scene::design::document_io::load_scene(&path)
                     .unwrap()
                     .interpolate_tangents
             );

@@ -29,8 +29,8 @@ use streamline_studio::ecs::{EditMessage, ModelPlugin};
 use streamline_studio::editor::interaction::{
     HandleId, HandleLayout, HandleSettings, InteractionPlugin, Placed, RefinedHandle,
 };
-use streamline_studio::scene::document::Document;
-use streamline_studio::scene::document_io::load;
+use streamline_studio::scene::design::document::Document;
+use streamline_studio::scene::design::document_io::load;
 
 fn hood() -> Document {
     load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron")).unwrap()

@@ -142,7 +142,7 @@ fn drag(dir: &Path, mode: &str) -> Report {
 fn pointer_drag_turns_an_arrow_and_esc_cancels() {
     let _gui = gui_lock();
     let dir = temp_dir("drag");
-    let start = streamline_studio::scene::builtin::default_scene()
+    let start = streamline_studio::scene::design::builtin::default_scene()
         .design
         .net()
         .get(0, 8)
@@ -274,7 +274,8 @@ fn new_design_dialog_and_right_click_insert() {
     let file = dir.join("design.ron");
     let made = authoring(&dir, "new", &file);
     assert!(made.last_edit.contains("save"), "{made:?}");
-    let s = streamline_studio::scene::io::load(&file).expect("the new design was saved");
+    let s = streamline_studio::scene::design::document_io::load_scene(&file)
+        .expect("the new design was saved");
     assert_eq!(
         (s.design.net().rows(), s.design.net().cols()),
         (4, 7),
@@ -297,7 +298,8 @@ fn new_design_dialog_and_right_click_insert() {
     let inserted = authoring(&dir, "insert", &file);
     assert_eq!(inserted.undo, 1, "an insert is one undo step: {inserted:?}");
     assert!(inserted.last_edit.contains("save"), "{inserted:?}");
-    let t = streamline_studio::scene::io::load(&file).expect("saved after the insert");
+    let t = streamline_studio::scene::design::document_io::load_scene(&file)
+        .expect("saved after the insert");
     assert_eq!((t.design.net().rows(), t.design.net().cols()), (5, 7));
     assert_eq!(inserted.selection, Some((2, 3)), "the new row is selected");
     // the new row got index 2, between the old rows 1 and 2; the others kept theirs

@@ -38,10 +38,11 @@ fn file_dialogs_open_and_save_as() {
         String::from_utf8_lossy(&run.stderr)
     );
     let r: Report = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
-    let car2 = streamline_studio::scene::io::load(&open).unwrap();
+    let car2 = streamline_studio::scene::design::document_io::load_scene(&open).unwrap();
     assert_eq!(r.cols, car2.design.net().cols(), "car2 was opened: {r:?}");
     assert!(r.last_edit.contains("save"), "{r:?}");
-    let saved = streamline_studio::scene::io::load(&save).expect("saved and valid");
+    let saved =
+        streamline_studio::scene::design::document_io::load_scene(&save).expect("saved and valid");
     assert_eq!(saved.to_file(), car2.to_file());
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -85,8 +86,9 @@ fn the_idle_editor_rests_and_wakes_on_input() {
     // drawing every frame took 845 ticks in these 5 s here; resting took 0-11
     // (a wake-up every 5 s draws one frame, about 0.1 s of llvmpipe's CPU)
     assert!(idle <= 60, "5 idle seconds took {idle} ticks of CPU: {out}");
-    let saved = streamline_studio::scene::io::load(&save).expect("saved on input, and valid");
-    let opened = streamline_studio::scene::io::load(&scene).unwrap();
+    let saved = streamline_studio::scene::design::document_io::load_scene(&save)
+        .expect("saved on input, and valid");
+    let opened = streamline_studio::scene::design::document_io::load_scene(&scene).unwrap();
     assert_eq!(saved.to_file(), opened.to_file());
     assert!(busy > idle, "input woke the editor: {out}");
     let _ = std::fs::remove_dir_all(&dir);
@@ -193,7 +195,7 @@ fn menu_bar_and_file_browser_open_and_export() {
     // not a scene: the browser's filter hides it
     std::fs::write(folder.join("notes.txt"), "not a scene\n").unwrap();
     let r = browser(&dir, &cwd, "run", &folder, "through-browser.obj");
-    let car2 = streamline_studio::scene::io::load(&scene).unwrap();
+    let car2 = streamline_studio::scene::design::document_io::load_scene(&scene).unwrap();
     let opened = r.path.as_deref().map(std::fs::canonicalize);
     assert_eq!(
         opened.map(Result::unwrap),

@@ -58,7 +58,7 @@ fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
 #[test]
 fn pointer_drag_turns_an_initial_tangent_and_leaves_the_net() {
     let dir = temp_dir("initial-drag");
-    let scene = streamline_studio::scene::builtin::default_scene();
+    let scene = streamline_studio::scene::design::builtin::default_scene();
     let net: Vec<[f64; 3]> = scene
         .design
         .net()

@@ -12,8 +12,8 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use streamline_kernel::fit::ReferenceFitOptions;
-use streamline_studio::scene::reference_fit::fit_file;
-use streamline_studio::scene::reference_link::ReferenceLink;
+use streamline_studio::scene::files::reference_link::ReferenceLink;
+use streamline_studio::scene::fit::reference::fit_file;
 
 #[path = "gui/harness.rs"]
 mod harness;

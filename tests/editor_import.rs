@@ -185,11 +185,11 @@ fn a_fitted_face_as_a_new_patch_keeps_the_first_patch() {
         .write_message(EditMessage::from(Edit::Save(file.clone())));
     frame(&mut app);
     frame(&mut app);
-    let back = streamline_studio::scene::document_io::load(&file).expect("read back");
+    let back = streamline_studio::scene::design::document_io::load(&file).expect("read back");
     assert_eq!(back.patches.len(), 2);
     assert!(matches!(
         back.patches[1].start,
-        streamline_studio::scene::document::Start::Curve(_)
+        streamline_studio::scene::design::document::Start::Curve(_)
     ));
     let _ = std::fs::remove_dir_all(&dir);
     undo(&mut app);

@@ -21,8 +21,8 @@ use streamline_studio::editor::interaction::{
     DragKind, EditorSet, HandleId, HandleLayout, HandleSettings, InteractionPlugin, PatchRole,
     Placed, Selection,
 };
-use streamline_studio::scene::document::Document;
-use streamline_studio::scene::document_io::load;
+use streamline_studio::scene::design::document::Document;
+use streamline_studio::scene::design::document_io::load;
 
 fn hood() -> Document {
     load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron")).unwrap()
@@ -502,7 +502,7 @@ fn a_drag_on_the_active_joined_patch_turns_its_tangent() {
     let ids = patches(&mut app);
     // the editor chooses the patch with a SetPatch edit (not an undo step)
     app.world_mut().write_message(EditMessage::from(Edit::Patch(
-        streamline_studio::scene::patch_edit::PatchEdit::SetPatch("wing".into()),
+        streamline_studio::scene::edits::patch_edit::PatchEdit::SetPatch("wing".into()),
     )));
     frame(&mut app);
     frame(&mut app);

@@ -21,7 +21,7 @@ use streamline_studio::editor::files::import::{ImportForm, ImportPlugin};
 use streamline_studio::editor::files::open_save::FileUi;
 use streamline_studio::editor::files::reference::{ReferenceForm, ReferencePlugin};
 use streamline_studio::editor::{GHOST_SAMPLES, ReferenceGhost, ReferenceGhostPlugin};
-use streamline_studio::scene::reference_link::ReferenceLink;
+use streamline_studio::scene::files::reference_link::ReferenceLink;
 
 fn reference(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -88,7 +88,7 @@ fn attach_is_one_undo_step_and_is_saved_relative_to_the_scene() {
         flat.contains(r#"reference:Some((path:"../hood.step",face:0,))"#),
         "{text}"
     );
-    let back = streamline_studio::scene::document_io::load(&file).unwrap();
+    let back = streamline_studio::scene::design::document_io::load(&file).unwrap();
     let l = back.reference.expect("read back");
     assert_eq!(l.path.canonicalize().unwrap(), copy.canonicalize().unwrap());
     // undo: the reference before (none after the detach), then hood, …

@@ -40,7 +40,7 @@ fn hood() -> App {
 
 fn hood_scene() -> streamline_studio::scene::Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/references/hood.ron");
-    let doc = streamline_studio::scene::document_io::load(&path).unwrap();
+    let doc = streamline_studio::scene::design::document_io::load(&path).unwrap();
     doc.patch_scene(0)
 }
 
@@ -120,7 +120,7 @@ fn a_design_without_reference_has_the_mode_disabled() {
 #[test]
 fn a_missing_reference_file_is_an_error_not_a_panic() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/references/hood.ron");
-    let doc = streamline_studio::scene::document_io::load(&path).unwrap();
+    let doc = streamline_studio::scene::design::document_io::load(&path).unwrap();
     let mut scene = doc.patch_scene(0);
     if let Some(link) = scene.reference.as_mut() {
         link.path = link.path.with_file_name("no-such-hood.step");

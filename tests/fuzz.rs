@@ -254,7 +254,7 @@ fn fuzz_targets_catch_broken_invariants() {
     // too (its fields are private, its setters check), so no scene can carry
     // one to the build check; the check itself is tested directly
     use streamline_studio::kernel::DVec3;
-    let mut scene = streamline_studio::scene::builtin::scene("minimal").unwrap();
+    let mut scene = streamline_studio::scene::design::builtin::scene("minimal").unwrap();
     assert!(scene.design.set_tangent(0, 0, DVec3::NAN).is_err());
     fuzz::build_scene(&scene);
     for bad in [DVec3::NAN, DVec3::new(1.0, 1.0, 0.0), DVec3::ZERO] {

@@ -11,12 +11,12 @@ use common::built::{assert_as_built, bits, changed_ticks, patches, stack};
 use bevy::prelude::*;
 use std::path::Path;
 use streamline_kernel::DVec3;
+use streamline_studio::ecs::census::census;
 use streamline_studio::ecs::joined::PatchSurface;
-use streamline_studio::ecs::patch::census::census;
 use streamline_studio::ecs::patch::{Direction, PatchIndex};
 use streamline_studio::ecs::{self, Edit, ModelConfig};
-use streamline_studio::scene::document::Document;
-use streamline_studio::scene::document_io::load;
+use streamline_studio::scene::design::document::Document;
+use streamline_studio::scene::design::document_io::load;
 
 fn hood() -> Document {
     load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron")).unwrap()
@@ -53,7 +53,8 @@ fn a_document_is_one_patch_entity_per_patch_built_as_the_scene_library_builds_it
 
 #[test]
 fn a_one_patch_document_is_todays_world() {
-    let doc = Document::from_scene(streamline_studio::scene::builtin::scene("car1").unwrap());
+    let doc =
+        Document::from_scene(streamline_studio::scene::design::builtin::scene("car1").unwrap());
     let mut a = app(&doc);
     let mut b = ecs::headless_app(doc.patch_scene(0));
     assert_eq!(census(a.world_mut()), census(b.world_mut()));
@@ -225,7 +226,7 @@ fn a_g2_run_is_updated_in_place_and_an_edit_of_its_far_end_leaves_its_head() {
 fn the_first_patch_s_stack_follows_a_drag_and_other_edits_in_place_bit_for_bit() {
     use streamline_studio::cli::bench::patches::chained_cars;
     use streamline_studio::ecs::joined::document;
-    use streamline_studio::scene::edit::AuthorEdit;
+    use streamline_studio::scene::edits::edit::AuthorEdit;
     let doc = chained_cars(2, 3);
     let mut app = app(&doc);
     assert_as_built(&mut app, &doc);
@@ -272,4 +273,54 @@ fn the_first_patch_s_stack_follows_a_drag_and_other_edits_in_place_bit_for_bit()
             assert_ne!(bits(&stack(&app, first).points[d]), bits(&before.points[d]));
         }
     }
+}
+
+/// A G2 run's head is drawn as the run's cut (docs/math.md §11.1), so its
+/// own one-patch pipeline waits while it heads a built run: an edit of the
+/// hood re-blends and re-integrates none of the pipeline's levels and
+/// streamlines (the run's state does the work) and every patch still
+/// equals `Document::build`; once nothing continues it with G2 (the screen
+/// removed), the pipeline is built afresh and equals a one-patch scene of
+/// the hood as it is now, bit for bit. Negative control: while it waits,
+/// the pipeline's surface is not that one-patch surface.
+#[test]
+fn a_g2_head_s_own_pipeline_waits_and_is_built_afresh_when_the_run_ends() {
+    use streamline_studio::scene::edits::patch_edit::PatchEdit;
+    let mut doc = hood();
+    let mut app = app(&doc);
+    for (k, (row, col)) in [(1usize, 2usize), (2, 3), (3, 1)].into_iter().enumerate() {
+        let dir = DVec3::new(0.9, 0.1 * k as f64 + 0.1, 0.3).normalize();
+        set_first(&mut app, &mut doc, row, col, dir);
+        let last = app.world().resource::<ecs::Stats>().last.clone();
+        assert_eq!(
+            (last.tangents_reblended, last.streamlines_reintegrated),
+            (0, 0),
+            "edit {k}: {last:?}"
+        );
+        assert_as_built(&mut app, &doc);
+    }
+    let one = ecs::headless_app(doc.patch_scene(0));
+    assert_ne!(bits(&common::points(&app)), bits(&common::points(&one)));
+    ecs::apply(
+        &mut app,
+        Edit::Patch(PatchEdit::RemovePatch("screen".into())),
+    )
+    .unwrap();
+    assert!(app.world().resource::<ecs::Stats>().last.full_rebuild);
+    assert_eq!(bits(&common::points(&app)), bits(&common::points(&one)));
+    let dir = DVec3::new(0.8, -0.2, 0.4).normalize();
+    ecs::apply(
+        &mut app,
+        Edit::SetDirection {
+            row: 2,
+            col: 1,
+            dir,
+        },
+    )
+    .unwrap();
+    let last = app.world().resource::<ecs::Stats>().last.clone();
+    assert!(
+        !last.full_rebuild && last.tangents_reblended > 0,
+        "{last:?}"
+    );
 }

@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 use streamline_studio::ecs::runner::{MAX_BATCH, RunState, ScriptRun, ScriptRunPlugin};
 use streamline_studio::ecs::{self, Edit, headless_app};
 use streamline_studio::scene::job::{Job, Poll};
-use streamline_studio::scene::{builtin, obj};
+use streamline_studio::scene::{design::builtin, loop_mesh::obj};
 
 /// A long time: a job that has not finished by then is hung.
 const HANG: Duration = Duration::from_secs(120);

@@ -17,9 +17,9 @@ use streamline_kernel::{DVec3, Grid};
 use streamline_studio::ecs::joined::{PatchSlot, PatchSurface, world_io};
 use streamline_studio::ecs::patch::Patch;
 use streamline_studio::ecs::{self, Edit, ModelConfig, SurfaceData};
-use streamline_studio::scene::document::{Document, Start};
-use streamline_studio::scene::document_io::{load, save};
-use streamline_studio::scene::patch_edit::PatchEdit;
+use streamline_studio::scene::design::document::{Document, Start};
+use streamline_studio::scene::design::document_io::{load, save};
+use streamline_studio::scene::edits::patch_edit::PatchEdit;
 
 fn rng(seed: u64) -> impl FnMut() -> f64 {
     let mut x = seed | 1;

@@ -19,7 +19,7 @@ use streamline_kernel::{DQuat, DVec3};
 use streamline_studio::cli::bench::patches::chained_cars;
 use streamline_studio::ecs::joined::{PatchSurface, PatchWork};
 use streamline_studio::ecs::{self, Edit, ModelConfig, Stats};
-use streamline_studio::scene::patch_edit::PatchEdit;
+use streamline_studio::scene::edits::patch_edit::PatchEdit;
 
 const DEPTH: u32 = 4;
 

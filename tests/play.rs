@@ -4,7 +4,7 @@
 use std::path::Path;
 use std::process::Command;
 use streamline_studio::ecs::playback;
-use streamline_studio::scene::{builtin, script::Script};
+use streamline_studio::scene::{design::builtin, edits::script::Script};
 
 #[test]
 fn every_script_passes() {

@@ -19,7 +19,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use streamline_kernel::fit::distances_to_reference;
-use streamline_studio::scene::io;
+use streamline_studio::scene::design::document_io;
 
 fn run(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_streamline-studio"))
@@ -93,7 +93,7 @@ fn the_deviation_fit_reports_is_what_opencascade_measures() {
         // the saved design, built at the fit depth: its points furthest
         // from the face by our measure, and a spread of the others, measured
         // by OpenCascade
-        let scene = io::load(&out).unwrap();
+        let scene = document_io::load_scene(&out).unwrap();
         let depth = r["depth"].as_u64().unwrap() as u32;
         assert_eq!(scene.display_depth, depth);
         let built = scene.design.build(depth).unwrap();
@@ -238,7 +238,7 @@ fn bad_input_names_the_file_and_the_fix() {
     ]);
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("not within"), "{err}");
-    assert!(io::load(Path::new(out)).is_ok());
+    assert!(document_io::load_scene(Path::new(out)).is_ok());
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -252,7 +252,7 @@ fn the_shipped_designs_are_what_fit_makes_of_their_references() {
         ("roof.ron", "roof.step"),
         ("scan.ron", "scan.obj"),
     ] {
-        let shipped = io::load(&root.join(design)).unwrap();
+        let shipped = document_io::load_scene(&root.join(design)).unwrap();
         let link = shipped
             .reference
             .clone()
@@ -264,7 +264,7 @@ fn the_shipped_designs_are_what_fit_makes_of_their_references() {
         let out = dir.join(design);
         let r = fit_json(&data(reference), &[], &out);
         assert_eq!(r["within"], true, "{r}");
-        let fresh = io::load(&out).unwrap();
+        let fresh = document_io::load_scene(&out).unwrap();
         assert_eq!(
             fresh.design.net().data(),
             shipped.design.net().data(),

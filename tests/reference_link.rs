@@ -13,14 +13,17 @@ use streamline_studio::ecs::{self, Edit, ModelConfig};
 use streamline_studio::editor::EditorDirs;
 use streamline_studio::editor::autosave::write_recovery;
 use streamline_studio::kernel::DVec3;
-use streamline_studio::scene::document::Document;
-use streamline_studio::scene::edit::AuthorEdit;
-use streamline_studio::scene::format::{Finite, SceneFile};
-use streamline_studio::scene::format_v3::{ContinuitySpec, DocumentFile, EdgeSpec};
-use streamline_studio::scene::patch_edit::PatchEdit;
-use streamline_studio::scene::reference_link::ReferenceLink;
-use streamline_studio::scene::script::Script;
-use streamline_studio::scene::{Scene, builtin, document_io, io};
+use streamline_studio::scene::design::document::Document;
+use streamline_studio::scene::edits::edit::AuthorEdit;
+use streamline_studio::scene::edits::patch_edit::PatchEdit;
+use streamline_studio::scene::edits::script::Script;
+use streamline_studio::scene::files::format::{Finite, SceneFile};
+use streamline_studio::scene::files::format_v3::{ContinuitySpec, DocumentFile, EdgeSpec};
+use streamline_studio::scene::files::reference_link::ReferenceLink;
+use streamline_studio::scene::{
+    Scene,
+    design::{builtin, document_io},
+};
 
 /// A fresh, absolute folder for test files, named by `tag` and the process.
 fn tmpdir(tag: &str) -> PathBuf {
@@ -42,7 +45,7 @@ fn reference_line(path: &str, face: usize) -> String {
 
 /// The text of car1 as version 2 with `line` as its last field.
 fn v2_text(line: &str) -> String {
-    let text = io::load(&shipped("car1")).unwrap().to_ron();
+    let text = document_io::load_scene(&shipped("car1")).unwrap().to_ron();
     let body = text.trim_end().strip_suffix(')').unwrap();
     format!("{body}{line})")
 }
@@ -90,7 +93,7 @@ fn project(tag: &str, text: &dyn Fn(&str) -> String) -> (PathBuf, PathBuf, PathB
 #[test]
 fn a_version_2_file_keeps_its_reference_saved_anywhere() {
     let (dir, panel, design) = project("v2", &|l| v2_text(l));
-    let scene = io::load(&design).unwrap();
+    let scene = document_io::load_scene(&design).unwrap();
     let link = scene.reference.clone().expect("the reference is read");
     assert_eq!(link.face, 2);
     assert_eq!(
@@ -112,9 +115,9 @@ fn a_version_2_file_keeps_its_reference_saved_anywhere() {
     ] {
         let to = dir.join(to);
         std::fs::create_dir_all(to.parent().unwrap()).unwrap();
-        io::save(&scene, &to).unwrap();
+        document_io::save_scene(&scene, &to).unwrap();
         assert_eq!(written(&to).as_deref(), Some(want), "{}", to.display());
-        let back = io::load(&to).unwrap();
+        let back = document_io::load_scene(&to).unwrap();
         assert_eq!(back.reference, Some(link.clone()));
         assert!(same_file(&back.reference.clone().unwrap().path, &panel));
         assert_eq!(back.to_file(), scene.to_file(), "loads back equal");
@@ -129,7 +132,7 @@ fn a_version_2_file_keeps_its_reference_saved_anywhere() {
     // there, point at another file
     let copied = dir.join("b/deeper/copied.ron");
     std::fs::copy(&design, &copied).unwrap();
-    let moved = io::load(&copied).unwrap().reference.unwrap();
+    let moved = document_io::load_scene(&copied).unwrap().reference.unwrap();
     assert_eq!(moved.path, dir.join("b/refs/panel.step"));
     assert_ne!(moved, link);
     let _ = std::fs::remove_dir_all(dir);
@@ -186,7 +189,10 @@ fn a_version_3_file_keeps_its_reference_saved_anywhere() {
             .unwrap()
             .contains("version: 2")
     );
-    assert_eq!(io::load(&one_path).unwrap().reference, Some(link.clone()));
+    assert_eq!(
+        document_io::load_scene(&one_path).unwrap().reference,
+        Some(link.clone())
+    );
     let v3_one =
         ron::ser::to_string_pretty(&one.to_file_at(&one_path), ron::ser::PrettyConfig::new())
             .unwrap();
@@ -364,14 +370,19 @@ fn a_script_load_and_save_keep_the_reference() {
         assert!(same_file(&back.path, &panel));
     }
     assert!(
-        io::load(&dir.join("out/one.ron"))
+        document_io::load_scene(&dir.join("out/one.ron"))
             .unwrap()
             .reference
             .is_some()
     );
     // negative control: a built-in scene has none, and its save says so
     assert_eq!(written(&dir.join("out/plain.ron")), None);
-    assert!(io::load(&design).unwrap().reference.is_some());
+    assert!(
+        document_io::load_scene(&design)
+            .unwrap()
+            .reference
+            .is_some()
+    );
     let _ = std::fs::remove_dir_all(dir);
 }
 
@@ -388,13 +399,13 @@ fn the_recovery_file_keeps_the_reference() {
     assert!(same_file(&back.reference.clone().unwrap().path, &panel));
     assert_eq!(back.to_file(), doc.to_file());
     // one patch: through the scene's save
-    let scene = io::load(&shipped("car1")).unwrap();
+    let scene = document_io::load_scene(&shipped("car1")).unwrap();
     let one = Document {
         reference: doc.reference.clone(),
         ..Document::from_scene(scene)
     };
     write_recovery(&dirs, &one, None).unwrap();
-    let back = io::load(&dirs.recovery_file()).unwrap();
+    let back = document_io::load_scene(&dirs.recovery_file()).unwrap();
     assert_eq!(back.reference, doc.reference);
     // negative control: without one, none is recovered
     write_recovery(&dirs, &Document::from_scene(builtin::default_scene()), None).unwrap();

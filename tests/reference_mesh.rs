@@ -12,7 +12,7 @@
 //! file cannot hold the points closer: 2.3e-7 measured); at depth 5 the
 //! points between those corners are off the triangles by the chord error,
 //! far more (3.1e-4, negative control). The document's STL text (ASCII,
-//! shortest round-trip decimals, one `solid` per patch, `scene::stl_shell`)
+//! shortest round-trip decimals, one `solid` per patch, `scene::export::stl_shell`)
 //! read as written holds the depth-4 points exactly: their distance is at
 //! most 1e-9.
 
@@ -22,11 +22,11 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use streamline_kernel::fit::ReferenceFitOptions;
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
-use streamline_studio::scene::document_io::load;
-use streamline_studio::scene::reference_fit::{distances, fit_file};
-use streamline_studio::scene::reference_link::ReferenceLink;
-use streamline_studio::scene::stl_shell::stl_solids_text;
-use streamline_studio::scene::{builtin, io};
+use streamline_studio::scene::design::document_io::load;
+use streamline_studio::scene::design::{builtin, document_io};
+use streamline_studio::scene::export::stl_shell::stl_solids_text;
+use streamline_studio::scene::files::reference_link::ReferenceLink;
+use streamline_studio::scene::fit::reference::{distances, fit_file};
 
 fn run(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_streamline-studio"))
@@ -129,7 +129,7 @@ fn car_deviation(dir: &Path, stl: &Path, depth: u32) -> (f64, f64) {
         face: 0,
     });
     let file = dir.join(format!("car-{depth}.ron"));
-    io::save(&scene, &file).unwrap();
+    document_io::save_scene(&scene, &file).unwrap();
     let d = depth.to_string();
     let (code, stdout, stderr) = run(&["build", file.to_str().unwrap(), "--depth", &d]);
     assert_eq!(code, 0, "{stderr}");

@@ -12,7 +12,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use streamline_kernel::fit::distances_to_reference;
-use streamline_studio::scene::io;
+use streamline_studio::scene::design::document_io;
 
 /// The hood's tolerance: 1e-4 of its diagonal, in metres (docs/fit.md).
 const HOOD_TOLERANCE: f64 = 1.8e-4;
@@ -63,7 +63,7 @@ fn line(out: &str, n: usize) -> &str {
 /// at `depth` (built by the kernel, not the ECS) to face 0 of `reference`,
 /// measured by the kernel directly.
 fn direct(scene: &Path, reference: &Path, depth: u32) -> (f64, f64) {
-    let scene = io::load(scene).unwrap();
+    let scene = document_io::load_scene(scene).unwrap();
     let built = scene.design.build(depth).unwrap();
     let file = streamline_reference::read(reference).unwrap();
     let d = distances_to_reference(file.surface(0).unwrap(), &built.mesh.positions).unwrap();
@@ -94,7 +94,7 @@ fn fit_replaces_the_design_and_keeps_the_reference() {
     let saved = dir.join("out/fitted.ron");
     let text = std::fs::read_to_string(&saved).unwrap();
     assert!(text.contains(r#"path: "../refs/hood.step""#), "{text}");
-    let scene = io::load(&saved).unwrap();
+    let scene = document_io::load_scene(&saved).unwrap();
     let link = scene
         .reference
         .expect("the fitted design keeps its reference");
@@ -114,7 +114,7 @@ fn fit_replaces_the_design_and_keeps_the_reference() {
         cli.to_str().unwrap(),
     ]);
     assert_eq!(code, 0, "{err}");
-    let by_cli = io::load(&cli).unwrap();
+    let by_cli = document_io::load_scene(&cli).unwrap();
     assert_eq!(by_cli.design.net(), scene.design.net());
     // negative control: the step's options reach the fit; along v (within
     // 1e-2 of the diagonal) is another design
@@ -346,7 +346,7 @@ fn the_editor_runs_a_fit_off_the_frame() {
     use std::time::{Duration, Instant};
     use streamline_studio::ecs::runner::{RunState, ScriptRun, ScriptRunPlugin};
     use streamline_studio::ecs::{self, headless_app};
-    use streamline_studio::scene::builtin;
+    use streamline_studio::scene::design::builtin;
     let dir = folder("runner");
     let script = dir.join("fit.ron");
     std::fs::write(

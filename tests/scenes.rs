@@ -5,7 +5,11 @@ mod expectations;
 
 use proptest::prelude::*;
 use std::path::Path;
-use streamline_studio::scene::{Scene, builtin, io};
+use streamline_studio::scene::{
+    Scene,
+    design::{builtin, document_io},
+    files::io,
+};
 
 /// The shipped scenes are the kernel presets written out (set
 /// `REGENERATE_SCENES=1` to write them again after changing a preset; never
@@ -19,7 +23,7 @@ fn shipped_scenes_match_presets() {
             std::fs::write(&path, preset.to_ron()).unwrap();
             continue; // the compiled-in copies are stale until the next build
         }
-        let loaded = io::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        let loaded = document_io::load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(
             loaded.to_file(),
             preset.to_file(),
@@ -120,7 +124,7 @@ fn random_scene() -> impl Strategy<Value = Scene> {
                         .details
                         .insert(key, DVec3::new(rnd(), rnd(), 1.0).normalize());
                 }
-                scene.view.yaw = streamline_studio::scene::format::Finite(rnd() * 180.0);
+                scene.view.yaw = streamline_studio::scene::files::format::Finite(rnd() * 180.0);
                 scene.interpolate_tangents = rnd() > 0.3;
                 if rnd() > 0.0 {
                     // fine tuning with random degrees, counts and values (docs/math.md §6)
@@ -158,12 +162,12 @@ proptest! {
     fn save_load_is_identity(scene in random_scene()) {
         let dir = tmpdir("prop");
         let path = dir.join("s.ron");
-        io::save(&scene, &path).unwrap();
-        let back = io::load(&path).unwrap();
+        document_io::save_scene(&scene, &path).unwrap();
+        let back = document_io::load_scene(&path).unwrap();
         prop_assert_eq!(back.to_file(), scene.to_file());
         // And a second save writes the same bytes.
         let text1 = std::fs::read_to_string(&path).unwrap();
-        io::save(&back, &path).unwrap();
+        document_io::save_scene(&back, &path).unwrap();
         prop_assert_eq!(std::fs::read_to_string(&path).unwrap(), text1);
     }
 }
@@ -254,7 +258,7 @@ fn bad_scenes_have_located_errors() {
     for (what, text, want) in cases {
         let path = dir.join("bad.ron");
         std::fs::write(&path, &text).unwrap();
-        let e = io::load(&path).expect_err(what).to_string();
+        let e = document_io::load_scene(&path).expect_err(what).to_string();
         assert!(
             e.starts_with(&path.display().to_string()),
             "{what}: names the file: {e}"
@@ -277,7 +281,7 @@ fn failed_save_keeps_the_old_file() {
     let dir = tmpdir("atomic");
     let path = dir.join("scene.ron");
     let scene = builtin::scene("car1").unwrap();
-    io::save(&scene, &path).unwrap();
+    document_io::save_scene(&scene, &path).unwrap();
     let before = std::fs::read(&path).unwrap();
     let e = io::write_atomic(&path, b"garbage", |_| Err("refused by test".into())).unwrap_err();
     assert!(e.to_string().contains("previous file is unchanged"), "{e}");
@@ -288,7 +292,7 @@ fn failed_save_keeps_the_old_file() {
         .collect();
     assert_eq!(leftovers.len(), 1, "no temporary file is left behind");
     // Saving into a folder that does not exist fails with a message and writes nothing.
-    let e = io::save(&scene, &dir.join("missing/x.ron")).unwrap_err();
+    let e = document_io::save_scene(&scene, &dir.join("missing/x.ron")).unwrap_err();
     assert!(e.to_string().contains("cannot create"), "{e}");
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -303,13 +307,13 @@ fn version_1_opens_and_saves_as_version_2() {
         let v1 = Scene::parse(text, Path::new(name)).unwrap();
         assert!(!v1.mirror, "{name}: no mirror in version 1");
         let path = dir.join(format!("{name}.ron"));
-        io::save(&v1, &path).unwrap();
+        document_io::save_scene(&v1, &path).unwrap();
         let written = std::fs::read_to_string(&path).unwrap();
         assert!(
             written.contains("version: 2,") && written.contains("mirror: false"),
             "{name}: {written}"
         );
-        let back = io::load(&path).unwrap();
+        let back = document_io::load_scene(&path).unwrap();
         assert_eq!(back.to_file(), v1.to_file(), "{name}: v1 → v2 → read");
         assert_eq!(back.design.net(), v1.design.net(), "{name}: the same net");
     }
@@ -317,8 +321,8 @@ fn version_1_opens_and_saves_as_version_2() {
     let mut s = builtin::scene("car1").unwrap();
     s.mirror = true;
     let path = dir.join("mirrored.ron");
-    io::save(&s, &path).unwrap();
-    let back = io::load(&path).unwrap();
+    document_io::save_scene(&s, &path).unwrap();
+    let back = document_io::load_scene(&path).unwrap();
     assert!(back.mirror);
     let m = back.mirrored_design().unwrap().unwrap();
     assert_eq!(m.net().rows(), 2 * s.design.net().rows() - 1);
@@ -418,7 +422,10 @@ fn new_design_from_templates() {
         SurfaceScheme::default(),
     )
     .unwrap();
-    io::save(&c, &path).unwrap();
-    assert_eq!(io::load(&path).unwrap().to_file(), c.to_file());
+    document_io::save_scene(&c, &path).unwrap();
+    assert_eq!(
+        document_io::load_scene(&path).unwrap().to_file(),
+        c.to_file()
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

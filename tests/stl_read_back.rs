@@ -13,11 +13,11 @@ mod common;
 
 use std::path::Path;
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
-use streamline_studio::scene::builtin;
-use streamline_studio::scene::document_export::{DocumentExportSettings, export_document};
-use streamline_studio::scene::document_io::load;
-use streamline_studio::scene::export::{Format, write_meshes};
-use streamline_studio::scene::glb::GlbPart;
+use streamline_studio::scene::design::builtin;
+use streamline_studio::scene::design::document_io::load;
+use streamline_studio::scene::export::document::{DocumentExportSettings, export_document};
+use streamline_studio::scene::export::format::{Format, write_meshes};
+use streamline_studio::scene::export::glb::GlbPart;
 
 /// A triangle's corners.
 type Tri = [[f64; 3]; 3];

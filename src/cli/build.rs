@@ -7,11 +7,11 @@
 //! each patch's streamlines and `"seams"` each join's report, read from the
 //! world's patch entities; a one-patch scene reports its one patch (`main`
 //! for versions 1 and 2) and no seams. An export of several patches writes
-//! them all (`scene::document_export`: one STEP shell, one IGES entity 128,
+//! them all (`scene::export::document`: one STEP shell, one IGES entity 128,
 //! OBJ object, glTF node or STL solid per patch), and the report gains
 //! `"faces"`, each fitted face's poles and deviation. A design with a
 //! reference (docs/math.md §12) is measured against it at the build depth
-//! (`scene::reference_fit::measure`): `"reference"` gives the file, the face
+//! (`scene::fit::reference::measure`): `"reference"` gives the file, the face
 //! and the largest and mean distance, or the error when the file cannot be
 //! read (the build itself still succeeds).
 
@@ -22,9 +22,9 @@ use crate::ecs::joined::{PatchSlot, PatchStart, PatchSurface, SeamState};
 use crate::ecs::warnings::BuildWarnings;
 use crate::ecs::{self, Edit, EditLog, ModelConfig, Stats, SurfaceData};
 use crate::scene::Document;
-use crate::scene::document_export::{DocumentExportSettings, export_document};
-use crate::scene::reference_fit;
-use crate::scene::reference_link::ReferenceLink;
+use crate::scene::export::document::{DocumentExportSettings, export_document};
+use crate::scene::files::reference_link::ReferenceLink;
+use crate::scene::fit::reference;
 use bevy::prelude::*;
 use clap::Args;
 use serde::Serialize;
@@ -133,7 +133,7 @@ struct BuildReport {
     /// docs/math.md §1), one sentence each; empty when nothing.
     warnings: Vec<String>,
     /// The world after the build, counted by queries over it.
-    entities: ecs::patch::census::Census,
+    entities: ecs::census::Census,
     /// Every patch, in the document's order.
     patches: Vec<PatchFigures>,
     /// Every join's seam at the display depth (docs/math.md §11, "Seam report").
@@ -166,7 +166,7 @@ struct MaxMean {
 
 /// The report's `"reference"` of a design whose first patch shows `points`.
 fn reference_figures(link: &ReferenceLink, points: &Grid<DVec3>, mirror: bool) -> ReferenceFigures {
-    let measured = reference_fit::measure(link, points, mirror);
+    let measured = reference::measure(link, points, mirror);
     ReferenceFigures {
         path: link.path.display().to_string(),
         face: link.face,
@@ -280,7 +280,7 @@ struct FaceFigures {
     max_deviation: f64,
 }
 
-/// Writes every patch of `doc` to `out` (`scene::document_export`).
+/// Writes every patch of `doc` to `out` (`scene::export::document`).
 fn export_patches(
     doc: &Document,
     depth: u32,
@@ -346,7 +346,7 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         }
     }
     let w = app.world_mut();
-    let entities = ecs::joined::census::census(w);
+    let entities = ecs::census::census(w);
     let scene = ecs::patch::try_scene(w).map_err(CliError::Usage)?;
     let (patches, seams) = patches_and_seams(w, scene.display_depth, &doc.patches[0].name)?;
     let mut per = Vec::new();

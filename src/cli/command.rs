@@ -77,7 +77,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
             cli.file
                 .as_deref()
                 .or(cli.scene.as_deref())
-                .unwrap_or(crate::scene::builtin::DEFAULT),
+                .unwrap_or(crate::scene::design::builtin::DEFAULT),
             cli.msaa,
         ),
         Some(Command::Curve(a)) => geometry::curve(a),

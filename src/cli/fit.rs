@@ -8,9 +8,9 @@
 
 use super::faces::read_reference;
 use super::input::{CliError, write_stdout};
-use crate::scene::reference_fit::{fitted_name, fitted_scene};
-use crate::scene::reference_link::ReferenceLink;
-use crate::scene::{Scene, io};
+use crate::scene::files::reference_link::ReferenceLink;
+use crate::scene::fit::reference::{fitted_name, fitted_scene};
+use crate::scene::{Scene, design::document_io};
 use clap::{Args, ValueEnum};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -212,7 +212,7 @@ pub fn run(a: FitArgs) -> Result<(), CliError> {
         .map_err(|e| CliError::Usage(format!("{}: face {}: {e}", a.file.display(), a.face)))?;
     let name = fitted_name(&a.file);
     let scene = scene_of(&fit, &name, &a)?;
-    io::save(&scene, &a.out)?;
+    document_io::save_scene(&scene, &a.out)?;
     let report = FitReport {
         file: a.file.display().to_string(),
         face: a.face,

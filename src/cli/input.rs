@@ -107,10 +107,10 @@ impl From<crate::scene::SceneError> for CliError {
 
 /// A scene argument: a `.ron` file, or the name of a built-in scene.
 pub fn scene_arg(arg: &str) -> Result<crate::scene::Scene, CliError> {
-    use crate::scene::{builtin, io};
+    use crate::scene::design::{builtin, document_io};
     let path = std::path::Path::new(arg);
     if arg.ends_with(".ron") || path.is_file() {
-        return Ok(io::load(path)?);
+        return Ok(document_io::load_scene(path)?);
     }
     builtin::scene(arg).map_err(|_| {
         CliError::Usage(format!(
@@ -123,7 +123,7 @@ pub fn scene_arg(arg: &str) -> Result<crate::scene::Scene, CliError> {
 /// A design argument: a .ron file of any version (1 and 2 as one patch
 /// named `main`, 3 as its patches) or a built-in scene's name (one patch).
 pub fn document_arg(arg: &str) -> Result<crate::scene::Document, CliError> {
-    use crate::scene::{Document, document_io};
+    use crate::scene::{Document, design::document_io};
     let path = std::path::Path::new(arg);
     if arg.ends_with(".ron") || path.is_file() {
         return Ok(document_io::load(path)?);

@@ -3,7 +3,7 @@
 //! input's vertices (same vertex order and faces) and prints one JSON line.
 
 use super::input::{CliError, write_stdout};
-use crate::scene::{obj, usd};
+use crate::scene::loop_mesh::{obj, usd};
 use clap::{Args, ValueEnum};
 use serde::Serialize;
 use std::path::PathBuf;

@@ -2,7 +2,7 @@
 
 use super::input::{CliError, scene_arg};
 use crate::ecs::playback;
-use crate::scene::script::Script;
+use crate::scene::edits::script::Script;
 use clap::Args;
 use std::path::PathBuf;
 

@@ -15,8 +15,8 @@
 use super::components::{LevelData, SubdivisionLevel};
 use super::edit_error::EditError;
 use crate::scene::Scene;
-pub use crate::scene::edit::AuthorEdit;
-use crate::scene::format::InitialSpec;
+pub use crate::scene::edits::edit::AuthorEdit;
+use crate::scene::files::format::InitialSpec;
 use bevy::prelude::*;
 use streamline_kernel::levels::incremental::check_params;
 use streamline_kernel::{DQuat, DVec3, Design, KernelError, Tangent};

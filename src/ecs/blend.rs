@@ -7,10 +7,11 @@
 
 use super::components::*;
 use super::edit_error::EditError;
+use super::joined::{PatchStart, PatchSurface, shows_run_cut};
 use super::patch::dirty::Dirty;
 use super::patch::{PatchKernel, PatchStructure};
 use super::resources::*;
-use crate::scene::model::shown_design;
+use crate::scene::design::model::shown_design;
 use bevy::prelude::*;
 use std::time::Instant;
 use streamline_kernel::levels::dirty_window::Span;
@@ -65,6 +66,7 @@ pub(crate) fn reblend(
     mut windows: Query<&mut LevelWindow>,
     mut stats: ResMut<Stats>,
     mut log: ResMut<EditLog>,
+    runs: (Query<&PatchStart>, Query<&PatchSurface>),
 ) {
     let _meter = meter.start();
     let t0 = Instant::now();
@@ -72,6 +74,14 @@ pub(crate) fn reblend(
         return;
     };
     if dirty.is_clean() {
+        return;
+    }
+    // the first patch drawn as its G2 run's cut: its own levels wait, to
+    // be built afresh once it no longer is (docs/math.md §11.1)
+    let (starts, surfaces) = runs;
+    if shows_run_cut(patch, starts.iter(), surfaces.get(patch).ok()) {
+        dirty.take();
+        dirty.rebuild();
         return;
     }
     let (mut full, replace, mut sd) = dirty.take();

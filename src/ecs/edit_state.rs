@@ -9,8 +9,8 @@
 //! nothing of the ECS, so the resources and the patches may both use it.)
 
 use crate::scene::Scene;
-use crate::scene::document::{Document, MAIN_PATCH, PatchScene, Start};
-use crate::scene::format::InitialSpec;
+use crate::scene::design::document::{Document, MAIN_PATCH, PatchScene, Start};
+use crate::scene::files::format::InitialSpec;
 use streamline_kernel::Design;
 use streamline_kernel::finetune::SurfaceTuning;
 use streamline_kernel::joins::{Continuity, Edge, Join};
@@ -90,7 +90,7 @@ impl DocState {
                         },
                         (Start::Curve(c), None) => StartState::Curve(c.clone()),
                         (Start::Edge { .. }, None) => {
-                            StartState::Curve(crate::scene::format_v3::placeholder_initial())
+                            StartState::Curve(crate::scene::files::format_v3::placeholder_initial())
                         }
                     },
                     design: p.design.clone(),

@@ -3,8 +3,8 @@
 //! export carries, and what the last export wrote (for the command line's
 //! report and the editor's File section).
 
-use crate::scene::cad::SceneFit;
-use crate::scene::export::Format;
+use crate::scene::export::format::Format;
+use crate::scene::fit::surface::SceneFit;
 use bevy::prelude::*;
 use std::path::PathBuf;
 use streamline_kernel::nurbs::FitOptions;

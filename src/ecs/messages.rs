@@ -1,8 +1,8 @@
 //! Edit messages: the only way the model changes. The editor, scripts and the
 //! command line send the same messages, each carrying an [`Edit`] of the
-//! model layer (`src/scene/edit.rs`, the very type a script step names).
+//! model layer (`src/scene/edits/edit.rs`, the very type a script step names).
 
-pub use crate::scene::edit::Edit;
+pub use crate::scene::edits::edit::Edit;
 use bevy::prelude::*;
 
 /// An edit, with an optional group: consecutive edits of one group (a drag)

@@ -13,6 +13,7 @@
 
 pub mod authoring;
 mod blend;
+pub mod census;
 pub mod components;
 mod edit;
 mod edit_error;

@@ -6,10 +6,10 @@ use super::edit_error::EditError;
 use super::exchange::{ExportSettings, LastExport};
 use super::messages::{Edit, EditMessage};
 use super::resources::*;
-use crate::scene::document::{Document, MAIN_PATCH};
-use crate::scene::document_build::BuiltDocument;
-use crate::scene::document_export::{DocumentExportSettings, export_document};
-use crate::scene::document_io;
+use crate::scene::design::document::{Document, MAIN_PATCH};
+use crate::scene::design::document_build::BuiltDocument;
+use crate::scene::design::document_io;
+use crate::scene::export::document::{DocumentExportSettings, export_document};
 use bevy::prelude::*;
 
 #[allow(clippy::too_many_arguments)]

@@ -9,8 +9,8 @@
 
 use super::messages::EditMessage;
 use super::resources::Stats;
+use crate::scene::edits::script::{Script, step::Step};
 use crate::scene::job::{Job, Poll};
-use crate::scene::script::{Script, Step};
 use bevy::prelude::*;
 use std::path::{Path, PathBuf};
 

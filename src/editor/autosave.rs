@@ -9,8 +9,8 @@ use super::screenshot::ScreenshotRequest;
 use crate::ecs::Model;
 use crate::ecs::joined::JoinedRead;
 use crate::ecs::patch::PatchRef;
-use crate::scene::document::Document;
-use crate::scene::{document_io, io};
+use crate::scene::design::document::Document;
+use crate::scene::{design::document_io, files::io};
 use bevy::prelude::*;
 use std::path::PathBuf;
 use std::time::{Duration, Instant, SystemTime};
@@ -182,7 +182,7 @@ fn on_exit(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::builtin;
+    use crate::scene::design::builtin;
 
     fn dirs(name: &str) -> EditorDirs {
         let home =
@@ -207,12 +207,12 @@ mod tests {
             other => panic!("{other:?}"),
         }
         // the recovered scene is the saved one
-        let back = io::load(&d.recovery_file()).unwrap();
+        let back = document_io::load_scene(&d.recovery_file()).unwrap();
         assert_eq!(back.name, "edited car");
         assert_eq!(back.to_file(), scene.to_file());
         // a scene saved after the autosave: no offer
         std::thread::sleep(Duration::from_millis(20));
-        io::save(&scene, &origin).unwrap();
+        document_io::save_scene(&scene, &origin).unwrap();
         assert!(pending_recovery(&d, Some(&origin)).is_none());
         // a built-in scene (no file): always offered
         assert!(pending_recovery(&d, None).is_some());
@@ -237,7 +237,7 @@ mod tests {
         let scene = builtin::default_scene();
         write_recovery(&d, &Document::from_scene(scene.clone()), None).unwrap();
         let other = d.home.join("scene.ron");
-        io::save(&scene, &other).unwrap();
+        document_io::save_scene(&scene, &other).unwrap();
         assert_eq!(
             std::fs::read(d.recovery_file()).unwrap(),
             std::fs::read(&other).unwrap()

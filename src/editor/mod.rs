@@ -86,12 +86,15 @@ impl Plugin for EditorPlugin {
             handles::box_select::BoxSelectPlugin,
             files::file_browser::FileBrowserPlugin,
             files::import::ImportPlugin,
+            files::dialogs::DialogsPlugin,
             files::reference::ReferencePlugin,
             surface::patches::PatchSurfacesPlugin,
-            surface::patch_maps::PatchMapsPlugin,
+            surface::maps::MapsPlugin,
+            surface::combs::CombsPlugin,
             surface::reference_map::ReferenceMapPlugin,
             surface::reference_ghost::ReferenceGhostPlugin,
             seams::SeamsPlugin,
+            view::streamlines::StreamlinesPlugin,
         ));
     }
 }

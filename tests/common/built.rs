@@ -8,7 +8,7 @@ use streamline_kernel::DVec3;
 use streamline_kernel::joins::{SeamReport, Stack};
 use streamline_studio::ecs::joined::{PatchSlot, PatchSurface, SeamState};
 use streamline_studio::ecs::patch::Patch;
-use streamline_studio::scene::document::Document;
+use streamline_studio::scene::design::document::Document;
 
 /// Each patch's entity, in the document's order.
 pub fn patches(app: &mut App) -> Vec<Entity> {

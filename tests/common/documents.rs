@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 use streamline_studio::kernel::DVec3;
-use streamline_studio::scene::document::{Document, Start};
+use streamline_studio::scene::design::document::{Document, Start};
 
 /// A fresh folder for test files, named by `tag` and the process.
 pub fn tmpdir(tag: &str) -> PathBuf {

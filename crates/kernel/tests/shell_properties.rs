@@ -4,8 +4,9 @@
 //! faces' boundary curves at a seam the same curve (evaluated independently
 //! of the poles' bookkeeping), the normals across a G1/G2 chain seam within
 //! 0.1° at 64 points (by finite differences of the surfaces). A side G1
-//! seam's normals are measured by OpenCascade in tests/cad_shell.rs and
-//! tests/cad_shell_random.rs. The negative control (each patch fitted alone leaves its
+//! seam's normals are measured at the default tolerance and the depth an
+//! export samples in `shell_random.rs`, and by OpenCascade in
+//! tests/cad_shell.rs and tests/cad_shell_random.rs. The negative control (each patch fitted alone leaves its
 //! seams used once) is read by OpenCascade in tests/cad_shell.rs.
 
 mod common;

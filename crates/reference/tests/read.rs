@@ -387,7 +387,7 @@ fn format_comes_from_the_extension() {
 }
 
 /// The project's exporter (`streamline-studio build car1 --depth 3 --export
-/// …`, src/scene/step.rs and src/scene/iges.rs) writes one B-spline face in
+/// …`, src/scene/export/step.rs and src/scene/export/iges.rs) writes one B-spline face in
 /// metres: both files read, as the same surface.
 #[test]
 fn the_projects_own_exports_read() {

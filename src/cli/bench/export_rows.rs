@@ -2,7 +2,7 @@
 //! "Several patches"): the shipped `scenes/hood-screen-wing.ron` (a G2 chain
 //! and a G1 side join) at its display depth, from the document built at
 //! that depth, as the CLI or the editor hands it to
-//! [`crate::scene::document_export::export_document`]:
+//! [`crate::scene::export::document::export_document`]:
 //!
 //! - `export/hood-screen-wing/d4/step`: the STEP shell, everything included
 //!   (the build one depth finer for the check grids, the shell's fit, the
@@ -15,10 +15,10 @@
 //! The rows are left out when the checkout's scene is missing (an installed binary).
 
 use super::workloads::Workload;
-use crate::scene::document_build::BuiltDocument;
-use crate::scene::document_export::{DocumentExportSettings, export_document};
-use crate::scene::document_fit::{FaceFit, fit_document};
-use crate::scene::{Document, document_io};
+use crate::scene::design::document_build::BuiltDocument;
+use crate::scene::export::document::{DocumentExportSettings, export_document};
+use crate::scene::fit::document::{FaceFit, fit_document};
+use crate::scene::{Document, design::document_io};
 use std::path::{Path, PathBuf};
 
 fn scene() -> Option<Document> {

@@ -15,7 +15,7 @@ fn test_mesh_path(name: &str) -> std::path::PathBuf {
 /// Test mesh `name`, read when a row is set up (rows whose mesh the
 /// checkout lacks are left out, decided before).
 fn read_test_mesh(name: &str) -> streamline_kernel::loop_subdiv::trimesh::TriMesh {
-    crate::scene::obj::read(&test_mesh_path(name))
+    crate::scene::loop_mesh::obj::read(&test_mesh_path(name))
         .expect("the checkout's test mesh reads")
         .0
 }

@@ -15,9 +15,9 @@
 //! hood) turned back and forth (`ecs/patches/hood-screen-wing/d6/edit-hood`).
 
 use super::workloads::Workload;
-use crate::scene::document::{Document, PatchScene, Start};
-use crate::scene::patch_edit::PatchEdit;
-use crate::scene::{Scene, document::MAIN_PATCH};
+use crate::scene::design::document::{Document, PatchScene, Start};
+use crate::scene::edits::patch_edit::PatchEdit;
+use crate::scene::{Scene, design::document::MAIN_PATCH};
 use streamline_kernel::joins::g2_state::G2State;
 use streamline_kernel::joins::merged::g2_run;
 use streamline_kernel::joins::{Continuity, Edge, Join};

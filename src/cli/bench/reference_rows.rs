@@ -33,7 +33,7 @@
 
 use super::workloads::Workload;
 use crate::editor::ReferenceField;
-use crate::scene::io;
+use crate::scene::design::document_io;
 use std::path::{Path, PathBuf};
 use streamline_kernel::fit::{ClosestPoints, ReferenceFitOptions, fit_reference};
 use streamline_kernel::levels::presets;
@@ -108,7 +108,7 @@ pub fn rows() -> Vec<Workload> {
         rows.push(Workload::lazy(
             format!("reference-deviation/hood/d{DEPTH}"),
             move || {
-                let scene = io::load(&hood).expect("the shipped design loads");
+                let scene = document_io::load_scene(&hood).expect("the shipped design loads");
                 let link = scene.reference.as_ref().expect("it names its face");
                 let face = face_of(&link.path);
                 let index = ClosestPoints::new(face).expect("the face samples");
@@ -169,8 +169,8 @@ fn hood_editor() -> bevy::app::App {
     use crate::editor::ReferenceMapPlugin;
     use crate::editor::interaction::InteractionPlugin;
     use bevy::prelude::*;
-    let doc =
-        crate::scene::document_io::load(&shipped("hood.ron")).expect("the shipped design loads");
+    let doc = crate::scene::design::document_io::load(&shipped("hood.ron"))
+        .expect("the shipped design loads");
     let mut app = App::new();
     app.add_plugins(MinimalPlugins)
         .init_resource::<ButtonInput<MouseButton>>()

@@ -191,12 +191,12 @@ pub fn fit_rows() -> Vec<Workload> {
 /// CAD export's fit from the display depth (docs/math.md §10): the
 /// car shown at depth 3 fitted within the default `1e-4` of its diagonal,
 /// which its depth-3 grid is too coarse for, so the fit samples deeper
-/// (`cad::fit_scene`; the depth it settles on is the row's result), every
+/// (`surface::fit_scene`; the depth it settles on is the row's result), every
 /// build included: as shipped (`export-fit/car/d3`) and after a fixed
 /// pseudo-random turn of every control tangent by up to 0.1 rad
 /// (`export-fit/car/d3/edited`).
 fn export_fit_rows() -> Vec<Workload> {
-    use crate::scene::{Scene, cad};
+    use crate::scene::{Scene, fit::surface};
     let car = presets::car1();
     let mut edited = car.clone();
     let mut seed = 0x2545_f491_4f6c_dd1du64;
@@ -225,7 +225,7 @@ fn export_fit_rows() -> Vec<Workload> {
                 name: format!("export-fit/{label}"),
                 cold: false,
                 run: Box::new(move || {
-                    let f = cad::fit_scene(&scene, 3, &Default::default()).expect("fits");
+                    let f = surface::fit_scene(&scene, 3, &Default::default()).expect("fits");
                     f.depth as f64 + f.fit.report.deviation.max
                 }),
             }

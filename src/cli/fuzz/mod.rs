@@ -13,8 +13,8 @@ use crate::cli::geometry::{
     CurveArgs, CurveName, OrderName, SurfaceArgs, SurfaceName, curve_json, integrate_json,
     surface_json,
 };
-use crate::scene::script::{Script, output_path};
-use crate::scene::{Document, Scene, obj};
+use crate::scene::edits::script::{Script, output::output_path};
+use crate::scene::{Document, Scene, loop_mesh::obj};
 use std::path::Path;
 use streamline_kernel::finetune::SurfaceTuning;
 use streamline_kernel::levels::incremental::place_rows_tuned;
@@ -184,7 +184,7 @@ pub fn script(data: &[u8]) {
     assert_eq!(twice, again, "a script changed through its own text");
     let dir = Path::new("/fuzz/scripts");
     for step in &s.steps {
-        use crate::scene::script::Step;
+        use crate::scene::edits::script::step::Step;
         if let Step::Save(p) | Step::Export(p) = step
             && let Ok(out) = output_path(dir, p)
         {

@@ -3,7 +3,7 @@
 //! * [`track_joined`] writes a joined patch's changed net handles into its
 //!   [`JoinedDesign`] (only the cells that differ; nothing when nothing does);
 //! * [`build_joined`] brings up to date, as
-//!   [`crate::scene::document_build::stacks`] builds them (`chain`, `side`,
+//!   [`crate::scene::design::document_build::stacks`] builds them (`chain`, `side`,
 //!   `g2_run`), exactly the patches whose own design changed, whose G2 run
 //!   has a changed member or whose parent was rebuilt, and the seam report
 //!   of every join with a rebuilt side. Every patch but a G2 run's members
@@ -23,10 +23,13 @@
 //! A G2 run from the first patch: the run is one merged net (docs/math.md
 //! §11.1), so the first patch's cut of it ([`PatchSurface`]) differs from
 //! its one-patch surface near the seam (an approximating scheme's, and the
-//! 4-point rule's last segments, see the merged net's next columns). The
-//! incremental pipeline's [`crate::ecs::SurfaceData`] stays the one-patch
-//! surface, unchanged; the seam report and the per-patch output read the
-//! [`PatchSurface`], which equals [`crate::scene::Document::build`]'s.
+//! 4-point rule's last segments, see the merged net's next columns). While
+//! the run is built the first patch's own incremental pipeline waits
+//! ([`super::shows_run_cut`]: the blend stage builds it afresh once the
+//! patch no longer heads a built run), so an edit of the head costs the
+//! run's update alone; the drawing, the handles, the seam report and the
+//! per-patch output read the [`PatchSurface`], which equals
+//! [`crate::scene::Document::build`]'s.
 
 use super::components::*;
 use super::first::FirstPipeline;
@@ -35,7 +38,7 @@ use super::kept::{KeptPatch, PatchWork};
 use crate::ecs::patch::{
     ArcParam, Direction, PatchIndex, PatchKernel, PatchStructure, PatchTuning, SurfaceHandle,
 };
-use crate::scene::model::{effective_design, interpolates};
+use crate::scene::design::model::{effective_design, interpolates};
 use bevy::prelude::*;
 use std::collections::HashMap;
 use streamline_kernel::finetune::SurfaceTuning;

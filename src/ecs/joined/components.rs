@@ -48,6 +48,20 @@ pub fn heads_g2_run<'a>(first: Entity, starts: impl IntoIterator<Item = &'a Patc
     })
 }
 
+/// Whether patch `first` is drawn as its G2 run's cut: it heads a run
+/// ([`heads_g2_run`]) and the run is built (`surface`, its
+/// [`PatchSurface`]). Its own one-patch pipeline then waits (the blend
+/// stage builds it afresh once it no longer heads a built run), and
+/// whatever reads its surface reads the cut: the editor's drawing and
+/// handles, a script's `Mark` and `Expect…`.
+pub fn shows_run_cut<'a>(
+    first: Entity,
+    starts: impl IntoIterator<Item = &'a PatchStart>,
+    surface: Option<&PatchSurface>,
+) -> bool {
+    heads_g2_run(first, starts) && surface.is_some_and(|s| s.stack().is_some())
+}
+
 /// A joined patch's kernel design, derived from its handles by
 /// [`super::build::track_joined`] (its only writer after spawning).
 #[derive(Component, Debug, Clone)]
@@ -132,4 +146,4 @@ pub struct PatchHidden;
 /// The initial curve (its file form) of a later patch that starts on its
 /// own curve rather than on an edge, kept to be saved as it was read.
 #[derive(Component, Debug, Clone, PartialEq)]
-pub struct PatchInitial(pub crate::scene::format::InitialSpec);
+pub struct PatchInitial(pub crate::scene::files::format::InitialSpec);

@@ -6,7 +6,6 @@
 //! ([`build`]). The first patch keeps the incremental pipeline.
 
 pub mod build;
-pub mod census;
 pub mod components;
 pub mod first;
 pub mod g2;

@@ -7,11 +7,11 @@
 //! state as it was.
 
 use crate::ecs::edit_state::{DocState, JoinedState, StartState};
-use crate::scene::document_build::stacks;
-use crate::scene::document_check::check_document;
-use crate::scene::format_v3::{EdgeSpec, patch_name_problem};
-use crate::scene::patch_edit::PatchEdit;
-use crate::scene::patch_text::PatchText;
+use crate::scene::design::document_build::stacks;
+use crate::scene::design::document_check::check_document;
+use crate::scene::edits::patch_edit::PatchEdit;
+use crate::scene::files::format_v3::{EdgeSpec, patch_name_problem};
+use crate::scene::files::patch_text::PatchText;
 use streamline_kernel::joins::edge_curve::EdgeCurve;
 use streamline_kernel::joins::{Continuity, Edge};
 use streamline_kernel::streamline::integrate::polyline_length;

@@ -7,7 +7,7 @@
 use super::components::*;
 use crate::ecs::patch::scene_io::spawn_net_handles;
 use crate::ecs::patch::{Patch, PatchIndex, PatchName};
-use crate::scene::document::Document;
+use crate::scene::design::document::Document;
 use bevy::prelude::*;
 use std::collections::BTreeMap;
 use streamline_kernel::Design;
@@ -38,7 +38,7 @@ pub fn spawn_joined(world: &mut World, doc: &Document, first: Entity) -> Vec<Ent
             interpolate_tangents: p.interpolate_tangents,
         };
         let e = spawn_joined_patch(world, &p.name, i, start, p.design.clone(), features);
-        if let crate::scene::document::Start::Curve(c) = &p.start {
+        if let crate::scene::design::document::Start::Curve(c) = &p.start {
             world.entity_mut(e).insert(PatchInitial(c.clone()));
         }
         ids.push(e);

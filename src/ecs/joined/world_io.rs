@@ -14,7 +14,7 @@ use super::components::*;
 use super::spawn::spawn_joined_with;
 use crate::ecs::edit_state::{DocState, JoinedState, StartState, same_design};
 use crate::ecs::patch::{ArcParam, Direction, InitialHandle, Patch, PatchIndex, PatchName};
-use crate::scene::document::{Document, MAIN_PATCH};
+use crate::scene::design::document::{Document, MAIN_PATCH};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 
@@ -286,7 +286,7 @@ type JoinedValues = (
     PatchStart,
     streamline_kernel::Design,
     bool,
-    Option<crate::scene::format::InitialSpec>,
+    Option<crate::scene::files::format::InitialSpec>,
     JoinedFeatures,
 );
 
@@ -317,7 +317,7 @@ fn assemble(
                         continuity,
                     },
                     _ => StartState::Curve(
-                        initial.unwrap_or_else(crate::scene::format_v3::placeholder_initial),
+                        initial.unwrap_or_else(crate::scene::files::format_v3::placeholder_initial),
                     ),
                 },
                 design,

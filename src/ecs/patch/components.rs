@@ -12,8 +12,8 @@
 //! marks changed) exactly the values that differ, and an undo restores the
 //! very bits it saved.
 
-use crate::scene::format::ViewSpec;
-use crate::scene::reference_link::ReferenceLink;
+use crate::scene::files::format::ViewSpec;
+use crate::scene::files::reference_link::ReferenceLink;
 use bevy::prelude::*;
 use std::collections::BTreeMap;
 use streamline_kernel::finetune::SurfaceTuning;

@@ -5,9 +5,8 @@
 //! The handles' components are the design at run time; the scene is
 //! assembled from them ([`scene`]) and written back into them
 //! ([`scene_io`]); [`track`] turns their changes into the work of the
-//! blend stage; [`census`] counts the entities.
+//! blend stage; [`crate::ecs::census`] counts the entities.
 
-pub mod census;
 pub mod components;
 pub(crate) mod dirty;
 mod read;

@@ -2,8 +2,8 @@
 
 use super::components::*;
 use crate::scene::Scene;
-use crate::scene::format::ViewSpec;
-use crate::scene::reference_link::ReferenceLink;
+use crate::scene::files::format::ViewSpec;
+use crate::scene::files::reference_link::ReferenceLink;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use streamline_kernel::Design;

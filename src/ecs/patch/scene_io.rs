@@ -9,7 +9,7 @@
 use super::components::*;
 use super::dirty::Dirty;
 use crate::scene::Scene;
-use crate::scene::format::{Dir, Finite, InitialSpec, Point};
+use crate::scene::files::format::{Dir, Finite, InitialSpec, Point};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use std::collections::BTreeMap;

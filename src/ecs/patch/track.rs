@@ -115,7 +115,7 @@ pub(crate) fn track_handles(
         dirty.replace_streamlines();
     }
     if !cells.is_empty()
-        && crate::scene::model::interpolates(&kernel.design, st.interpolate_tangents)
+        && crate::scene::design::model::interpolates(&kernel.design, st.interpolate_tangents)
     {
         // interpolated control tangents depend on the whole net
         dirty.rebuild();

@@ -5,8 +5,8 @@
 
 use super::seam::Outcome;
 use crate::ecs::resources::*;
-use crate::scene::format::{Finite, OrderSpec, Point, SchemeSpec};
-use crate::scene::script::Expect;
+use crate::scene::edits::script::expect::Expect;
+use crate::scene::files::format::{Finite, OrderSpec, Point, SchemeSpec};
 use bevy::prelude::*;
 use std::collections::HashMap;
 use std::fmt::{Debug, Display};
@@ -21,6 +21,19 @@ struct Now<'w> {
     scene: crate::scene::Scene,
     stats: &'w Stats,
     history: &'w History,
+}
+
+/// The first patch's points as drawn when it shows its G2 run's cut
+/// ([`crate::ecs::joined::shows_run_cut`]); `None` when it shows its own
+/// surface.
+fn drawn_points(w: &World) -> Option<&Grid<DVec3>> {
+    use crate::ecs::joined::{PatchStart, PatchSurface, shows_run_cut};
+    let first = crate::ecs::patch::patch_entity(w)?;
+    let surface = w.get::<PatchSurface>(first);
+    let mut starts = w.try_query::<&PatchStart>()?;
+    shows_run_cut(first, starts.iter(w), surface)
+        .then(|| surface?.stack().map(|s| s.finest_points()))
+        .flatten()
 }
 
 /// Checks `x` against `app`: `Ok` with what was measured, `Err` with what is
@@ -39,7 +52,9 @@ pub(super) fn check(
         stats: w.resource::<Stats>(),
         history: w.resource::<History>(),
     };
-    let points = &now.surface.points;
+    // the first patch's drawn points: its G2 run's cut when it heads a
+    // built run (its own pipeline then waits), else its own surface
+    let points = drawn_points(w).unwrap_or(&now.surface.points);
     match x {
         Expect::ExpectPoint {
             row,
@@ -425,7 +440,7 @@ fn mirror_symmetric(now: &Now, tolerance: &Finite) -> Result<String, String> {
 
 /// `ExpectReferenceDeviation`: the first patch's streamline points at the
 /// display depth (the own half when mirrored) measured against the face the
-/// design's reference names ([`crate::scene::reference_fit::measure`],
+/// design's reference names ([`crate::scene::fit::reference::measure`],
 /// docs/math.md §12): the largest distance at most `max`, and above `min`
 /// when it is given. A design without a reference, or a reference file that
 /// cannot be read, is the step's error (`Err`, which `ExpectError` can
@@ -440,8 +455,8 @@ pub(super) fn reference_deviation(
     let link = scene.reference.as_ref().ok_or(
         "the design has no reference to measure against; fit it to a face with a `Fit` step first, or open a scene whose `reference` names one (docs/scenes.md)",
     )?;
-    let points = &w.resource::<SurfaceData>().points;
-    let d = crate::scene::reference_fit::measure(link, points, scene.mirror)?;
+    let points = drawn_points(w).unwrap_or(&w.resource::<SurfaceData>().points);
+    let d = crate::scene::fit::reference::measure(link, points, scene.mirror)?;
     let named = format!("{} face {}", link.path.display(), link.face);
     let held = within(d.max, max, "largest distance", |m| {
         format!("the design is up to {m} from {named} (mean {:.3e})", d.mean)

@@ -6,9 +6,9 @@
 //! short of that is the step's error, and the current design stays.
 
 use crate::ecs::messages::Edit;
-use crate::scene::reference_fit::fit_file;
-use crate::scene::reference_link::{ReferenceLink, normalised};
-use crate::scene::script::FitStep;
+use crate::scene::edits::script::fit_step::FitStep;
+use crate::scene::files::reference_link::{ReferenceLink, normalised};
+use crate::scene::fit::reference::fit_file;
 use std::path::Path;
 
 /// The edit of a `Fit` step run from the script folder `dir`, and what its

@@ -14,8 +14,8 @@ use super::messages::Edit;
 use super::resources::*;
 use super::warnings::BuildWarnings;
 use super::{headless_app, send};
-use crate::scene::script::{Expect, Script, Step};
-use crate::scene::{Scene, builtin};
+use crate::scene::edits::script::{Script, expect::Expect, step::Step};
+use crate::scene::{Scene, design::builtin};
 use bevy::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -172,10 +172,10 @@ fn resolve(dir: &Path, p: &str) -> PathBuf {
 }
 
 /// An output path of a script, its folder created: inside the script's
-/// folder, links resolved ([`crate::scene::script::output_path`], [`crate::scene::script::confine`]).
+/// folder, links resolved ([`crate::scene::edits::script::output::output_path`], [`crate::scene::edits::script::output::confine`]).
 fn output(dir: &Path, p: &str) -> Result<PathBuf, String> {
-    let path = crate::scene::script::output_path(dir, p)?;
-    crate::scene::script::confine(dir, &path)?;
+    let path = crate::scene::edits::script::output::output_path(dir, p)?;
+    crate::scene::edits::script::output::confine(dir, &path)?;
     Ok(path)
 }
 

@@ -4,8 +4,8 @@
 
 use crate::ecs::joined::{PatchSlot, PatchStart, SeamState};
 use crate::ecs::patch::patch_entity;
-use crate::scene::document::MAIN_PATCH;
-use crate::scene::script::Expect;
+use crate::scene::design::document::MAIN_PATCH;
+use crate::scene::edits::script::expect::Expect;
 use bevy::prelude::*;
 
 /// The patches by name, in the document's order (the first patch is `main`

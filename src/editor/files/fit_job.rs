@@ -6,8 +6,8 @@
 //! and face as its `reference`, with the kernel's figures; or why not.
 
 use crate::scene::Scene;
-use crate::scene::reference_fit::{fitted_name, fitted_scene};
-use crate::scene::reference_link::ReferenceLink;
+use crate::scene::files::reference_link::ReferenceLink;
+use crate::scene::fit::reference::{fitted_name, fitted_scene};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::thread::JoinHandle;

@@ -1,58 +1,23 @@
-//! Files: new, open, save, save as, export OBJ/STL, recent files, the
-//! unsaved-changes prompt (before new, open and quit), and a dialog for edits
-//! that failed (a failed open keeps the current scene: the model refuses it).
-//! Files are picked in the editor's own file browser (`file_browser.rs`: no
-//! native file dialog, which would need GTK or a desktop portal on Linux);
-//! this file asks it for one with [`browse`].
+//! Files: new, open, save, save as, export OBJ/STL and recent files, with
+//! the unsaved-changes question before new, open and quit (the dialogs,
+//! with their own plugin, are `dialogs.rs`; a failed open keeps the current scene: the model refuses
+//! it). Files are picked in the editor's own file browser (`file_browser.rs`:
+//! no native file dialog, which would need GTK or a desktop portal on
+//! Linux); this file asks it for one with [`browse`] (what for:
+//! `path_action.rs`). Where the editor keeps its own files, the recent list
+//! among them, is `editor_dirs.rs`.
 
 use crate::ecs::patch::PatchRef;
 use crate::ecs::{Edit, EditLog, EditMessage, Model};
-use crate::scene::builtin;
-use crate::scene::export::Format;
+use crate::scene::design::builtin;
 use bevy::prelude::*;
 use bevy::window::WindowCloseRequested;
 use bevy_egui::input::egui_wants_any_keyboard_input;
-use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
 use std::path::{Path, PathBuf};
 
-/// Where the editor keeps its own files: `recent.json` and the recovery file.
-#[derive(Resource, Debug, Clone)]
-pub struct EditorDirs {
-    /// The folder.
-    pub home: PathBuf,
-}
-
-impl EditorDirs {
-    /// `$STREAMLINE_STUDIO_HOME`, else `$XDG_STATE_HOME/streamline-studio`,
-    /// else `~/.local/state/streamline-studio`, else a folder in the temp dir.
-    pub fn from_env() -> Self {
-        let env = |k: &str| {
-            std::env::var_os(k)
-                .filter(|v| !v.is_empty())
-                .map(PathBuf::from)
-        };
-        let home = env("STREAMLINE_STUDIO_HOME")
-            .or_else(|| env("XDG_STATE_HOME").map(|p| p.join("streamline-studio")))
-            .or_else(|| env("HOME").map(|p| p.join(".local/state/streamline-studio")))
-            .unwrap_or_else(|| std::env::temp_dir().join("streamline-studio"));
-        EditorDirs { home }
-    }
-
-    /// The recent-files list.
-    pub fn recent_file(&self) -> PathBuf {
-        self.home.join("recent.json")
-    }
-
-    /// The recovery scene written by autosave.
-    pub fn recovery_file(&self) -> PathBuf {
-        self.home.join("recovery.ron")
-    }
-
-    /// Where the recovery scene came from (its path, if it had one).
-    pub fn recovery_meta(&self) -> PathBuf {
-        self.home.join("recovery.json")
-    }
-}
+pub use super::editor_dirs::{EditorDirs, RECENT_MAX};
+use super::editor_dirs::{read_recent, save_recent};
+pub use super::path_action::PathAction;
 
 /// What waits for the unsaved-changes answer.
 #[derive(Debug, Clone, PartialEq)]
@@ -65,92 +30,6 @@ pub enum Pending {
     Open(PathBuf),
     /// Quit the editor.
     Quit,
-}
-
-/// What a file is picked for (in the file browser, `file_browser.rs`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PathAction {
-    /// Open a scene.
-    Open,
-    /// Save the scene under a new name.
-    SaveAs,
-    /// Export the surface (`Edit::Export`; the extension picks the format).
-    Export(Format),
-    /// Play a script's edits into the scene.
-    RunScript,
-    /// Open a triangle mesh in the Loop mesh panel.
-    OpenMesh,
-    /// Write the Loop mesh panel's surface (OBJ).
-    ExportMeshSurface,
-    /// Write the Loop mesh panel's control mesh (OBJ).
-    ExportMeshControl,
-    /// Write the Loop mesh panel's control mesh as USD.
-    ExportMeshUsd,
-    /// Fit a design to a face of a STEP or IGES file or an OBJ grid of
-    /// points (File ▸ Import surface…).
-    ImportSurface,
-    /// Attach a reference to the design without fitting (File ▸
-    /// Reference…, `reference.rs`).
-    AttachReference,
-}
-
-impl PathAction {
-    /// The browser's title.
-    pub fn title(self) -> String {
-        match self {
-            PathAction::Open => "Open scene".into(),
-            PathAction::SaveAs => "Save scene as".into(),
-            PathAction::Export(f) => format!("Export {}", f.name()),
-            PathAction::RunScript => "Run script".into(),
-            PathAction::OpenMesh => "Open a triangle mesh (Loop mesh)".into(),
-            PathAction::ExportMeshSurface => "Export the Loop surface (OBJ)".into(),
-            PathAction::ExportMeshControl => "Export the Loop control mesh (OBJ)".into(),
-            PathAction::ExportMeshUsd => "Export the Loop control mesh (USD)".into(),
-            PathAction::ImportSurface => "Import a surface (STEP, IGES or a grid of points)".into(),
-            PathAction::AttachReference => {
-                "Reference (STEP, IGES or a grid of points), to compare the design with".into()
-            }
-        }
-    }
-
-    /// The file filter's name and the extensions it shows (the first one is
-    /// what a save adds).
-    pub fn filter(self) -> (&'static str, &'static [&'static str]) {
-        match self {
-            PathAction::Open | PathAction::SaveAs | PathAction::RunScript => {
-                ("RON files (.ron)", &["ron"])
-            }
-            PathAction::Export(Format::Obj)
-            | PathAction::OpenMesh
-            | PathAction::ExportMeshSurface
-            | PathAction::ExportMeshControl => ("OBJ meshes (.obj)", &["obj"]),
-            PathAction::Export(Format::Stl) => ("STL meshes (.stl)", &["stl"]),
-            PathAction::Export(Format::Glb) => ("binary glTF (.glb)", &["glb"]),
-            PathAction::Export(Format::Step) => ("STEP (.step, .stp)", &["step", "stp"]),
-            PathAction::Export(Format::Iges) => ("IGES (.igs, .iges)", &["igs", "iges"]),
-            PathAction::ExportMeshUsd => ("USD text (.usda)", &["usda"]),
-            PathAction::ImportSurface => (
-                "Surfaces (.step, .stp, .p21, .igs, .iges, .obj)",
-                &["step", "stp", "p21", "igs", "iges", "obj"],
-            ),
-            PathAction::AttachReference => (
-                "Surfaces and meshes (.step, .stp, .p21, .igs, .iges, .obj, .stl)",
-                &["step", "stp", "p21", "igs", "iges", "obj", "stl"],
-            ),
-        }
-    }
-
-    /// Whether it picks an existing file (else it names one to write).
-    pub fn opens(self) -> bool {
-        matches!(
-            self,
-            PathAction::Open
-                | PathAction::RunScript
-                | PathAction::OpenMesh
-                | PathAction::ImportSurface
-                | PathAction::AttachReference
-        )
-    }
 }
 
 /// A request for the file browser.
@@ -193,7 +72,7 @@ pub struct FileUi {
     /// Recently opened or saved files, newest first.
     pub recent: Vec<PathBuf>,
     /// To do once the save in flight has succeeded.
-    after_save: Option<Pending>,
+    pub(super) after_save: Option<Pending>,
     /// The user chose to discard changes on quit (no recovery file then).
     pub discarded: bool,
     /// The last edit-log frame looked at.
@@ -202,8 +81,10 @@ pub struct FileUi {
     seen_path: Option<PathBuf>,
 }
 
-/// The most recent files kept.
-pub const RECENT_MAX: usize = 8;
+/// Reads the recent-files list at the start.
+fn load_recent(dirs: Res<EditorDirs>, mut ui: ResMut<FileUi>) {
+    ui.recent = read_recent(&dirs);
+}
 
 pub struct FilesPlugin;
 
@@ -219,24 +100,7 @@ impl Plugin for FilesPlugin {
                     watch_outcomes,
                     continue_after_save,
                 ),
-            )
-            .add_systems(EguiPrimaryContextPass, dialogs);
-    }
-}
-
-fn load_recent(dirs: Res<EditorDirs>, mut ui: ResMut<FileUi>) {
-    ui.recent = std::fs::read_to_string(dirs.recent_file())
-        .ok()
-        .and_then(|t| serde_json::from_str::<Vec<PathBuf>>(&t).ok())
-        .unwrap_or_default();
-    ui.recent.truncate(RECENT_MAX);
-}
-
-fn save_recent(dirs: &EditorDirs, recent: &[PathBuf]) {
-    let _ = std::fs::create_dir_all(&dirs.home);
-    if let Ok(text) = serde_json::to_string_pretty(recent) {
-        // a lost recent list is no loss of work; still written atomically
-        let _ = crate::scene::io::write_atomic(&dirs.recent_file(), text.as_bytes(), |_| Ok(()));
+            );
     }
 }
 
@@ -262,7 +126,7 @@ pub fn request(
     }
 }
 
-fn run_pending(
+pub(super) fn run_pending(
     p: Pending,
     ui: &mut FileUi,
     edits: &mut MessageWriter<EditMessage>,
@@ -465,141 +329,5 @@ fn continue_after_save(
         && let Some(p) = ui.after_save.take()
     {
         run_pending(p, &mut ui, &mut edits, &mut exit);
-    }
-}
-
-fn dialogs(
-    meter: Res<crate::ecs::meter::CpuMeter>,
-    mut contexts: EguiContexts,
-    (model, patch): (Res<Model>, PatchRef),
-    dirs: Res<EditorDirs>,
-    mut ui: ResMut<FileUi>,
-    mut edits: MessageWriter<EditMessage>,
-    mut exit: MessageWriter<AppExit>,
-) -> Result {
-    let _meter = meter.start();
-    let ctx = contexts.ctx_mut()?.clone();
-    if !ui.errors.is_empty() {
-        let mut open = true;
-        egui::Window::new("Something went wrong")
-            .collapsible(false)
-            .anchor(egui::Align2::CENTER_TOP, egui::vec2(0.0, 40.0))
-            .open(&mut open)
-            .show(&ctx, |w| {
-                for e in &ui.errors {
-                    w.colored_label(egui::Color32::from_rgb(255, 170, 160), e);
-                }
-                w.label(egui::RichText::new("The current scene is unchanged.").weak());
-                if w.button("OK").on_hover_text("Close this message").clicked() {
-                    ui.errors.clear();
-                }
-            });
-        if !open {
-            ui.errors.clear();
-        }
-    }
-    let Some(dialog) = ui.dialog.clone() else {
-        return Ok(());
-    };
-    let mut close = false;
-    let modal =
-        egui::Modal::new(egui::Id::new("file_dialog")).show(&ctx, |m| match dialog.clone() {
-            Dialog::Unsaved(p) => {
-                m.heading("Unsaved changes");
-                m.label(format!(
-                    "“{}” has changes that are not saved. Save them first?",
-                    patch.name()
-                ));
-                m.horizontal(|h| {
-                    if h.button("Save").on_hover_text("Save, then go on").clicked() {
-                        match &model.path {
-                            Some(path) => {
-                                edits.write(EditMessage::from(Edit::Save(path.clone())));
-                                ui.after_save = Some(p.clone());
-                                close = true;
-                            }
-                            None => {
-                                browse(
-                                    &mut ui,
-                                    PathAction::SaveAs,
-                                    suggested_path(&model, patch.name(), "ron"),
-                                    Some(p.clone()),
-                                );
-                                close = true;
-                            }
-                        }
-                    }
-                    if h.button("Discard")
-                        .on_hover_text("Lose the changes and go on")
-                        .clicked()
-                    {
-                        close = true;
-                        if p == Pending::Quit {
-                            ui.discarded = true;
-                            let _ = std::fs::remove_file(dirs.recovery_file());
-                        }
-                        run_pending(p.clone(), &mut ui, &mut edits, &mut exit);
-                    }
-                    if h.button("Cancel").on_hover_text("Keep editing").clicked() {
-                        close = true;
-                    }
-                });
-            }
-            Dialog::Recover { when, origin } => {
-                m.heading("Recover unsaved work?");
-                m.label(format!(
-                    "An autosave from {when} of {} is newer than the scene.",
-                    origin
-                        .as_ref()
-                        .map(|p| p.display().to_string())
-                        .unwrap_or_else(|| "an unsaved scene".into())
-                ));
-                m.horizontal(|h| {
-                    if h.button("Recover")
-                        .on_hover_text("Open the autosaved scene")
-                        .clicked()
-                    {
-                        recover(&dirs, origin.clone(), &mut edits, &mut ui);
-                        close = true;
-                    }
-                    if h.button("Discard")
-                        .on_hover_text("Delete the autosave and keep the scene")
-                        .clicked()
-                    {
-                        let _ = std::fs::remove_file(dirs.recovery_file());
-                        let _ = std::fs::remove_file(dirs.recovery_meta());
-                        close = true;
-                    }
-                });
-            }
-        });
-    // a branch that moved on to another dialog keeps that one
-    if close {
-        if ui.dialog.as_ref() == Some(&dialog) {
-            ui.dialog = None;
-        }
-    } else if modal.should_close() {
-        ui.dialog = None;
-    }
-    Ok(())
-}
-
-/// Opens the recovery file (every patch) as the current (unsaved) design.
-pub fn recover(
-    dirs: &EditorDirs,
-    origin: Option<PathBuf>,
-    edits: &mut MessageWriter<EditMessage>,
-    ui: &mut FileUi,
-) {
-    match crate::scene::document_io::load(&dirs.recovery_file()) {
-        Ok(document) => {
-            edits.write(EditMessage::from(Edit::Recover {
-                document: Box::new(document),
-                origin,
-            }));
-        }
-        Err(e) => ui
-            .errors
-            .push(format!("the autosave cannot be recovered: {e}")),
     }
 }

@@ -10,9 +10,10 @@
 
 use super::super::interaction::EditorSet;
 use super::super::surface::reference_ghost::{GhostBuild, GhostPreview};
-use super::import::{FaceRow, ImportForm, face_grid};
+use super::face_list::{FaceRow, face_grid, file_head, file_window, read_faces};
+use super::import::ImportForm;
 use crate::ecs::{Edit, EditMessage};
-use crate::scene::reference_link::ReferenceLink;
+use crate::scene::files::reference_link::ReferenceLink;
 use bevy::prelude::*;
 use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
 use std::path::PathBuf;
@@ -41,18 +42,7 @@ impl ReferenceForm {
     /// can be drawn chosen; or, when it cannot be read, why.
     pub fn read(&mut self, path: PathBuf) {
         self.open = true;
-        self.faces.clear();
-        self.face = None;
-        self.file = None;
-        match streamline_reference::read(&path) {
-            Ok(file) => {
-                self.error = None;
-                self.faces = faces_of(&file);
-                self.face = self.faces.iter().position(|f| f.refused.is_none());
-                self.file = Some(Arc::new(file));
-            }
-            Err(e) => self.error = Some(e.to_string()),
-        }
+        (self.file, self.faces, self.face, self.error) = read_faces(&path, true);
         self.path = Some(path);
     }
 
@@ -77,23 +67,6 @@ impl ReferenceForm {
     pub fn attach(&self) -> Option<Edit> {
         self.link().map(|l| Edit::SetReference(Some(l)))
     }
-}
-
-/// The faces of `file` as the dialogs list them: a face that is not a
-/// B-spline surface is refused with the reader's reason.
-pub(super) fn faces_of(file: &ReferenceFile) -> Vec<FaceRow> {
-    file.faces
-        .iter()
-        .enumerate()
-        .map(|(i, f)| FaceRow {
-            info: f.info.clone(),
-            // a triangle mesh is measured against, not fitted: attachable
-            refused: match file.mesh(i) {
-                Ok(Some(_)) => None,
-                _ => file.surface(i).err().map(|e| e.to_string()),
-            },
-        })
-        .collect()
 }
 
 fn problem_with(form: &ReferenceForm, face: Option<usize>) -> Option<String> {
@@ -170,76 +143,56 @@ fn dialog(
     let mut face = form.face;
     let (mut attach, mut detach, mut close) = (false, false, false);
     let mut open = true;
-    egui::Window::new("Reference")
-        .id(egui::Id::new("attach_reference"))
-        .collapsible(false)
-        .resizable(false)
-        .open(&mut open)
-        .anchor(egui::Align2::CENTER_TOP, [0.0, 36.0])
-        .show(ctx, |ui| {
-            ui.label(
-                egui::RichText::new(
-                    "A face to compare the design with (View, Reference; the deviation map); \
+    let anchor = (egui::Align2::CENTER_TOP, [0.0, 36.0]);
+    file_window("Reference", "attach_reference", &mut open, anchor).show(ctx, |ui| {
+        ui.label(
+            egui::RichText::new(
+                "A face to compare the design with (View, Reference; the deviation map); \
                      the design is not fitted to it.",
-                )
-                .weak(),
-            );
-            match &current {
-                Some(l) => ui.label(format!(
-                    "Now: {}, face {}",
-                    l.path.file_name().map_or_else(
-                        || l.path.display().to_string(),
-                        |n| n.to_string_lossy().into()
-                    ),
-                    l.face
-                )),
-                None => ui.label("Now: no reference"),
-            };
-            ui.separator();
-            if let Some(p) = &form.path {
-                let name = p
-                    .file_name()
-                    .map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into());
-                ui.label(egui::RichText::new(name).strong())
-                    .on_hover_text(p.display().to_string());
-            }
-            if let Some(e) = &form.error {
-                ui.colored_label(egui::Color32::LIGHT_RED, e);
-                ui.label(egui::RichText::new("The reference is unchanged.").weak());
-            } else {
-                if let Some(file) = &form.file {
-                    ui.label(format!(
-                        "{} face{}, lengths in {} (shown in metres)",
-                        form.faces.len(),
-                        if form.faces.len() == 1 { "" } else { "s" },
-                        file.unit
-                    ));
-                }
-                face_grid(ui, &form.faces, &mut face, true);
-            }
-            ui.separator();
-            let problem = problem_with(&form, face);
-            ui.horizontal(|ui| {
-                attach = ui
-                    .add_enabled(problem.is_none(), egui::Button::new("Attach"))
-                    .on_hover_text(
-                        "Keep this face as the design's reference (saved with it, relative to \
+            )
+            .weak(),
+        );
+        match &current {
+            Some(l) => ui.label(format!(
+                "Now: {}, face {}",
+                l.path.file_name().map_or_else(
+                    || l.path.display().to_string(),
+                    |n| n.to_string_lossy().into()
+                ),
+                l.face
+            )),
+            None => ui.label("Now: no reference"),
+        };
+        ui.separator();
+        let unchanged = "The reference is unchanged.";
+        let (path, file) = (form.path.as_deref(), form.file.as_deref());
+        let faces = form.faces.len();
+        if file_head(ui, path, file, faces, form.error.as_deref(), unchanged) {
+            face_grid(ui, &form.faces, &mut face, true);
+        }
+        ui.separator();
+        let problem = problem_with(&form, face);
+        ui.horizontal(|ui| {
+            attach = ui
+                .add_enabled(problem.is_none(), egui::Button::new("Attach"))
+                .on_hover_text(
+                    "Keep this face as the design's reference (saved with it, relative to \
                          the scene file); one undo step",
-                    )
-                    .on_disabled_hover_text(problem.clone().unwrap_or_default())
+                )
+                .on_disabled_hover_text(problem.clone().unwrap_or_default())
+                .clicked();
+            if current.is_some() {
+                detach = ui
+                    .button("Detach reference")
+                    .on_hover_text("The design keeps no reference; one undo step")
                     .clicked();
-                if current.is_some() {
-                    detach = ui
-                        .button("Detach reference")
-                        .on_hover_text("The design keeps no reference; one undo step")
-                        .clicked();
-                }
-                close = ui.button("Close").clicked();
-            });
-            if let (Some(p), None) = (problem, &form.error) {
-                ui.label(egui::RichText::new(p).color(egui::Color32::LIGHT_RED));
             }
+            close = ui.button("Close").clicked();
         });
+        if let (Some(p), None) = (problem, &form.error) {
+            ui.label(egui::RichText::new(p).color(egui::Color32::LIGHT_RED));
+        }
+    });
     if face != form.face {
         form.face = face;
     }

@@ -4,7 +4,7 @@
 //! plugin moves the orbit; everything else only reads it.
 
 use super::super::coords::to_view;
-use crate::scene::format::ViewSpec;
+use crate::scene::files::format::ViewSpec;
 use bevy::prelude::*;
 use streamline_kernel::DVec3;
 

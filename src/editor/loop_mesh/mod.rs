@@ -9,7 +9,7 @@
 
 use super::interaction::EditorMode;
 use crate::scene::job::{Job, Poll, Progress};
-use crate::scene::obj;
+use crate::scene::loop_mesh::obj;
 use bevy::prelude::*;
 use bevy_state::prelude::{OnEnter, OnExit};
 use std::path::PathBuf;
@@ -200,7 +200,7 @@ impl MeshView {
     /// was interpolated for; refused for 002's rule, which USD cannot say).
     pub fn export_usd(&mut self, to: PathBuf) {
         let result = match &self.doc.given {
-            Some(g) => crate::scene::usd::write(
+            Some(g) => crate::scene::loop_mesh::usd::write(
                 &to,
                 &self.doc.control,
                 &g.0.faces,

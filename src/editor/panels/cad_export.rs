@@ -7,7 +7,7 @@
 use super::PanelCtx;
 use crate::ecs::Edit;
 use crate::editor::files::open_save::{self, FileUi, PathAction};
-use crate::scene::export::Format;
+use crate::scene::export::format::Format;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::egui;

@@ -8,16 +8,49 @@
 
 use super::PanelCtx;
 use crate::ecs::components::{LevelData, SubdivisionLevel};
+use crate::ecs::joined::{ActivePatch, PatchStart, PatchSurface, shows_run_cut};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::egui;
 use egui_plot::{Line, Plot, PlotPoints, Points};
+use streamline_kernel::DVec3;
 use streamline_kernel::aesthetic::{LogCurvatureGraph, curvature_profile, log_curvature_graph};
 
-/// The levels the plots read.
+/// The levels the plots read: the first patch's pipeline, or the active
+/// patch's built stack (a joined patch's, or the first patch's cut of the
+/// G2 run it heads, which is what is drawn).
 #[derive(SystemParam)]
 pub struct CurvatureSection<'w, 's> {
     levels: Query<'w, 's, (&'static SubdivisionLevel, &'static LevelData)>,
+    active: Res<'w, ActivePatch>,
+    surfaces: Query<'w, 's, &'static PatchSurface>,
+    starts: Query<'w, 's, &'static PatchStart>,
+}
+
+impl CurvatureSection<'_, '_> {
+    /// Of the active patch (`first` when none is), the number of rows at
+    /// depth `edit` and row `row`'s tangents and `s` at depth `depth`
+    /// (`row` given the rows at `edit` and at `depth`, [`display_row`]).
+    fn row(
+        &self,
+        first: Entity,
+        (edit, depth): (u32, u32),
+        row: usize,
+    ) -> Option<(usize, &[DVec3], &[f64])> {
+        let of = self.active.0.unwrap_or(first);
+        let surface = self.surfaces.get(of).ok();
+        if of == first && !shows_run_cut(first, self.starts.iter(), surface) {
+            let level = |d: u32| self.levels.iter().find(|(l, _)| l.0 == d).map(|(_, d)| d);
+            let (e, d) = (level(edit)?, level(depth)?);
+            let row = display_row(row, e.0.shape().0, d.0.shape().0);
+            let (t, s) = d.row(row);
+            return Some((row, t, s));
+        }
+        let levels = &surface?.stack()?.levels;
+        let (e, d) = (levels.get(edit as usize)?, levels.get(depth as usize)?);
+        let row = display_row(row, e.tangents.rows(), d.tangents.rows());
+        Some((row, d.tangents.row(row), d.params.s.row(row)))
+    }
 }
 
 /// The streamline of the display depth that corresponds to row `row` of the
@@ -38,16 +71,13 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, c: &CurvatureSection) {
         );
         return;
     };
-    let level = |d: u32| c.levels.iter().find(|(l, _)| l.0 == d).map(|(_, d)| d);
     let (edit, depth) = (
         p.patch.structure().edit_depth,
         p.patch.structure().display_depth,
     );
-    let (Some(e), Some(d)) = (level(edit), level(depth)) else {
+    let Some((row, tangents, s)) = c.row(p.patch.entity(), (edit, depth), h.row) else {
         return;
     };
-    let row = display_row(h.row, e.0.shape().0, d.0.shape().0);
-    let (tangents, s) = d.row(row);
     let profile = curvature_profile(tangents, s);
     ui.label(format!(
         "streamline {row} of depth {depth} ({} samples)",

@@ -9,8 +9,8 @@ use crate::ecs::Edit;
 use crate::editor::files::open_save::{self, PathAction, Pending};
 use crate::editor::handles::structure::{self, StructureAction};
 use crate::editor::surface::analysis_display::SurfaceMode;
-use crate::scene::builtin;
-use crate::scene::export::Format;
+use crate::scene::design::builtin;
+use crate::scene::export::format::Format;
 use bevy::prelude::*;
 use bevy_egui::egui;
 

@@ -6,9 +6,9 @@
 //! ([`PatchAction::edit`]). Pure: no ECS query, no egui.
 
 use crate::ecs::Edit;
-use crate::scene::format::Finite;
-use crate::scene::format_v3::{ContinuitySpec, EdgeSpec};
-use crate::scene::patch_edit::PatchEdit;
+use crate::scene::edits::patch_edit::PatchEdit;
+use crate::scene::files::format::Finite;
+use crate::scene::files::format_v3::{ContinuitySpec, EdgeSpec};
 use bevy::prelude::Entity;
 use streamline_kernel::joins::{Continuity, Edge};
 

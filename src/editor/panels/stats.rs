@@ -13,7 +13,7 @@ use bevy_egui::egui;
 pub struct StatsSection<'w, 's> {
     pub stats: Res<'w, Stats>,
     /// The world's entities, counted by queries (the census of `build --json`).
-    pub census: crate::ecs::joined::census::CensusQuery<'w, 's>,
+    pub census: crate::ecs::census::CensusQuery<'w, 's>,
     pub timing: Res<'w, FrameTiming>,
     pub warnings: Res<'w, BuildWarnings>,
 }

@@ -1,9 +1,8 @@
 //! A document's several patches in the 3D view (docs/math.md §11;
 //! docs/editor.md, "Several patches"): each join's seam drawn along its
 //! shared edge with its continuity label (`G0`/`G1`/`G2`) in a colour that
-//! says whether the seam's measured figures meet it ([`verdict`]); the
-//! other patches' streamlines, as the overlay draws the first patch's
-//! ([`streamlines`]); and choosing a patch by clicking its surface
+//! says whether the seam's measured figures meet it ([`verdict`]); and
+//! choosing a patch by clicking its surface
 //! ([`pick`]), or starting a new patch by right-clicking its boundary
 //! ([`boundary`]). What the seams are is collected once a frame into [`Seams`],
 //! which the Analysis section's seam table and the screenshot report read.
@@ -12,7 +11,6 @@
 pub mod boundary;
 pub mod draw;
 pub mod pick;
-pub mod streamlines;
 pub mod verdict;
 
 use super::interaction::{EditorSet, SceneBounds};
@@ -74,7 +72,6 @@ impl Plugin for SeamsPlugin {
             .add_plugins((
                 draw::SeamDrawPlugin,
                 boundary::BoundaryPlugin,
-                streamlines::PatchStreamlinesPlugin,
                 pick::PatchPickPlugin,
             ));
     }

@@ -17,7 +17,7 @@ use super::super::surface::patches::{PatchMeshes, PickedPatches};
 use crate::ecs::SurfaceData;
 use crate::ecs::joined::ActivePatch;
 use crate::ecs::{Edit, EditMessage};
-use crate::scene::patch_edit::PatchEdit;
+use crate::scene::edits::patch_edit::PatchEdit;
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use bevy_state::prelude::in_state;

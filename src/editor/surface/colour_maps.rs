@@ -1,7 +1,7 @@
 //! The analysis maps' colours and coordinates, pure: the textures' ramps
 //! (curvature, zebra stripes, distance to the reference; the deviation
 //! map's bands are [`BANDS`]) and the `u` coordinate of each vertex that
-//! picks a colour (docs/math.md §10).
+//! picks a colour (docs/math.md §4).
 
 use super::deviation::BANDS;
 use bevy::asset::RenderAssetUsages;

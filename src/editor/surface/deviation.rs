@@ -12,9 +12,9 @@
 //! button is held (the drag has ended).
 
 use crate::scene::Scene;
-use crate::scene::cad;
-use crate::scene::document::Document;
-use crate::scene::document_deviation::document_deviation;
+use crate::scene::design::document::Document;
+use crate::scene::fit::deviation::document_deviation;
+use crate::scene::fit::surface;
 use bevy::prelude::*;
 use std::collections::HashMap;
 use streamline_kernel::nurbs::FitOptions;
@@ -155,7 +155,8 @@ impl DeviationField {
                 let n = self.faces.len().max(1) as f64;
                 self.mean = self.faces.iter().map(|f| f.mean).sum::<f64>() / n;
                 if alone
-                    && let (Some(&e), Ok((f, field))) = (ids.first(), cad::fit_shown(first, opts))
+                    && let (Some(&e), Ok((f, field))) =
+                        (ids.first(), surface::fit_shown(first, opts))
                 {
                     let r = &f.fit.report;
                     self.tolerance = r.tolerance;
@@ -188,7 +189,7 @@ impl DeviationField {
     fn refit_one(&mut self, scene: &Scene, e: Entity, opts: &FitOptions) {
         self.begin();
         let t0 = std::time::Instant::now();
-        let result = cad::fit_shown(scene, opts);
+        let result = surface::fit_shown(scene, opts);
         self.seconds = t0.elapsed().as_secs_f64();
         match result {
             Ok((f, field)) => {
@@ -235,7 +236,7 @@ pub const BANDS: [[u8; 3]; 3] = [[40, 170, 70], [235, 200, 40], [210, 45, 40]];
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::document_io::load;
+    use crate::scene::design::document_io::load;
     use std::path::Path;
     use streamline_kernel::nurbs::Tolerance;
 
@@ -246,7 +247,7 @@ mod tests {
 
     /// The points of the first patch as shown (what the editor's surface has).
     fn shown_points(scene: &Scene) -> usize {
-        cad::samples(scene, scene.display_depth)
+        surface::samples(scene, scene.display_depth)
             .unwrap()
             .points
             .data()

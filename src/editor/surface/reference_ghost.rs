@@ -143,7 +143,7 @@ pub fn sample_surface(surface: &dyn ReferenceSurface, n: usize) -> (Vec<DVec3>, 
 /// design's reference when View ▸ Reference is on.
 fn wanted(
     ghost: &ReferenceGhost,
-    reference: Option<&crate::scene::reference_link::ReferenceLink>,
+    reference: Option<&crate::scene::files::reference_link::ReferenceLink>,
     preview: &GhostPreview,
 ) -> Option<(GhostKey, Option<Arc<ReferenceFile>>)> {
     if let Some((path, face, file)) = &preview.0 {

@@ -1,5 +1,6 @@
 //! The deviation map to the reference (docs/math.md §12): each shown point
-//! of the first patch coloured by its distance to the face its
+//! of the first patch (its G2 run's cut when it heads one, as it is drawn)
+//! coloured by its distance to the face its
 //! `reference` names, green at 0 to red at the tolerance and beyond, with
 //! the largest and mean distance in the Analysis section.
 //!
@@ -16,7 +17,7 @@
 //! see are measured whole. During a drag the map is measured live when the
 //! points to measure are at most [`LIVE_POINTS`] (a share of a 4 ms frame
 //! at about 0.7 µs a point), else when the drag ends. As
-//! `reference_fit::measure` does, a mirrored design measures its own half
+//! `scene::fit::reference::measure` does, a mirrored design measures its own half
 //! (the rows from the middle on); the reflected rows show the distance of
 //! the point they reflect, and a change of a reflected row measures the row
 //! it reflects.
@@ -28,10 +29,11 @@
 //! (1.80e-4 m for `scenes/references/hood.step`, whose fit's is 1.797e-4 m).
 
 use super::super::interaction::{Drag, EditorSet};
+use crate::ecs::joined::{PatchStart, PatchSurface, shows_run_cut};
 use crate::ecs::patch::PatchRef;
 use crate::ecs::{SurfaceChange, SurfaceChanges, SurfaceData};
-use crate::scene::reference_fit::measured_points;
-use crate::scene::reference_link::ReferenceLink;
+use crate::scene::files::reference_link::ReferenceLink;
+use crate::scene::fit::reference::measured_points;
 use bevy::prelude::*;
 use streamline_kernel::fit::{Distances, ReferenceIndex};
 use streamline_kernel::levels::dirty_window::{DirtyWindow, Span};
@@ -308,10 +310,10 @@ fn shown_distances(half: &[f64], rows: usize, cols: usize, mirror: bool) -> Vec<
 }
 
 /// The closest-point index of the face of `link` (a surface's or a
-/// triangle mesh's, `reference_fit::reference_index`) and the map's
+/// triangle mesh's, `scene::fit::reference::reference_index`) and the map's
 /// tolerance.
 fn index_of(link: &ReferenceLink) -> Result<(ReferenceIndex, f64), String> {
-    let index = crate::scene::reference_fit::reference_index(link)?;
+    let index = crate::scene::fit::reference::reference_index(link)?;
     let tolerance = TOLERANCE_SHARE * diagonal(&index);
     Ok((index, tolerance))
 }
@@ -324,16 +326,41 @@ fn diagonal(index: &ReferenceIndex) -> f64 {
 
 /// Keeps the index for the design's reference and, while the map is
 /// shown, the distances of the shown points (module documentation).
+#[allow(clippy::too_many_arguments)]
 fn measure_reference(
     meter: Res<crate::ecs::meter::CpuMeter>,
     patch: PatchRef,
     data: Res<SurfaceData>,
     mut changes: SurfaceChanges,
+    (starts, surfaces): (Query<&PatchStart>, Query<Ref<PatchSurface>>),
     drag: Res<Drag>,
     mut field: ResMut<ReferenceField>,
+    mut was_cut: Local<bool>,
 ) {
     let _meter = meter.start();
     field.note(changes.take());
+    // the first patch as drawn: the cut of the G2 run it heads, whose
+    // moved rows its surface names, or its own incremental surface
+    let first = patch.entity();
+    let cut = (surfaces.get(first).ok()).filter(|s| shows_run_cut(first, starts.iter(), Some(s)));
+    if cut.is_some() != *was_cut {
+        *was_cut = cut.is_some();
+        field.note(SurfaceChange::All);
+    }
+    if let Some(s) = cut.as_ref().filter(|s| s.is_changed()) {
+        let cols = s.stack().map_or(0, |s| s.finest_points().cols());
+        field.note(match s.rows {
+            Some(r) if cols > 0 => SurfaceChange::Window(DirtyWindow {
+                rows: Span::new(r.lo, r.hi),
+                cols: Span::new(0, cols - 1),
+            }),
+            _ => SurfaceChange::All,
+        });
+    }
+    let points = cut
+        .as_ref()
+        .and_then(|s| s.into_inner().stack())
+        .map_or(&data.points, |s| s.finest_points());
     let link = patch.reference().cloned();
     let has = link.is_some();
     if field.has_reference != has {
@@ -349,7 +376,7 @@ fn measure_reference(
         return;
     }
     let mirror = patch.structure().mirror;
-    let Some(what) = field.to_measure(&data.points, mirror) else {
+    let Some(what) = field.to_measure(points, mirror) else {
         field.stale = false;
         return;
     };
@@ -357,7 +384,7 @@ fn measure_reference(
     if dragging && what.points() > LIVE_POINTS {
         return; // when the drag ends
     }
-    field.update(&data.points, mirror);
+    field.update(points, mirror);
     field.live = dragging;
 }
 

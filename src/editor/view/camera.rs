@@ -10,7 +10,7 @@ use super::super::interaction::{
 use crate::ecs::joined::{PatchHidden, PatchSurface};
 use crate::ecs::patch::PatchRef;
 use crate::ecs::{SurfaceChanges, SurfaceData};
-use crate::scene::format::ViewSpec;
+use crate::scene::files::format::ViewSpec;
 use bevy::camera::Viewport;
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
 use bevy::prelude::*;

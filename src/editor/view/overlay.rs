@@ -1,8 +1,8 @@
-//! Lines over the 3D view: streamlines, red x and green y axes, a ground grid.
+//! Lines over the 3D view: red x and green y axes, a ground grid (the
+//! streamlines: [`super::streamlines`]); and what the overlay draws.
 
 use super::super::coords::to_view;
 use super::super::interaction::{EditorMode, EditorSet, SceneBounds};
-use crate::ecs::SurfaceData;
 use bevy::prelude::*;
 use bevy_state::prelude::in_state;
 use streamline_kernel::DVec3;
@@ -43,7 +43,6 @@ impl Plugin for OverlayPlugin {
 fn draw(
     meter: Res<crate::ecs::meter::CpuMeter>,
     settings: Res<OverlaySettings>,
-    data: Res<SurfaceData>,
     bounds: Res<SceneBounds>,
     mut gizmos: Gizmos,
 ) {
@@ -72,24 +71,6 @@ fn draw(
             UVec2::splat(n),
             Vec2::splat(cell),
             Color::srgba(0.5, 0.5, 0.55, 0.35),
-        );
-    }
-    if !settings.streamlines {
-        return;
-    }
-    let pts = &data.points;
-    if pts.rows() == 0 {
-        return;
-    }
-    let step = pts.rows().div_ceil(settings.max_streamlines.max(1)).max(1);
-    let mut rows: Vec<usize> = (0..pts.rows()).step_by(step).collect();
-    if rows.last() != Some(&(pts.rows() - 1)) {
-        rows.push(pts.rows() - 1);
-    }
-    for r in rows {
-        gizmos.linestrip(
-            pts.row(r).iter().map(|&p| to_view(p)),
-            Color::srgb(0.15, 0.3, 0.75),
         );
     }
 }

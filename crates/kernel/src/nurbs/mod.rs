@@ -13,6 +13,8 @@ pub mod knots;
 mod lsq;
 pub mod rational;
 pub mod samples;
+mod seam_hold;
+mod seam_params;
 pub mod shell;
 pub mod surface;
 

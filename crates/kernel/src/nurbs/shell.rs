@@ -6,10 +6,13 @@
 //!   points is `A`'s last and its rows are `A`'s rows (same `t`), so `B` is
 //!   given `A`'s row parameters `v`. Every patch of a chain shares one `v`
 //!   knot vector (the union of the knots each needs alone); `A`'s last
-//!   column of poles (the seam curve, fitted once by `A`'s column pass) is
-//!   `B`'s first column, copied. For G1 and G2 `B`'s second column of poles
-//!   is projected onto the lines through `A`'s last two columns, so the poles
-//!   next to the seam are collinear across it.
+//!   column of poles (the seam curve, fitted once by `A`'s column pass) is `B`'s
+//!   first column, copied. For G1 and G2 `B`'s second column of poles is
+//!   projected onto the lines through `A`'s last two columns, so the poles
+//!   next to the seam are collinear across it, then moved along `A`'s
+//!   normal as on a side seam (`hold_side`, docs/math.md §11.5): collinear
+//!   poles whose spacing ratio differs row by row leave the cross
+//!   derivatives apart by up to 0.41° on rough random chains.
 //! - **Side** (`edge: First | Last`, §11.2): `B`'s start points lie on `A`'s
 //!   first or last streamline. Each is given the parameter `u` of `A` where it
 //!   lies on that streamline's polyline, and `B`'s row parameter is the
@@ -19,6 +22,9 @@
 //!   `v` knots (which hold the piece's knots) and used as `B`'s first column
 //!   of poles: `B`'s start edge is exactly that part of `A`'s edge, and a
 //!   writer splits `A`'s edge at `u₀` and `u₁` (see [`ShellSeam::range`]).
+//!   For G1 `B`'s second column is moved along `A`'s normal (`hold_side`,
+//!   a least squares), and `B`'s `v` spans where the faces' normals are
+//!   then over `SEAM_ANGLE_DEG` apart are halved and `B` fitted again.
 //!
 //! Each face's other poles are the separable least-squares fit of its points
 //! with both ends of every row interpolated (`fit_knots`), so the interior is
@@ -26,11 +32,13 @@
 //! check grid (one depth finer) and must be within the tolerance.
 
 use super::curve::Curve;
-use super::deviation::{Deviation, foot_distance, measure};
+use super::deviation::Deviation;
 use super::error::FitError;
 use super::fit::{FitOptions, Tolerance, check_options, fit, fit_knots};
 use super::knots::KnotVector;
 use super::samples::Samples;
+use super::seam_hold::{hold, hold_side, seam_angles, side_cross};
+use super::seam_params::{ParentMap, check_params, measure_face, merge_knots, side_params};
 use super::surface::BSplineSurface;
 use crate::joins::{Continuity, Edge, Join, Stack};
 use glam::DVec3;
@@ -161,91 +169,6 @@ impl fmt::Display for ShellError {
 
 impl std::error::Error for ShellError {}
 
-/// The parameter `u` at which `p` lies on the polyline `row` (points at
-/// parameters `u`), and its distance to it.
-fn on_polyline(row: &[DVec3], u: &[f64], p: DVec3) -> (f64, f64) {
-    let mut best = (f64::INFINITY, 0.0);
-    for k in 0..row.len() - 1 {
-        let (a, b) = (row[k], row[k + 1]);
-        let ab = b - a;
-        let t = if ab.length_squared() > 0.0 {
-            ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let d = (a + ab * t - p).length();
-        if d < best.0 {
-            best = (d, u[k] + t * (u[k + 1] - u[k]));
-        }
-    }
-    (best.1, best.0)
-}
-
-/// `b`'s start column's parameters on `a`'s edge row: `(w, u₀, u₁)`, or why not.
-fn side_params(a: &Samples, b: &Samples, edge: Edge) -> Result<(Vec<f64>, f64, f64), String> {
-    let r = if edge == Edge::First {
-        0
-    } else {
-        a.points.rows() - 1
-    };
-    let row = a.points.row(r);
-    let scale = a.diagonal().max(f64::MIN_POSITIVE);
-    let mut us = Vec::with_capacity(b.points.rows());
-    for j in 0..b.points.rows() {
-        let (u, d) = on_polyline(row, &a.u, b.points.get(j, 0));
-        if d > 1e-9 * scale {
-            return Err(format!(
-                "the later patch's row {j} starts {d:.3e} away from the earlier patch's {} streamline; build both with joins::join",
-                edge.name()
-            ));
-        }
-        us.push(u);
-    }
-    let (u0, u1) = (us[0], us[us.len() - 1]);
-    let w: Vec<f64> = us.iter().map(|u| (u - u0) / (u1 - u0)).collect();
-    if !w.windows(2).all(|x| x[1] > x[0]) || !(u1 - u0).is_finite() || u0 == u1 {
-        return Err(format!(
-            "the later patch's start points do not run one way along the earlier patch's {} streamline",
-            edge.name()
-        ));
-    }
-    Ok((w, u0, u1))
-}
-
-/// `b`'s check grid's `w`: its start points placed on `a`'s check edge row,
-/// normalised by the data's `(u₀, u₁)` (clamped into `[0, 1]`).
-fn check_params(a: &Samples, b: &Samples, edge: Edge, u0: f64, u1: f64) -> Vec<f64> {
-    let r = if edge == Edge::First {
-        0
-    } else {
-        a.points.rows() - 1
-    };
-    let row = a.points.row(r);
-    let mut w: Vec<f64> = (0..b.points.rows())
-        .map(|j| ((on_polyline(row, &a.u, b.points.get(j, 0)).0 - u0) / (u1 - u0)).clamp(0.0, 1.0))
-        .collect();
-    let n = w.len();
-    (w[0], w[n - 1]) = (0.0, 1.0);
-    w
-}
-
-/// The union of the required knots (kept exactly) and the optional ones
-/// farther than `gap` from every kept knot.
-fn merge_knots(required: &[f64], optional: &[f64], gap: f64) -> Vec<f64> {
-    let mut kept: Vec<f64> = required.to_vec();
-    kept.sort_by(f64::total_cmp);
-    kept.dedup();
-    let mut opt = optional.to_vec();
-    opt.sort_by(f64::total_cmp);
-    for k in opt {
-        if kept.iter().all(|x| (x - k).abs() > gap) && k > gap && k < 1.0 - gap {
-            let at = kept.partition_point(|x| *x < k);
-            kept.insert(at, k);
-        }
-    }
-    kept
-}
-
 /// How a face's poles next to its incoming seam are held for G1 and G2.
 #[derive(Debug, Clone)]
 enum Smooth {
@@ -265,6 +188,14 @@ type Held = (Vec<DVec3>, Smooth);
 
 /// The most `u` knots added to a face whose held boundary puts it over the tolerance.
 const MAX_ROUNDS: usize = 40;
+
+/// The largest angle between the faces' normals along a side G1 seam that
+/// the least squares of Eq. 76 may leave before the later face's `v` spans
+/// there are split (a quarter of the 0.1° asked, docs/math.md §11.5).
+const SEAM_ANGLE_DEG: f64 = 0.025;
+
+/// The most times a side G1 face's `v` knots are split for its seam's angle.
+const MAX_V_ROUNDS: usize = 6;
 
 /// The margin of the fits alone (whose knots a shell starts from) under
 /// the tolerance: room for what holding a seam costs. A face that cannot
@@ -299,227 +230,6 @@ fn side_piece(
     } else {
         edge.piece(u1, u0).reversed()
     })
-}
-
-/// `a`'s cross derivative along the edge of seam `s` (up to a constant
-/// positive factor), over `range` as [`side_piece`] cuts the edge: the
-/// curve in `u` whose poles are the differences of `a`'s edge row of poles
-/// and the row next to it (the `v` derivative of a clamped surface at its
-/// boundary, Piegl & Tiller Eq. 3.17, is `q / v_{q+1}` times it).
-fn side_cross(a: &BSplineSurface, s: SeamSpec, (u0, u1): (f64, f64)) -> Curve {
-    let rows = a.poles.rows();
-    let (edge, next) = if s.join.edge == Edge::First {
-        (0, 1)
-    } else {
-        (rows - 1, rows - 2)
-    };
-    let poles = a
-        .poles
-        .row(next)
-        .iter()
-        .zip(a.poles.row(edge))
-        .map(|(n, e)| *n - *e)
-        .collect();
-    let d = Curve::new(&a.knots_u, poles);
-    if u0 < u1 {
-        d.piece(u0, u1)
-    } else {
-        d.piece(u1, u0).reversed()
-    }
-}
-
-/// The unit normal of the earlier face along a side seam at `w`: the seam
-/// curve's tangent crossed with the earlier face's cross derivative
-/// (`None` where either vanishes).
-fn side_normal(seam: &Curve, cross: &Curve, w: f64) -> Option<DVec3> {
-    let h = 1e-6;
-    let (lo, hi) = ((w - h).max(0.0), (w + h).min(1.0));
-    let tangent = seam.eval(hi) - seam.eval(lo);
-    let n = tangent.cross(cross.eval(w));
-    let len = n.length();
-    (len > 1e-300 && len.is_finite()).then(|| n / len)
-}
-
-/// Moves each pole of `surface`'s second column along the earlier face's
-/// normal at its Greville abscissa so that the face's cross derivative at
-/// the seam (`u = 0`) lies in the earlier face's tangent plane: the least
-/// squares of its normal component at `8 n + 16` points along the seam
-/// (`n` the poles in `v`), a tiny ridge keeping the moves small where a
-/// pole is barely seen. With the first column the seam curve, the face's
-/// normal along the seam is then the earlier face's (G1, docs/math.md §11.2).
-fn hold_side(surface: &mut BSplineSurface, seam: &Curve, cross: &Curve) {
-    let kv = surface.knots_v.clone();
-    let (q, n) = (kv.degree(), kv.count());
-    let knots = kv.knots();
-    let greville: Vec<f64> = (0..n)
-        .map(|l| knots[l + 1..=l + q].iter().sum::<f64>() / q as f64)
-        .collect();
-    let normals: Vec<DVec3> = greville
-        .iter()
-        .map(|&g| side_normal(seam, cross, g).unwrap_or(DVec3::ZERO))
-        .collect();
-    let d: Vec<DVec3> = (0..n)
-        .map(|l| surface.poles.get(l, 1) - surface.poles.get(l, 0))
-        .collect();
-    // normal equations (Aᵀ A + λ I) c = −Aᵀ r, A banded (q + 1 per row)
-    let mut ata = vec![0.0f64; n * n];
-    let mut atr = vec![0.0f64; n];
-    let samples = 8 * n + 16;
-    for k in 0..=samples {
-        let w = k as f64 / samples as f64;
-        let Some(nk) = side_normal(seam, cross, w) else {
-            continue;
-        };
-        let (first, basis) = kv.basis(w);
-        let mut a = [0.0f64; super::knots::MAX_DEGREE + 1];
-        let mut r = 0.0;
-        for i in 0..=q {
-            let l = first + i;
-            a[i] = basis[i] * normals[l].dot(nk);
-            r += basis[i] * d[l].dot(nk);
-        }
-        for i in 0..=q {
-            atr[first + i] -= a[i] * r;
-            for j in 0..=q {
-                ata[(first + i) * n + first + j] += a[i] * a[j];
-            }
-        }
-    }
-    let scale = (0..n).map(|i| ata[i * n + i]).fold(0.0f64, f64::max);
-    if !(scale > 0.0 && scale.is_finite()) {
-        return;
-    }
-    for i in 0..n {
-        ata[i * n + i] += 1e-12 * scale;
-    }
-    let Some(c) = solve_spd(&mut ata, &mut atr, n) else {
-        return;
-    };
-    for l in 0..n {
-        let p = surface.poles.get(l, 1) + normals[l] * c[l];
-        surface.poles.set(l, 1, p);
-    }
-}
-
-/// Solves `M x = b` for a symmetric positive definite `M` (`n × n`, row
-/// major) by Cholesky, in place; `None` if a pivot is not positive.
-fn solve_spd(m: &mut [f64], b: &mut [f64], n: usize) -> Option<Vec<f64>> {
-    for j in 0..n {
-        let mut d = m[j * n + j];
-        for k in 0..j {
-            d -= m[j * n + k] * m[j * n + k];
-        }
-        if !(d > 0.0 && d.is_finite()) {
-            return None;
-        }
-        let d = d.sqrt();
-        m[j * n + j] = d;
-        for i in j + 1..n {
-            let mut s = m[i * n + j];
-            for k in 0..j {
-                s -= m[i * n + k] * m[j * n + k];
-            }
-            m[i * n + j] = s / d;
-        }
-    }
-    for i in 0..n {
-        let mut s = b[i];
-        for k in 0..i {
-            s -= m[i * n + k] * b[k];
-        }
-        b[i] = s / m[i * n + i];
-    }
-    for i in (0..n).rev() {
-        let mut s = b[i];
-        for k in i + 1..n {
-            s -= m[k * n + i] * b[k];
-        }
-        b[i] = s / m[i * n + i];
-    }
-    Some(b.to_vec())
-}
-
-/// Puts the seam's poles into `surface`'s first column; with `g1` (`a`'s
-/// face and its column next to the seam), each pole of the second column
-/// is projected onto the line through `a`'s two poles before it, so the
-/// poles next to the seam are collinear across it.
-fn hold(surface: &mut BSplineSurface, seam: &[DVec3], g1: Option<(&BSplineSurface, usize)>) {
-    for (l, p) in seam.iter().enumerate() {
-        surface.poles.set(l, 0, *p);
-    }
-    if let Some((a, inner)) = g1 {
-        for l in 0..surface.poles.rows() {
-            let p0 = surface.poles.get(l, 0);
-            let dir = (p0 - a.poles.get(l, inner)).normalize_or_zero();
-            let p1 = surface.poles.get(l, 1);
-            surface.poles.set(l, 1, p0 + dir * (p1 - p0).dot(dir));
-        }
-    }
-}
-
-/// Where a later face's parameters `(u, v)` near its start edge lie on its
-/// parent face: a chain's `(1, v)`, a side join's `(u₀ + v (u₁ − u₀), edge)`.
-#[derive(Debug, Clone, Copy)]
-enum ParentMap {
-    Chain,
-    Side(f64, (f64, f64)),
-}
-
-impl ParentMap {
-    fn start(self, v: f64) -> (f64, f64) {
-        match self {
-            ParentMap::Chain => (1.0, v),
-            ParentMap::Side(edge, (u0, u1)) => (u0 + v * (u1 - u0), edge),
-        }
-    }
-}
-
-/// The distance from a face's check samples to the shell near it: each
-/// sample farther than `tol` from the face (by its foot point,
-/// [`super::deviation_within`]) is also measured to its foot point on the
-/// parent face across the face's start edge. Where the subdivision moves a
-/// seam with depth (an approximating scheme shortens `A`'s boundary
-/// streamlines, and a G2 chain is cut at a column that moves by a fraction
-/// of a leg per depth, docs/math.md §11.1), the check grid one depth finer
-/// starts a strip of points beyond the data's seam, on the parent's side:
-/// those points are the parent's surface, and measured on the face alone
-/// their distance is the strip's width (halving per depth), not the fit's.
-fn measure_face(
-    surface: &BSplineSurface,
-    check: &Samples,
-    tol: f64,
-    parent: Option<(&BSplineSurface, ParentMap)>,
-) -> (Deviation, Vec<f64>) {
-    let mut field = Vec::with_capacity(check.points.data().len());
-    measure(surface, check, tol, Some(&mut field));
-    let cols = check.points.cols();
-    let mut span_u = vec![0.0f64; surface.knots_u.spans()];
-    let (mut max, mut sum, mut at) = (0.0f64, 0.0, (0, 0));
-    for (n, d) in field.iter_mut().enumerate() {
-        let (j, i) = (n / cols, n % cols);
-        if *d > tol
-            && let Some((a, map)) = parent
-        {
-            let q = check.points.get(j, i);
-            let start = map.start(check.v[j]);
-            let here = (a.eval(start.0, start.1) - q).length();
-            let foot = foot_distance(a, q, start, (0.0, 1.0), (0.0, 1.0), here);
-            *d = d.min(foot);
-        }
-        sum += *d;
-        if *d > max {
-            max = *d;
-            at = (j, i);
-        }
-        let s = &mut span_u[surface.knots_u.span(check.u[i])];
-        *s = s.max(*d);
-    }
-    let dev = Deviation {
-        max,
-        mean: sum / field.len() as f64,
-        at,
-    };
-    (dev, span_u)
 }
 
 /// Face `i` of a fitted shell measured at `check` (its points, with the
@@ -697,7 +407,11 @@ pub fn fit_shell(
                 if seams[k].join.edge != Edge::End
                     && seams[k].join.continuity >= Continuity::G1 =>
             {
-                Some(side_cross(&faces[seams[k].a].surface, seams[k], ranges[k]))
+                Some(side_cross(
+                    &faces[seams[k].a].surface,
+                    seams[k].join.edge,
+                    ranges[k],
+                ))
             }
             _ => None,
         };
@@ -724,115 +438,160 @@ pub fn fit_shell(
             })?;
             group_kv[i] = Some(kv);
         }
-        let kv = group_kv[root[i]]
+        let mut kv = group_kv[root[i]]
             .clone()
             .expect("made at the group's first patch");
-        // the seam's poles, fitted once: a's last column, or the piece of a's edge
-        let held: Option<Held> = match incoming[i] {
-            None => None,
-            Some(k) => {
-                let s = seams[k];
-                let a = &faces[s.a].surface;
-                if s.join.edge == Edge::End {
-                    let g1 = if s.join.continuity >= Continuity::G1 {
-                        Smooth::Chain(s.a, a.poles.cols() - 2)
-                    } else {
-                        Smooth::None
-                    };
-                    Some((a.poles.column(a.poles.cols() - 1), g1))
-                } else {
-                    let c = piece.as_ref().expect("a side seam's piece");
-                    let refined = c.refined_to(&kv).ok_or_else(|| ShellError::Seam {
-                        seam: k,
-                        problem: "the seam piece does not fit on the shared knots".into(),
-                    })?;
-                    let g1 = match &cross {
-                        Some(d) => Smooth::Side(d.clone()),
-                        None => Smooth::None,
-                    };
-                    Some((refined.poles, g1))
-                }
-            }
-        };
-        // refine u where the held boundary costs the tolerance; a side G1
-        // seam whose held slope keeps the face off its points beyond the
-        // tolerance is fitted again with the seam curve alone held (the
-        // faces then meet G0 in the file, within the tolerance)
-        let is_side = matches!(held, Some((_, Smooth::Side(_))));
-        let mut side_hold = true;
+        let mut v_rounds = 0;
         let (surface, dev) = loop {
-            let mut ku = alone[i].knots_u.clone();
-            let mut rounds = 0;
-            let mut last: Option<(BSplineSurface, Deviation)> = None;
+            // the seam's poles, fitted once: a's last column, or the piece of a's edge
+            let held: Option<Held> = match incoming[i] {
+                None => None,
+                Some(k) => {
+                    let s = seams[k];
+                    let a = &faces[s.a].surface;
+                    if s.join.edge == Edge::End {
+                        let g1 = if s.join.continuity >= Continuity::G1 {
+                            Smooth::Chain(s.a, a.poles.cols() - 2)
+                        } else {
+                            Smooth::None
+                        };
+                        Some((a.poles.column(a.poles.cols() - 1), g1))
+                    } else {
+                        let c = piece.as_ref().expect("a side seam's piece");
+                        let refined = c.refined_to(&kv).ok_or_else(|| ShellError::Seam {
+                            seam: k,
+                            problem: "the seam piece does not fit on the shared knots".into(),
+                        })?;
+                        let g1 = match &cross {
+                            Some(d) => Smooth::Side(d.clone()),
+                            None => Smooth::None,
+                        };
+                        Some((refined.poles, g1))
+                    }
+                }
+            };
+            // refine u where the held boundary costs the tolerance; a side G1
+            // seam whose held slope keeps the face off its points beyond the
+            // tolerance is fitted again with the seam curve alone held (the
+            // faces then meet G0 in the file, within the tolerance)
+            let is_side = matches!(held, Some((_, Smooth::Side(_))));
+            let mut side_hold = true;
             let (surface, dev) = loop {
-                let mut surface = match (fit_knots(&data[i], &ku, &kv), last.take()) {
-                    (Ok(s), _) => s,
-                    // a split left a span without data: keep the round before
-                    (Err(_), Some(before)) => break before,
-                    (Err(e), None) => return Err(fit_err(i)(e)),
-                };
-                if let Some((poles, smooth)) = &held {
-                    match smooth {
-                        Smooth::None => hold(&mut surface, poles, None),
-                        Smooth::Chain(a, col) => {
-                            hold(&mut surface, poles, Some((&faces[*a].surface, *col)))
-                        }
-                        Smooth::Side(d) => {
-                            hold(&mut surface, poles, None);
-                            let seam = Curve::new(&kv, poles.clone());
-                            if side_hold {
-                                hold_side(&mut surface, &seam, d);
+                let mut ku = alone[i].knots_u.clone();
+                let mut rounds = 0;
+                let mut last: Option<(BSplineSurface, Deviation)> = None;
+                let (surface, dev) = loop {
+                    let mut surface = match (fit_knots(&data[i], &ku, &kv), last.take()) {
+                        (Ok(s), _) => s,
+                        // a split left a span without data: keep the round before
+                        (Err(_), Some(before)) => break before,
+                        (Err(e), None) => return Err(fit_err(i)(e)),
+                    };
+                    if let Some((poles, smooth)) = &held {
+                        match smooth {
+                            Smooth::None => hold(&mut surface, poles, None),
+                            Smooth::Chain(a, col) => {
+                                let a = &faces[*a].surface;
+                                hold(&mut surface, poles, Some((a, *col)));
+                                // the projection leaves each row's poles collinear;
+                                // the cross derivatives' weights still differ row by
+                                // row, so the normal is then held as on a side seam
+                                let last = a.poles.cols() - 1;
+                                let cross: Vec<DVec3> = (0..a.poles.rows())
+                                    .map(|l| a.poles.get(l, last) - a.poles.get(l, *col))
+                                    .collect();
+                                let seam = Curve::new(&kv, poles.clone());
+                                hold_side(&mut surface, &seam, &Curve::new(&kv, cross));
+                            }
+                            Smooth::Side(d) => {
+                                hold(&mut surface, poles, None);
+                                let seam = Curve::new(&kv, poles.clone());
+                                if side_hold {
+                                    hold_side(&mut surface, &seam, d);
+                                }
                             }
                         }
                     }
-                }
-                let parent = incoming[i].map(|k| {
-                    let s = seams[k];
-                    let to: ParentMap = match s.join.edge {
-                        Edge::End => ParentMap::Chain,
-                        e => ParentMap::Side(if e == Edge::First { 0.0 } else { 1.0 }, ranges[k]),
-                    };
-                    (&faces[s.a].surface, to)
-                });
-                let (mut dev, mut span_u) = measure_face(&surface, &check[i], tols[i], parent);
-                if dev.max <= tols[i] {
-                    // and the fitted points themselves (foot points one depth
-                    // finer promise nothing for them)
-                    let (at_data, spans) = measure_face(&surface, &data[i], tols[i], parent);
-                    if at_data.max > tols[i] {
-                        (dev, span_u) = (at_data, spans);
+                    let parent = incoming[i].map(|k| {
+                        let s = seams[k];
+                        let to: ParentMap = match s.join.edge {
+                            Edge::End => ParentMap::Chain,
+                            e => {
+                                ParentMap::Side(if e == Edge::First { 0.0 } else { 1.0 }, ranges[k])
+                            }
+                        };
+                        (&faces[s.a].surface, to)
+                    });
+                    let (mut dev, mut span_u) = measure_face(&surface, &check[i], tols[i], parent);
+                    if dev.max <= tols[i] {
+                        // and the fitted points themselves (foot points one depth
+                        // finer promise nothing for them)
+                        let (at_data, spans) = measure_face(&surface, &data[i], tols[i], parent);
+                        if at_data.max > tols[i] {
+                            (dev, span_u) = (at_data, spans);
+                        }
                     }
+                    last = Some((surface.clone(), dev));
+                    if dev.max <= tols[i] || rounds >= MAX_ROUNDS || ku.count() >= data[i].u.len() {
+                        break (surface, dev);
+                    }
+                    rounds += 1;
+                    // split every span over the tolerance (at most as many knots as
+                    // the grid has room for)
+                    let room = data[i].u.len() - ku.count();
+                    let mids: Vec<f64> = (0..span_u.len())
+                        .filter(|&j| span_u[j] > tols[i])
+                        .map(|j| {
+                            let (lo, hi) = ku.span_range(j);
+                            0.5 * (lo + hi)
+                        })
+                        .take(room)
+                        .collect();
+                    let mut grew = false;
+                    for u in mids {
+                        grew |= ku.insert(u);
+                    }
+                    if !grew {
+                        break (surface, dev);
+                    }
+                };
+                if dev.max > tols[i] && is_side && side_hold {
+                    side_hold = false;
+                    if let Some(k) = incoming[i] {
+                        slope_held[k] = false;
+                    }
+                    continue;
                 }
-                last = Some((surface.clone(), dev));
-                if dev.max <= tols[i] || rounds >= MAX_ROUNDS || ku.count() >= data[i].u.len() {
-                    break (surface, dev);
-                }
-                rounds += 1;
-                // split every span over the tolerance (at most as many knots as
-                // the grid has room for)
-                let room = data[i].u.len() - ku.count();
-                let mids: Vec<f64> = (0..span_u.len())
-                    .filter(|&j| span_u[j] > tols[i])
-                    .map(|j| {
-                        let (lo, hi) = ku.span_range(j);
-                        0.5 * (lo + hi)
-                    })
-                    .take(room)
+                break (surface, dev);
+            };
+            // Eq. 76 is a least squares: where the face's v knots are too few
+            // for the turning of the earlier face's normal it leaves a residual
+            // angle; those v spans are split and the face fitted again (a side
+            // patch of its own v knots: its chain, if any, is fitted after it)
+            if let Some((poles, Smooth::Side(d))) = &held
+                && side_hold
+                && root[i] == i
+                && v_rounds < MAX_V_ROUNDS
+            {
+                let seam = Curve::new(&kv, poles.clone());
+                let spans = seam_angles(&surface, &seam, d);
+                let rows = &data[i].v;
+                let holds = |lo: f64, hi: f64| rows.iter().any(|x| *x > lo && *x < hi);
+                let mids: Vec<f64> = (0..spans.len())
+                    .filter(|&j| spans[j] > SEAM_ANGLE_DEG)
+                    .map(|j| kv.span_range(j))
+                    .filter(|&(lo, hi)| holds(lo, 0.5 * (lo + hi)) && holds(0.5 * (lo + hi), hi))
+                    .map(|(lo, hi)| 0.5 * (lo + hi))
                     .collect();
                 let mut grew = false;
-                for u in mids {
-                    grew |= ku.insert(u);
+                for m in mids {
+                    grew |= kv.insert(m);
                 }
-                if !grew {
-                    break (surface, dev);
+                if grew {
+                    v_rounds += 1;
+                    group_kv[i] = Some(kv.clone());
+                    continue;
                 }
-            };
-            if dev.max > tols[i] && is_side && side_hold {
-                side_hold = false;
-                if let Some(k) = incoming[i] {
-                    slope_held[k] = false;
-                }
-                continue;
             }
             break (surface, dev);
         };

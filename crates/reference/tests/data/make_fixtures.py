@@ -24,7 +24,7 @@ The generated files are committed; rerun this only to change them.
 
 Not written by this script: car1-streamline.step and car1-streamline.igs,
 the files the project's own exporter writes for the built-in scene car1
-(src/scene/step.rs, src/scene/iges.rs), made with
+(src/scene/export/step.rs, src/scene/export/iges.rs), made with
 
     cargo run --release -- build car1 --depth 3 --export car1-streamline.step
     cargo run --release -- build car1 --depth 3 --export car1-streamline.igs

@@ -314,7 +314,7 @@ fn place_first(
         && edit == 0
         && !st.mirror
         && patch.tuning().is_none()
-        && !crate::scene::model::interpolates(patch.design(), st.interpolate_tangents);
+        && !crate::scene::design::model::interpolates(patch.design(), st.interpolate_tangents);
     if by_rows && !first.turned.is_empty() {
         let mut rows: Vec<usize> = first.turned.iter().map(|h| h.row).collect();
         rows.sort_unstable();
@@ -328,8 +328,12 @@ fn place_first(
     // curve (the scene's own, reflected for the other half)
     let shown = match st.mirror {
         true => Some(
-            crate::scene::model::shown_design(patch.design(), st.interpolate_tangents, true)
-                .ok()?,
+            crate::scene::design::model::shown_design(
+                patch.design(),
+                st.interpolate_tangents,
+                true,
+            )
+            .ok()?,
         ),
         false => None,
     };

@@ -10,7 +10,7 @@
 //! mesh is made whole only for a new grid shape; it is despawned with the
 //! patch and hidden while the patch has [`PatchHidden`] (and in mesh mode).
 //! The first patch's mesh entity is also the [`SurfaceEntity`], which mesh
-//! mode hides and the analysis maps colour.
+//! mode hides.
 //!
 //! Which surface shows the first patch. Its incremental surface, unless it
 //! heads a G2 chain: a G2 run is one merged net (docs/math.md §11.1, Eqs.
@@ -23,17 +23,17 @@
 //! screen if the one-patch surface were drawn (test
 //! `the_g2_head_cut_differs_from_its_own_surface_near_the_seam`). The
 //! editor draws what the seam report measures and what every export
-//! writes: the cut. So in the shaded display the first patch of a G2 run
-//! is drawn from its stack (its pipeline's staging paused); the analysis
-//! maps (which read the incremental surface) show that one instead, and
-//! `super::patch_maps` puts the same maps on the other patches.
+//! writes: the cut. So the first patch of a G2 run is drawn from its stack
+//! in every view (its own pipeline waits meanwhile,
+//! `crate::ecs::joined::shows_run_cut`), and the analysis maps
+//! (`super::maps`) colour the cut as they colour every patch, the map to
+//! the reference included (`super::reference_map` measures the cut).
 
 use super::super::interaction::{EditorMode, EditorSet};
-use super::analysis_display::{AnalysisSettings, SurfaceMode};
 use super::patch_mesh::{Triangles, normals_for, write_rows};
 use super::shaded::{ShadedMaterial, SurfaceEntity, set_visible, to_bevy_mesh};
 use crate::ecs::SurfaceData;
-use crate::ecs::joined::{Joined, PatchHidden, PatchStart, PatchSurface, heads_g2_run};
+use crate::ecs::joined::{Joined, PatchHidden, PatchStart, PatchSurface, shows_run_cut};
 use crate::ecs::patch::Patch;
 use bevy::prelude::*;
 use bevy_state::prelude::State;
@@ -134,12 +134,6 @@ impl Plugin for PatchSurfacesPlugin {
     }
 }
 
-/// Whether the first patch is drawn from its stack (module documentation):
-/// it heads a G2 run and the surface is shown shaded.
-pub fn first_from_stack(g2_head: bool, mode: SurfaceMode) -> bool {
-    g2_head && mode == SurfaceMode::Shaded
-}
-
 /// What [`sync_surfaces`] reads of every patch.
 type PatchRow = (
     Entity,
@@ -185,11 +179,7 @@ pub(super) fn sync_surfaces(
     mut shown: Shown,
     mut first_mesh: FirstMesh,
     mut incremental: Incremental,
-    (mode, analysis, material): (
-        Option<Res<State<EditorMode>>>,
-        Res<AnalysisSettings>,
-        Res<ShadedMaterial>,
-    ),
+    (mode, material): (Option<Res<State<EditorMode>>>, Res<ShadedMaterial>),
     mut meshes: ResMut<Assets<Mesh>>,
     mut kernel: ResMut<PatchMeshes>,
 ) {
@@ -201,10 +191,13 @@ pub(super) fn sync_surfaces(
     let first = incremental.patch.entity();
     let first_row = patches.get(first).ok();
     let first_surface = first_row.as_ref().and_then(|r| r.1.as_ref());
-    // a G2 head whose run failed to build keeps its incremental surface
-    let g2_head = heads_g2_run(first, patches.iter().filter_map(|r| r.2))
-        && first_surface.is_some_and(|s| s.stack().is_some());
-    let first_stack = first_from_stack(g2_head, analysis.mode);
+    // the first patch drawn from its stack: the cut of the G2 run it
+    // heads (a run that failed to build keeps its incremental surface)
+    let first_stack = shows_run_cut(
+        first,
+        patches.iter().filter_map(|r| r.2),
+        first_surface.map(|s| &**s),
+    );
     let first_hidden = first_row.as_ref().is_some_and(|r| r.4);
     if let Ok((e, mesh, visibility, of)) = first_mesh.single_mut() {
         match of {

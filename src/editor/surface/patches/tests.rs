@@ -1,10 +1,11 @@
 //! Tests of the patch meshes' sync (`super`): what is drawn from each
 //! patch's stack, what is written in place, what is hidden.
 
+use super::super::analysis_display::{AnalysisSettings, SurfaceMode};
 use super::*;
 use crate::ecs::joined::PatchSlot;
 use crate::ecs::{ModelConfig, SurfaceData};
-use crate::scene::document_io::load;
+use crate::scene::design::document_io::load;
 use bevy::mesh::VertexAttributeValues;
 use bevy_state::app::{AppExtStates, StatesPlugin};
 use std::path::Path;
@@ -148,28 +149,34 @@ fn every_patch_is_drawn_from_its_stack() {
     assert!(shown.built && shown.from_stack, "built, from the stack");
 }
 
-/// Negative control of the G2 choice: in an analysis map the hood's mesh
-/// shows its incremental surface again (not picked from its stack).
+/// The G2 head is drawn from its cut in every view, the analysis maps and
+/// the map to the reference included (its own pipeline waits meanwhile,
+/// `crate::ecs::joined::shows_run_cut`), on the same mesh; negative
+/// control: the cut is not its own one-patch surface.
 #[test]
-fn an_analysis_map_shows_the_incremental_first_patch() {
+fn the_g2_head_is_drawn_as_its_cut_in_every_map() {
     let mut app = app(SurfaceMode::Zebra);
     let hood = by_name(&mut app, "hood");
-    assert!(!app.world().resource::<PatchMeshes>().is_drawn(hood));
-    let (pos, vis) = drawn(&mut app, hood).expect("the first patch is drawn");
-    assert_eq!(vis, Visibility::Inherited);
-    let own = f32s(app.world().resource::<SurfaceData>().points.data());
-    assert_eq!(pos, own);
-    assert_ne!(pos, stack_points(&app, hood), "control: not the cut");
-    // back to shaded: the cut again, made whole on the same mesh
     let handle = mesh_handle(&mut app, hood);
-    app.world_mut().resource_mut::<AnalysisSettings>().mode = SurfaceMode::Shaded;
-    app.update();
-    assert_eq!(drawn(&mut app, hood).unwrap().0, stack_points(&app, hood));
-    assert_eq!(mesh_handle(&mut app, hood), handle);
-    // and to a map again: the incremental surface, whole
-    app.world_mut().resource_mut::<AnalysisSettings>().mode = SurfaceMode::Mean;
-    app.update();
-    assert_eq!(drawn(&mut app, hood).unwrap().0, own);
+    for mode in [
+        SurfaceMode::Zebra,
+        SurfaceMode::Reference,
+        SurfaceMode::Mean,
+        SurfaceMode::Shaded,
+    ] {
+        app.world_mut().resource_mut::<AnalysisSettings>().mode = mode;
+        app.update();
+        assert!(
+            app.world().resource::<PatchMeshes>().is_drawn(hood),
+            "{mode:?}"
+        );
+        let (pos, vis) = drawn(&mut app, hood).expect("the first patch is drawn");
+        assert_eq!(vis, Visibility::Inherited);
+        assert_eq!(pos, stack_points(&app, hood), "the cut ({mode:?})");
+        assert_eq!(mesh_handle(&mut app, hood), handle);
+    }
+    let own = f32s(app.world().resource::<SurfaceData>().points.data());
+    assert_ne!(own, stack_points(&app, hood), "control: not the cut");
 }
 
 /// Hiding a patch hides its mesh; a patch despawned takes its mesh.

@@ -1,0 +1,234 @@
+//! The patches of a document as B-spline faces (docs/math.md §10, §11): one
+//! STEP shell whose seams are shared ([`streamline_kernel::nurbs::fit_shell`])
+//! or each patch alone (IGES, and a design of one patch: [`super::surface`]).
+//! Which sampling reaches the tolerance is the exporter's business, not the
+//! designer's: every patch is sampled at one depth (so a seam's points stay
+//! one set of points and its edge stays shared), starting from the one
+//! asked for, and when a face needs more control points than its grid has
+//! points, or cannot meet the tolerance with its seams held, the whole
+//! document is sampled one depth deeper, up to [`max_fit_depth`]. Only when
+//! even the deepest grid is not enough is the fit refused
+//! ([`FitError::TooFewPointsAtDeepest`], whose message says to loosen the
+//! tolerance).
+
+use crate::scene::design::document::Document;
+use crate::scene::design::document_build::{BuildError, BuiltDocument};
+use std::borrow::Cow;
+use std::fmt;
+use std::time::Instant;
+use streamline_kernel::nurbs::{
+    FitError, FitOptions, FitReport, PatchGrid, SeamSpec, ShellError, ShellFace, ShellSeam, fit,
+    fit_shell,
+};
+
+/// The most points the check grid of an export may have: the fit at depth
+/// `d` is checked at every point of depth `d + 1` (docs/math.md §10), and
+/// the deepest export depth is the last whose check grid stays within this
+/// (a 2049 × 1025 grid; the car's depth 6, whose check grid of 1025 × 641
+/// points builds and measures in about a second on one core).
+pub const MAX_CHECK_POINTS: usize = 1 << 21;
+
+/// The deepest depth a document is sampled at: the last at which every
+/// patch's check grid (one depth finer) has at most [`MAX_CHECK_POINTS`]
+/// points and passes the kernel's size limits.
+pub fn max_fit_depth(doc: &Document) -> u32 {
+    doc.patches
+        .iter()
+        .map(|p| {
+            let d = &p.design;
+            let (rows, cols) = (d.net().rows(), d.net().cols());
+            let mut depth = 0;
+            while let Ok((r, c)) = d.scheme().check_depth(rows, cols, depth + 2) {
+                if r.saturating_mul(c + 1) > MAX_CHECK_POINTS {
+                    break;
+                }
+                depth += 1;
+            }
+            depth
+        })
+        .min()
+        .unwrap_or(0)
+}
+
+/// How the faces are fitted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FaceFit {
+    /// One shell, each seam's boundary curve fitted once and shared (STEP).
+    Shell,
+    /// Each patch alone, as a face of its own (IGES, a design of one patch).
+    Alone,
+}
+
+/// The faces of a document.
+#[derive(Debug, Clone)]
+pub struct DocumentFit {
+    /// The depth every patch was sampled at (checked one deeper).
+    pub depth: u32,
+    /// One per patch, in the document's order.
+    pub faces: Vec<ShellFace>,
+    /// One per seam (empty for [`FaceFit::Alone`]).
+    pub seams: Vec<ShellSeam>,
+    /// For [`FaceFit::Alone`], each face's fit report (one per patch);
+    /// empty for a shell.
+    pub reports: Vec<FitReport>,
+    /// The points each face was fitted to and checked at.
+    pub grids: Vec<PatchGrid>,
+    /// Seconds the fits took (the builds not counted).
+    pub seconds: f64,
+}
+
+/// Why a document was not fitted.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DocumentFitError {
+    /// The document could not be built deeper.
+    Build(BuildError),
+    /// A face or seam was refused.
+    Shell(ShellError),
+}
+
+impl fmt::Display for DocumentFitError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            DocumentFitError::Build(e) => write!(f, "{e}"),
+            DocumentFitError::Shell(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for DocumentFitError {}
+
+/// `built` when it holds depth `depth`, else the document built to it.
+pub fn built_to<'a>(
+    doc: &Document,
+    built: &'a BuiltDocument,
+    depth: u32,
+) -> Result<Cow<'a, BuiltDocument>, BuildError> {
+    if built.depth >= depth && built.patches.len() == doc.patches.len() {
+        Ok(Cow::Borrowed(built))
+    } else {
+        doc.build(depth).map(Cow::Owned)
+    }
+}
+
+/// Whether a refusal may pass one depth deeper.
+fn deeper_helps(e: &ShellError) -> bool {
+    matches!(
+        e,
+        ShellError::Fit {
+            error: FitError::TooFewPoints { .. },
+            ..
+        } | ShellError::OverTolerance { .. }
+    )
+}
+
+/// At the deepest depth, a grid too coarse says so with the depth.
+fn at_deepest(e: ShellError, depth: u32) -> ShellError {
+    match e {
+        ShellError::Fit {
+            patch,
+            error:
+                FitError::TooFewPoints {
+                    direction,
+                    points,
+                    tolerance,
+                    reached,
+                },
+        } => ShellError::Fit {
+            patch,
+            error: FitError::TooFewPointsAtDeepest {
+                direction,
+                points,
+                tolerance,
+                reached,
+                depth,
+            },
+        },
+        e => e,
+    }
+}
+
+/// Fits every patch of `doc` (built as `built`, built again deeper when
+/// needed) sampled at `depth` or as much deeper as the tolerance needs
+/// (module docs), as one shell or each alone.
+pub fn fit_document(
+    doc: &Document,
+    built: &BuiltDocument,
+    depth: u32,
+    opts: &FitOptions,
+    how: FaceFit,
+) -> Result<DocumentFit, DocumentFitError> {
+    let deepest = max_fit_depth(doc).max(depth);
+    let mut depth = depth;
+    let mut seconds = 0.0;
+    loop {
+        let b = built_to(doc, built, depth + 1).map_err(DocumentFitError::Build)?;
+        let grids = b
+            .patches
+            .iter()
+            .zip(&doc.patches)
+            .map(|(s, p)| {
+                PatchGrid::from_stack(&p.name, s, depth).map_err(|error| {
+                    DocumentFitError::Shell(ShellError::Fit {
+                        patch: p.name.clone(),
+                        error,
+                    })
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let start = Instant::now();
+        let result = match how {
+            FaceFit::Shell => {
+                let specs: Vec<SeamSpec> = b
+                    .seams
+                    .iter()
+                    .map(|s| SeamSpec {
+                        a: s.a,
+                        b: s.b,
+                        join: s.join,
+                    })
+                    .collect();
+                fit_shell(&grids, &specs, opts).map(|f| (f.faces, f.seams, Vec::new()))
+            }
+            FaceFit::Alone => fit_each(&grids, opts).map(|(f, r)| (f, Vec::new(), r)),
+        };
+        seconds += start.elapsed().as_secs_f64();
+        match result {
+            Ok((faces, seams, reports)) => {
+                return Ok(DocumentFit {
+                    depth,
+                    faces,
+                    seams,
+                    reports,
+                    grids,
+                    seconds,
+                });
+            }
+            Err(e) if deeper_helps(&e) && depth < deepest => depth += 1,
+            Err(e) => return Err(DocumentFitError::Shell(at_deepest(e, depth))),
+        }
+    }
+}
+
+/// Each patch fitted alone, as a face of its own, with its fit report.
+fn fit_each(
+    grids: &[PatchGrid],
+    opts: &FitOptions,
+) -> Result<(Vec<ShellFace>, Vec<FitReport>), ShellError> {
+    let mut faces = Vec::with_capacity(grids.len());
+    let mut reports = Vec::with_capacity(grids.len());
+    for p in grids {
+        let f = fit(&p.data, &p.check, opts).map_err(|error| ShellError::Fit {
+            patch: p.name.clone(),
+            error,
+        })?;
+        faces.push(ShellFace {
+            name: p.name.clone(),
+            surface: f.surface,
+            deviation: f.report.deviation,
+            tolerance: f.report.tolerance,
+            v: (p.data.v.clone(), p.check.v.clone()),
+        });
+        reports.push(f.report);
+    }
+    Ok((faces, reports))
+}

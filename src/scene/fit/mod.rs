@@ -1,0 +1,9 @@
+//! A design's patches as B-spline faces: one STEP shell or each patch alone
+//! ([`document`]), the one face of a design of one patch ([`surface`]), the
+//! deviation map of a design of several patches ([`deviation`]), and a
+//! design fitted to and measured against its reference ([`mod@reference`]).
+
+pub mod deviation;
+pub mod document;
+pub mod reference;
+pub mod surface;
