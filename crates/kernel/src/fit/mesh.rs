@@ -156,9 +156,20 @@ fn closest_on_segment(p: DVec3, a: DVec3, b: DVec3) -> DVec3 {
 /// tests, stays exact for slivers: a misjudged inside test errs by a
 /// rounding of the position, not of the barycentric coordinates. A
 /// degenerate triangle (zero normal) is the closest of its edges.
+///
+/// Every candidate is clamped to the triangle's bounding box: the exact
+/// closest point lies in it, so the clamp only undoes rounding (an edge
+/// point's `a + t (b - a)` past `b`, a sliver's projection through its
+/// tilted normal landing beyond the sliver), and a box's distance is then
+/// never more than the distance found for a triangle inside it, which the
+/// hierarchy's pruning ([`MeshIndex::closest`]) relies on to agree with
+/// the brute-force minimum exactly.
 pub fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
-    let mut best = closest_on_segment(p, a, b);
+    let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+    let inside = |q: DVec3| q.max(lo).min(hi);
+    let mut best = inside(closest_on_segment(p, a, b));
     for q in [closest_on_segment(p, b, c), closest_on_segment(p, c, a)] {
+        let q = inside(q);
         if (q - p).length_squared() < (best - p).length_squared() {
             best = q;
         }
@@ -172,12 +183,11 @@ pub fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     if n2 > 0.0 && n2.is_finite() {
         let q = p - n * (n.dot(p - a) / n2);
         let (qa, qb, qc) = (a - q, b - q, c - q);
-        if n.dot(qb.cross(qc)) >= 0.0
-            && n.dot(qc.cross(qa)) >= 0.0
-            && n.dot(qa.cross(qb)) >= 0.0
-            && (q - p).length_squared() < (best - p).length_squared()
-        {
-            return q;
+        if n.dot(qb.cross(qc)) >= 0.0 && n.dot(qc.cross(qa)) >= 0.0 && n.dot(qa.cross(qb)) >= 0.0 {
+            let q = inside(q);
+            if (q - p).length_squared() < (best - p).length_squared() {
+                return q;
+            }
         }
     }
     best
