@@ -7,7 +7,7 @@
 use super::super::interaction::{
     EditorSet, FrameRequest, HandleQuery, MainCamera, OrbitCamera, SceneBounds, Selection, ViewArea,
 };
-use crate::ecs::joined::{PatchHidden, PatchSurface};
+use crate::ecs::joined::{PatchHidden, PatchStart, PatchSurface, shows_run_cut};
 use crate::ecs::patch::PatchRef;
 use crate::ecs::{SurfaceChanges, SurfaceData};
 use crate::scene::files::format::ViewSpec;
@@ -57,23 +57,30 @@ fn spawn(mut commands: Commands, patch: PatchRef) {
     ));
 }
 
-/// The joined patches' surfaces, with whether they are hidden.
-type JoinedSurfaces<'w, 's> = Query<
+/// The patches' surfaces, with whether they are hidden and joined.
+type Surfaces<'w, 's> = Query<
     'w,
     's,
-    (Entity, Ref<'static, PatchSurface>, Has<PatchHidden>),
-    With<crate::ecs::patch::Joined>,
+    (
+        Entity,
+        Ref<'static, PatchSurface>,
+        Has<PatchHidden>,
+        Has<crate::ecs::patch::Joined>,
+    ),
 >;
 
 /// The box of every shown patch: the first patch's rows' boxes (kept by the
-/// mesh stage as it writes each row) and each joined patch's, made again
-/// only when that patch was rebuilt, hidden or shown (so "frame all" frames
-/// every patch of a document).
+/// mesh stage as it writes each row), or its stack's when it is drawn as
+/// its G2 run's cut (`crate::ecs::joined::shows_run_cut`), and each joined
+/// patch's, made again only when that patch was rebuilt, hidden or shown
+/// (so "frame all" frames every patch of a document).
+#[allow(clippy::too_many_arguments)]
 fn bounds(
     meter: Res<crate::ecs::meter::CpuMeter>,
     data: Res<SurfaceData>,
     mut changes: SurfaceChanges,
-    joined: JoinedSurfaces,
+    surfaces: Surfaces,
+    starts: Query<&PatchStart>,
     mut removed: RemovedComponents<PatchSurface>,
     mut boxes: Local<HashMap<Entity, Option<[DVec3; 2]>>>,
     mut b: ResMut<SceneBounds>,
@@ -83,7 +90,16 @@ fn bounds(
     for e in removed.read() {
         any |= boxes.remove(&e).is_some();
     }
-    for (e, surface, hidden) in &joined {
+    // whether the first patch is drawn as its run's cut (its box is then its stack's)
+    let mut cut = false;
+    for (e, surface, hidden, joined) in &surfaces {
+        if !joined {
+            cut = shows_run_cut(e, starts.iter(), Some(&*surface));
+            if !cut {
+                any |= boxes.remove(&e).is_some();
+                continue;
+            }
+        }
         let known = boxes.get(&e);
         let shown = known.is_some_and(|b| b.is_some());
         if known.is_some() && !surface.is_changed() && shown != hidden {
@@ -102,13 +118,12 @@ fn bounds(
     if !any {
         return;
     }
-    let Some([mut lo, mut hi]) = data.bounds() else {
+    let own = if cut { None } else { data.bounds() };
+    let Some([lo, hi]) = (boxes.values().flatten()).fold(own, |acc, &[l, h]| {
+        Some(acc.map_or([l, h], |[lo, hi]| [lo.min(l), hi.max(h)]))
+    }) else {
         return;
     };
-    for [l, h] in boxes.values().flatten() {
-        lo = lo.min(*l);
-        hi = hi.max(*h);
-    }
     b.min = lo;
     b.max = hi;
 }
