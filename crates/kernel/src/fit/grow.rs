@@ -21,7 +21,15 @@
 //! otherwise a row in the middle of its row interval. After an insertion a
 //! neighbouring interval more than twice as long is halved too, so that the
 //! positions stay graded (the 4-point rule keeps them increasing).
+//!
+//! * `checks`: the options and the reference checked before the fit starts;
+//! * `insert`: which column or row to insert, and the graded insertion.
 
+mod checks;
+mod insert;
+
+use self::checks::{check_options, check_reference};
+use self::insert::{Insert, apply, choose, chord_insert};
 use super::closest::Distances;
 use super::construct::{
     BuildFailure, Nodes, Sampler, Setup, anchor_fraction, build_design, initial_nodes, phantoms,
@@ -29,14 +37,12 @@ use super::construct::{
 use super::error::ReferenceFitError;
 use super::initial::fit_initial;
 use super::measure::{Measure, RowCache, breaks, from_reference, interval, measure};
-use super::options::{Along, MAX_FIT_DEPTH, MAX_NET_SIDE, ReferenceFitOptions, Tolerance};
+use super::options::{Along, ReferenceFitOptions, Tolerance};
 use super::reference::{AnchorCurve, Frame, ReferenceSurface, Swapped};
 use crate::error::KernelError;
 use crate::levels::builder::Builder;
-use crate::levels::design::{Design, Level};
+use crate::levels::design::Design;
 use crate::levels::surface::SurfaceScheme;
-use crate::streamline::integrate::point_arclength;
-use glam::DVec3;
 use std::time::Instant;
 
 /// A design fitted to a reference, and how well it fits.
@@ -66,113 +72,6 @@ pub struct ReferenceFit {
     pub steps: usize,
     /// Wall-clock seconds the fit took.
     pub seconds: f64,
-}
-
-/// What to insert: a column in a column interval, or a row in a row interval.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Insert {
-    Column(usize),
-    Row(usize),
-}
-
-/// Where the reference is furthest from the mesh, the insertion that
-/// refines the mesh's coarser direction there: across the rows if the
-/// mesh bends more between rows than along them (its chords are further
-/// from the surface that way), else along them.
-fn chord_insert(
-    nodes: &Nodes,
-    lt: f64,
-    level: &Level,
-    points: &[DVec3],
-    at: (usize, usize),
-) -> Insert {
-    let (rows, cols) = (level.tangents.rows(), level.tangents.cols());
-    let width = cols + 1;
-    let (r, k) = (
-        at.0.clamp(1, rows.saturating_sub(2).max(1)),
-        at.1.clamp(1, width - 2),
-    );
-    let p = |i: usize, j: usize| points[(i.min(rows - 1)) * width + j.min(width - 1)];
-    let across = if rows >= 3 {
-        (p(r + 1, k) - 2.0 * p(r, k) + p(r - 1, k)).length()
-    } else {
-        0.0
-    };
-    let along = (p(r, k + 1) - 2.0 * p(r, k) + p(r, k - 1)).length();
-    if across > along {
-        let psi = level.params.t[at.0.min(rows - 1)] / lt;
-        Insert::Row(interval(&breaks(&nodes.rows), psi))
-    } else {
-        let s = level.params.s.row(at.0.min(rows - 1));
-        let span = (s[cols - 1] - s[0]).max(f64::MIN_POSITIVE);
-        let x = (point_arclength(s, at.1.min(cols)) - s[0]) / span;
-        Insert::Column(interval(&breaks(&nodes.cols), x))
-    }
-}
-
-/// The insertion the scores suggest, among intervals not blocked and
-/// directions not at their cap.
-fn choose(
-    m: &Measure,
-    blocked: &[Insert],
-    col_full: bool,
-    row_full: bool,
-    flip: bool,
-) -> Option<Insert> {
-    let mut cells: Vec<(f64, usize, usize)> = Vec::new();
-    for (a, (on, bt)) in m.on_nodes.iter().zip(&m.between).enumerate() {
-        for (b, (x, y)) in on.iter().zip(bt).enumerate() {
-            cells.push((x.max(*y), a, b));
-        }
-    }
-    cells.sort_by(|p, q| q.0.total_cmp(&p.0));
-    for (_, a, b) in cells {
-        let (on, bt) = (m.on_nodes[a][b], m.between[a][b]);
-        let prefer_row = (bt > 2.0 * on) != flip;
-        let order = if prefer_row {
-            [Insert::Row(a), Insert::Column(b)]
-        } else {
-            [Insert::Column(b), Insert::Row(a)]
-        };
-        for ins in order {
-            let full = match ins {
-                Insert::Column(_) => col_full,
-                Insert::Row(_) => row_full,
-            };
-            if !full && !blocked.contains(&ins) {
-                return Some(ins);
-            }
-        }
-    }
-    None
-}
-
-/// Halves interval `i` of `xs`, then any neighbour more than twice as long
-/// as the interval next to it, while the count stays within `cap`.
-fn insert_graded(xs: &mut Vec<f64>, i: usize, cap: usize) {
-    if i + 1 >= xs.len() || xs.len() >= cap {
-        return;
-    }
-    xs.insert(i + 1, 0.5 * (xs[i] + xs[i + 1]));
-    for _ in 0..4 * MAX_NET_SIDE {
-        if xs.len() >= cap {
-            return;
-        }
-        let split = (0..xs.len().saturating_sub(2)).find_map(|k| {
-            let (l, r) = (xs[k + 1] - xs[k], xs[k + 2] - xs[k + 1]);
-            if l > 2.0 * r {
-                Some(k)
-            } else if r > 2.0 * l {
-                Some(k + 1)
-            } else {
-                None
-            }
-        });
-        match split {
-            Some(k) => xs.insert(k + 1, 0.5 * (xs[k] + xs[k + 1])),
-            None => return,
-        }
-    }
 }
 
 /// The best design met so far.
@@ -206,59 +105,6 @@ pub fn fit_reference(
     opts: &ReferenceFitOptions,
 ) -> Result<ReferenceFit, ReferenceFitError> {
     fit_reference_with(reference, opts, &mut |_| true)
-}
-
-fn check_options(opts: &ReferenceFitOptions) -> Result<(), ReferenceFitError> {
-    if !(1..=MAX_FIT_DEPTH).contains(&opts.depth) {
-        return Err(ReferenceFitError::BadOption {
-            what: "depth",
-            value: opts.depth.to_string(),
-            accepted: "a fit depth from 1 to 7 (5 by default)",
-        });
-    }
-    opts.scheme.validate()?;
-    let nodes = initial_nodes(opts.scheme, opts.anchor);
-    let ph = 2 * phantoms(opts.scheme);
-    let (rows, cols) = opts.max_net;
-    let (min_r, min_c) = (nodes.rows.len() + ph, nodes.cols.len() + ph);
-    if !(min_r..=MAX_NET_SIDE).contains(&rows) || !(min_c..=MAX_NET_SIDE).contains(&cols) {
-        return Err(ReferenceFitError::BadOption {
-            what: "largest net",
-            value: format!("{rows} × {cols}"),
-            accepted: "at least the smallest net of the scheme (4 × 4, 4 × 5 anchored in the middle) and at most 64 × 64",
-        });
-    }
-    Ok(())
-}
-
-/// Checks the reference's edges and a grid of points for zero-length rows
-/// and poles.
-fn check_reference(f: &Frame<'_>) -> Result<(), ReferenceFitError> {
-    for &v in [f.dv[0], f.dv[1]].iter() {
-        let fastest = f
-            .panels_u
-            .iter()
-            .map(|&u| f.r.derivatives(u, v)[1].length())
-            .fold(0.0, f64::max);
-        if fastest.is_nan() || fastest < f.min_speed {
-            return Err(ReferenceFitError::ZeroLengthRow {
-                edge: f.row_name(v),
-                along: f.along(),
-            });
-        }
-    }
-    for &v in &f.panels_v {
-        for &u in &f.panels_u {
-            let [p, du, dv] = f.r.derivatives(u, v);
-            if !(p.is_finite() && du.is_finite() && dv.is_finite()) {
-                return Err(ReferenceFitError::NonFinite { what: "derivative" });
-            }
-            if du.length().is_nan() || du.length() < f.min_speed {
-                return Err(f.pole(u, v));
-            }
-        }
-    }
-    Ok(())
 }
 
 /// Fits a streamline design to `reference` (`docs/math.md §12`).
@@ -601,22 +447,4 @@ pub fn fit_reference_with(
         steps,
         seconds: start.elapsed().as_secs_f64(),
     })
-}
-
-/// Inserts a row or column node in cell `ins` (graded).
-fn apply(nodes: &mut Nodes, ins: Insert, cap_rows: usize, cap_cols: usize) {
-    let (xs, cell, cap) = match ins {
-        Insert::Column(b) => (&mut nodes.cols, b, cap_cols),
-        Insert::Row(a) => (&mut nodes.rows, a, cap_rows),
-    };
-    let mut full = breaks(xs);
-    let ends = full.len() - xs.len();
-    insert_graded(&mut full, cell, cap + ends);
-    if xs.first().is_some_and(|&x| x > 0.0) {
-        full.remove(0);
-    }
-    if xs.last().is_some_and(|&x| x < 1.0) {
-        full.pop();
-    }
-    *xs = full;
 }

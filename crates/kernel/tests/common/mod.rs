@@ -4,6 +4,7 @@
 pub mod authoring;
 pub mod joins;
 pub mod loop_meshes;
+pub mod reference_fit;
 
 use glam::{DQuat, DVec3};
 use proptest::prelude::*;
