@@ -31,7 +31,8 @@
 //! are refused at the deepest depth whichever way the seam is held.
 //!
 //! Seeded: `STREAMLINE_SHELL_SEED` is the first seed, `STREAMLINE_SHELL_CASES`
-//! how many draws; a failure names its seed.
+//! how many draws, and the seeds of `FIXED` are drawn too (rough ω = 0.6
+//! designs the shell once refused); a failure names its seed.
 
 use glam::{DQuat, DVec3};
 use std::time::Instant;
@@ -429,6 +430,14 @@ fn data_folds(grids: &[PatchGrid], jn: Join) -> bool {
 /// seams: 0.12° and 0.61°).
 const LEAVING_DEG: f64 = 10.0;
 
+/// Drawn on every run besides the seeded range: rough ω = 0.6 designs
+/// whose patches fit alone and which the shell once refused at the deepest
+/// depth (docs/math.md §11.5; docs/cad.md, "Several patches"): on the union
+/// of a chain's two patches' `v` knots, 116's first face was 108 tolerances
+/// off and 25's later face 1.15; 106's side face lost the knots its own fit
+/// placed a row apart (1.26).
+const FIXED: [u64; 3] = [25, 106, 116];
+
 fn env_u64(name: &str, default: u64) -> u64 {
     std::env::var(name)
         .ok()
@@ -441,6 +450,12 @@ fn random_shells_fit_within_the_tolerance_and_keep_their_seams_normals() {
     let first = env_u64("STREAMLINE_SHELL_SEED", 1);
     let count = env_u64("STREAMLINE_SHELL_CASES", 21);
     let mut draws: Vec<Draw> = (first..first + count)
+        .chain(
+            FIXED
+                .iter()
+                .copied()
+                .filter(|s| !(first..first + count).contains(s)),
+        )
         .map(|s| Draw::new(s, false))
         .collect();
     draws.extend((first..first + 2).map(|s| Draw::new(s, true)));

@@ -123,8 +123,9 @@ pub fn fit_design(design: &Design, depth: u32, opts: &FitOptions) -> Result<Fit,
 }
 
 /// The rows' and columns' fits for one pair of knot vectors.
-struct Pass {
-    surface: BSplineSurface,
+pub(super) struct Pass {
+    /// The fitted surface.
+    pub(super) surface: BSplineSurface,
     rows: EndFixedFit,
     cols: EndFixedFit,
     /// The rows' poles, `data.v.len() × nu`.
@@ -136,6 +137,11 @@ impl Pass {
     /// residual (in the poles) per `v` span: what each direction explains
     /// of the deviation (computed only for a round that goes on).
     fn residuals(&self, data: &Samples) -> (Vec<f64>, Vec<f64>) {
+        (self.residuals_u(data), self.residuals_v(data))
+    }
+
+    /// The row pass' largest residual per `u` span (see [`Self::residuals`]).
+    pub(super) fn residuals_u(&self, data: &Samples) -> Vec<f64> {
         let nu = self.rows.count();
         let mut res_u = vec![0.0f64; self.surface.knots_u.spans()];
         for (j, poles) in self.row_poles.chunks(nu).enumerate() {
@@ -144,6 +150,14 @@ impl Pass {
                 *r = r.max((self.rows.point(poles, k) - *pt).length_squared());
             }
         }
+        res_u.iter().map(|r| r.sqrt()).collect()
+    }
+
+    /// The column pass' largest residual (in the poles) per `v` span (see
+    /// [`Self::residuals`]): a curve of poles a row, not a point of the
+    /// grid, so it costs a fraction of [`Self::residuals_u`].
+    pub(super) fn residuals_v(&self, data: &Samples) -> Vec<f64> {
+        let nu = self.rows.count();
         let mut res_v = vec![0.0f64; self.surface.knots_v.spans()];
         let mut curve = Vec::with_capacity(nu);
         for (l, &v) in data.v.iter().enumerate() {
@@ -156,10 +170,7 @@ impl Pass {
             let r = &mut res_v[self.cols.span_of(l)];
             *r = r.max(worst);
         }
-        for r in res_u.iter_mut().chain(&mut res_v) {
-            *r = r.sqrt();
-        }
-        (res_u, res_v)
+        res_v.iter().map(|r| r.sqrt()).collect()
     }
 }
 
@@ -224,7 +235,17 @@ pub fn fit_knots(
     knots_u: &KnotVector,
     knots_v: &KnotVector,
 ) -> Result<BSplineSurface, FitError> {
-    Ok(pass(knots_u, knots_v, data, f64::NAN, f64::NAN)?.surface)
+    Ok(fit_pass(data, knots_u, knots_v)?.surface)
+}
+
+/// [`fit_knots`] with its passes kept, for their residuals
+/// ([`Pass::residuals`]): what each direction explains of a deviation.
+pub(super) fn fit_pass(
+    data: &Samples,
+    knots_u: &KnotVector,
+    knots_v: &KnotVector,
+) -> Result<Pass, FitError> {
+    pass(knots_u, knots_v, data, f64::NAN, f64::NAN)
 }
 
 /// Knots that split span `j` of `knots` into `pieces` with about as many
@@ -232,7 +253,13 @@ pub fn fit_knots(
 /// `(1 − α) ū_{k−1} + α ū_k` over the span's own parameters, `k = ⌊i d⌋`,
 /// `α = i d − k`, `d` = parameters per piece). Fewer pieces when the span
 /// holds fewer than two parameters a piece; none when it cannot be split.
-fn split_points(knots: &KnotVector, params: &[f64], j: usize, pieces: usize, out: &mut Vec<f64>) {
+pub(super) fn split_points(
+    knots: &KnotVector,
+    params: &[f64],
+    j: usize,
+    pieces: usize,
+    out: &mut Vec<f64>,
+) {
     let (a, b) = knots.span_range(j);
     let last = j + 1 == knots.spans();
     let lo = params.partition_point(|x| *x < a);
@@ -262,7 +289,7 @@ fn split_points(knots: &KnotVector, params: &[f64], j: usize, pieces: usize, out
 
 /// How many pieces bring a span's error `e` of a degree-`p` fit under the
 /// target `tol`, the error of a spline shrinking as `h^{p+1}`.
-fn pieces_for(e: f64, tol: f64, p: usize) -> usize {
+pub(super) fn pieces_for(e: f64, tol: f64, p: usize) -> usize {
     let ratio = (e / tol).max(1.0);
     (ratio.powf(1.0 / (p + 1) as f64).ceil() as usize).clamp(2, 8)
 }

@@ -83,19 +83,23 @@ pub(super) fn check_params(a: &Samples, b: &Samples, edge: Edge, u0: f64, u1: f6
 }
 
 /// The union of the required knots (kept exactly) and the optional ones
-/// farther than `gap` from every kept knot.
+/// (a face's own, which its points carry among themselves: a fit placed
+/// them) farther than `gap` from every required knot, so that no span
+/// between a required knot and an optional one is narrower than `gap`.
 pub(super) fn merge_knots(required: &[f64], optional: &[f64], gap: f64) -> Vec<f64> {
-    let mut kept: Vec<f64> = required.to_vec();
-    kept.sort_by(f64::total_cmp);
-    kept.dedup();
-    let mut opt = optional.to_vec();
-    opt.sort_by(f64::total_cmp);
-    for k in opt {
-        if kept.iter().all(|x| (x - k).abs() > gap) && k > gap && k < 1.0 - gap {
-            let at = kept.partition_point(|x| *x < k);
-            kept.insert(at, k);
+    let mut req: Vec<f64> = required.to_vec();
+    req.sort_by(f64::total_cmp);
+    req.dedup();
+    let mut kept = req.clone();
+    for &k in optional {
+        let at = req.partition_point(|x| *x < k);
+        let clear = (at == 0 || k - req[at - 1] > gap) && (at == req.len() || req[at] - k > gap);
+        if clear {
+            kept.push(k);
         }
     }
+    kept.sort_by(f64::total_cmp);
+    kept.dedup();
     kept
 }
 
@@ -126,16 +130,20 @@ impl ParentMap {
 /// starts a strip of points beyond the data's seam, on the parent's side:
 /// those points are the parent's surface, and measured on the face alone
 /// their distance is the strip's width (halving per depth), not the fit's.
+/// Returns the deviation and the largest distance per `u` and per `v` span
+/// of the face.
 pub(super) fn measure_face(
     surface: &BSplineSurface,
     check: &Samples,
     tol: f64,
     parent: Option<(&BSplineSurface, ParentMap)>,
-) -> (Deviation, Vec<f64>) {
+) -> (Deviation, Vec<f64>, Vec<f64>) {
     let mut field = Vec::with_capacity(check.points.data().len());
     measure(surface, check, tol, Some(&mut field));
     let cols = check.points.cols();
     let mut span_u = vec![0.0f64; surface.knots_u.spans()];
+    let mut span_v = vec![0.0f64; surface.knots_v.spans()];
+    let row_span: Vec<usize> = check.v.iter().map(|v| surface.knots_v.span(*v)).collect();
     let (mut max, mut sum, mut at) = (0.0f64, 0.0, (0, 0));
     for (n, d) in field.iter_mut().enumerate() {
         let (j, i) = (n / cols, n % cols);
@@ -155,11 +163,13 @@ pub(super) fn measure_face(
         }
         let s = &mut span_u[surface.knots_u.span(check.u[i])];
         *s = s.max(*d);
+        let s = &mut span_v[row_span[j]];
+        *s = s.max(*d);
     }
     let dev = Deviation {
         max,
         mean: sum / field.len() as f64,
         at,
     };
-    (dev, span_u)
+    (dev, span_u, span_v)
 }

@@ -5,9 +5,15 @@
 //! - **Chain** (`edge: End`, docs/math.md §11.1): `B`'s first column of
 //!   points is `A`'s last and its rows are `A`'s rows (same `t`), so `B` is
 //!   given `A`'s row parameters `v`. Every patch of a chain shares one `v`
-//!   knot vector (the union of the knots each needs alone); `A`'s last
-//!   column of poles (the seam curve, fitted once by `A`'s column pass) is `B`'s
-//!   first column, copied. For G1 and G2 `B`'s second column of poles is
+//!   knot vector: `A` is fitted on the knots it needs alone, `B` on those
+//!   and its own (each kept a row spacing from `A`'s) and any its rounds add
+//!   (below), and `A` is then refined onto `B`'s by knot insertion (the same
+//!   surface). `A`'s last column of poles (the seam curve, fitted once by
+//!   `A`'s column pass), refined the same way, is `B`'s first column,
+//!   copied. (The union of both patches' knots fitted at `A` left spans of
+//!   one or two rows where the two patches' knots interleave, and `A`'s
+//!   column pass swung between its rows, 100 tolerances off on a rough
+//!   random chain.) For G1 and G2 `B`'s second column of poles is
 //!   projected onto the lines through `A`'s last two columns, so the poles
 //!   next to the seam are collinear across it, then moved along `A`'s
 //!   normal as on a side seam (`hold_side`, docs/math.md §11.5): collinear
@@ -29,17 +35,23 @@
 //! Each face's other poles are the separable least-squares fit of its points
 //! with both ends of every row interpolated (`fit_knots`), so the interior is
 //! fitted with the boundary held; every face is then measured against its
-//! check grid (one depth finer) and must be within the tolerance.
+//! check grid (one depth finer) and must be within the tolerance. While it
+//! is not, its `u` spans over the tolerance are halved (the held boundary
+//! costs those), and its `v` spans over the tolerance whose column-pass
+//! residual is at least half the tolerance are split at the rows'
+//! quantiles as the fit alone splits them (docs/math.md §10): a row the
+//! shared `v` knots miss is brought within the tolerance by no `u` knot.
 
 use super::curve::Curve;
 use super::deviation::Deviation;
 use super::error::FitError;
-use super::fit::{FitOptions, Tolerance, check_options, fit, fit_knots};
+use super::fit::{FitOptions, Tolerance, check_options, fit, fit_pass, pieces_for, split_points};
 use super::knots::KnotVector;
 use super::samples::Samples;
 use super::seam_hold::{hold, hold_side, seam_angles, side_cross};
 use super::seam_params::{ParentMap, check_params, measure_face, merge_knots, side_params};
 use super::surface::BSplineSurface;
+use crate::grid::Grid;
 use crate::joins::{Continuity, Edge, Join, Stack};
 use glam::DVec3;
 use std::fmt;
@@ -174,9 +186,9 @@ impl std::error::Error for ShellError {}
 enum Smooth {
     /// G0: only the seam's poles.
     None,
-    /// A chain: the earlier face and its column next to the seam (each row
-    /// of poles made collinear across the seam).
-    Chain(usize, usize),
+    /// A chain: the earlier face on the later one's `v` knots (each row of
+    /// poles made collinear across the seam with its last two columns).
+    Chain(BSplineSurface),
     /// A side join: `a`'s cross derivative along the piece of its edge, a
     /// curve in `b`'s `v` (the seam's own parameter), whose normal with the
     /// seam curve is `a`'s normal there.
@@ -186,8 +198,14 @@ enum Smooth {
 /// A seam's poles held in a face's first column, and how its second is held.
 type Held = (Vec<DVec3>, Smooth);
 
-/// The most `u` knots added to a face whose held boundary puts it over the tolerance.
+/// The most rounds of knots added to a face whose held boundary (or shared
+/// `v` knots) puts it over the tolerance.
 const MAX_ROUNDS: usize = 40;
+
+/// The share of the tolerance a direction's own pass residual must reach in
+/// a span over the tolerance for a face of a shell to split that span by it
+/// (as `fit` weighs its directions, docs/math.md §10).
+const RESIDUAL_SHARE: f64 = 0.5;
 
 /// The largest angle between the faces' normals along a side G1 seam that
 /// the least squares of Eq. 76 may leave before the later face's `v` spans
@@ -204,6 +222,31 @@ const MAX_V_ROUNDS: usize = 6;
 /// not a requirement: a margin the grid cannot reach refused every depth,
 /// docs/math.md §10); the shell's own rounds then hold the tolerance.
 const ALONE_MARGIN: f64 = 0.7;
+
+/// `s` on the `v` knots `kv` (which hold its own): every column of poles
+/// refined by knot insertion (Piegl & Tiller Algorithm A5.1), the same
+/// surface; `None` when `kv` lacks one of `s`'s knots.
+fn refined_v(s: &BSplineSurface, kv: &KnotVector) -> Option<BSplineSurface> {
+    let cols = s.poles.cols();
+    let columns: Vec<Vec<DVec3>> = (0..cols)
+        .map(|c| {
+            Some(
+                Curve::new(&s.knots_v, s.poles.column(c))
+                    .refined_to(kv)?
+                    .poles,
+            )
+        })
+        .collect::<Option<_>>()?;
+    let rows = kv.count();
+    let data = (0..rows * cols)
+        .map(|n| columns[n % cols][n / cols])
+        .collect();
+    Some(BSplineSurface {
+        knots_u: s.knots_u.clone(),
+        knots_v: kv.clone(),
+        poles: Grid::new(rows, cols, data).ok()?,
+    })
+}
 
 /// The piece of `a`'s edge that seam `k` (a side seam over `range`) is.
 fn side_piece(
@@ -415,90 +458,111 @@ pub fn fit_shell(
             }
             _ => None,
         };
-        if root[i] == i {
-            let required: Vec<f64> = piece
+        // the face's v knots: a root's own (and the knots of the piece of
+        // its parent's edge it starts on), a chain's later patch the
+        // group's so far (they carry its seam curve) and its own, kept a
+        // row spacing apart
+        let gap = data[i]
+            .v
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .fold(0.0, f64::max);
+        let required: Vec<f64> = if root[i] == i {
+            piece
                 .as_ref()
                 .map(|c| c.knots[c.degree + 1..c.knots.len() - c.degree - 1].to_vec())
-                .unwrap_or_default();
-            let optional: Vec<f64> = (0..n)
-                .filter(|&m| root[m] == i)
-                .flat_map(|m| alone[m].knots_v.interior().to_vec())
-                .collect();
-            let gap = data[i]
-                .v
-                .windows(2)
-                .map(|w| w[1] - w[0])
-                .fold(0.0, f64::max);
-            let knots = merge_knots(&required, &optional, gap);
-            let kv = KnotVector::with_interior(opts.degree.1, &knots).ok_or_else(|| {
-                ShellError::Seam {
-                    seam: incoming[i].unwrap_or(0),
-                    problem: "the shared v knots are not increasing inside (0, 1)".into(),
-                }
+                .unwrap_or_default()
+        } else {
+            group_kv[root[i]]
+                .as_ref()
+                .expect("made at the group's first patch")
+                .interior()
+                .to_vec()
+        };
+        let knots = merge_knots(&required, alone[i].knots_v.interior(), gap);
+        let mut kv =
+            KnotVector::with_interior(opts.degree.1, &knots).ok_or_else(|| ShellError::Seam {
+                seam: incoming[i].unwrap_or(0),
+                problem: "the shared v knots are not increasing inside (0, 1)".into(),
             })?;
-            group_kv[i] = Some(kv);
-        }
-        let mut kv = group_kv[root[i]]
-            .clone()
-            .expect("made at the group's first patch");
+        // the seam's poles on the knots `kv`, fitted once: a's last column
+        // (a refined onto `kv`, the same surface), or the piece of a's edge
+        let held_on = |kv: &KnotVector| -> Result<Option<Held>, ShellError> {
+            let Some(k) = incoming[i] else {
+                return Ok(None);
+            };
+            let s = seams[k];
+            let unfit = |what: &str| ShellError::Seam {
+                seam: k,
+                problem: format!("the {what} does not fit on the shared knots"),
+            };
+            if s.join.edge == Edge::End {
+                let a = refined_v(&faces[s.a].surface, kv).ok_or_else(|| unfit("seam curve"))?;
+                let seam = a.poles.column(a.poles.cols() - 1);
+                let g1 = if s.join.continuity >= Continuity::G1 {
+                    Smooth::Chain(a)
+                } else {
+                    Smooth::None
+                };
+                Ok(Some((seam, g1)))
+            } else {
+                let c = piece.as_ref().expect("a side seam's piece");
+                let refined = c.refined_to(kv).ok_or_else(|| unfit("seam piece"))?;
+                let g1 = match &cross {
+                    Some(d) => Smooth::Side(d.clone()),
+                    None => Smooth::None,
+                };
+                Ok(Some((refined.poles, g1)))
+            }
+        };
+        let parent = incoming[i].map(|k| {
+            let s = seams[k];
+            let to: ParentMap = match s.join.edge {
+                Edge::End => ParentMap::Chain,
+                e => ParentMap::Side(if e == Edge::First { 0.0 } else { 1.0 }, ranges[k]),
+            };
+            (&faces[s.a].surface, to)
+        });
+        let q = opts.degree.1;
         let mut v_rounds = 0;
         let (surface, dev) = loop {
-            // the seam's poles, fitted once: a's last column, or the piece of a's edge
-            let held: Option<Held> = match incoming[i] {
-                None => None,
-                Some(k) => {
-                    let s = seams[k];
-                    let a = &faces[s.a].surface;
-                    if s.join.edge == Edge::End {
-                        let g1 = if s.join.continuity >= Continuity::G1 {
-                            Smooth::Chain(s.a, a.poles.cols() - 2)
-                        } else {
-                            Smooth::None
-                        };
-                        Some((a.poles.column(a.poles.cols() - 1), g1))
-                    } else {
-                        let c = piece.as_ref().expect("a side seam's piece");
-                        let refined = c.refined_to(&kv).ok_or_else(|| ShellError::Seam {
-                            seam: k,
-                            problem: "the seam piece does not fit on the shared knots".into(),
-                        })?;
-                        let g1 = match &cross {
-                            Some(d) => Smooth::Side(d.clone()),
-                            None => Smooth::None,
-                        };
-                        Some((refined.poles, g1))
-                    }
-                }
-            };
-            // refine u where the held boundary costs the tolerance; a side G1
+            // refine where the held boundary costs the tolerance; a side G1
             // seam whose held slope keeps the face off its points beyond the
             // tolerance is fitted again with the seam curve alone held (the
             // faces then meet G0 in the file, within the tolerance)
-            let is_side = matches!(held, Some((_, Smooth::Side(_))));
+            let is_side = cross.is_some();
             let mut side_hold = true;
             let (surface, dev) = loop {
                 let mut ku = alone[i].knots_u.clone();
                 let mut rounds = 0;
-                let mut last: Option<(BSplineSurface, Deviation)> = None;
+                let mut held: Option<(KnotVector, Option<Held>)> = None;
+                let mut best: Option<(BSplineSurface, Deviation)> = None;
                 let (surface, dev) = loop {
-                    let mut surface = match (fit_knots(&data[i], &ku, &kv), last.take()) {
-                        (Ok(s), _) => s,
-                        // a split left a span without data: keep the round before
+                    if held.as_ref().is_none_or(|(k, _)| *k != kv) {
+                        held = Some((kv.clone(), held_on(&kv)?));
+                    }
+                    let pass = match (fit_pass(&data[i], &ku, &kv), best.take()) {
+                        (Ok(s), before) => {
+                            best = before;
+                            s
+                        }
+                        // a split left a span without data: keep the best round
                         (Err(_), Some(before)) => break before,
                         (Err(e), None) => return Err(fit_err(i)(e)),
                     };
-                    if let Some((poles, smooth)) = &held {
+                    let mut surface = pass.surface.clone();
+                    if let Some((_, Some((poles, smooth)))) = &held {
                         match smooth {
                             Smooth::None => hold(&mut surface, poles, None),
-                            Smooth::Chain(a, col) => {
-                                let a = &faces[*a].surface;
-                                hold(&mut surface, poles, Some((a, *col)));
+                            Smooth::Chain(a) => {
+                                let col = a.poles.cols() - 2;
+                                hold(&mut surface, poles, Some((a, col)));
                                 // the projection leaves each row's poles collinear;
                                 // the cross derivatives' weights still differ row by
                                 // row, so the normal is then held as on a side seam
-                                let last = a.poles.cols() - 1;
+                                let last = col + 1;
                                 let cross: Vec<DVec3> = (0..a.poles.rows())
-                                    .map(|l| a.poles.get(l, last) - a.poles.get(l, *col))
+                                    .map(|l| a.poles.get(l, last) - a.poles.get(l, col))
                                     .collect();
                                 let seam = Curve::new(&kv, poles.clone());
                                 hold_side(&mut surface, &seam, &Curve::new(&kv, cross));
@@ -512,35 +576,48 @@ pub fn fit_shell(
                             }
                         }
                     }
-                    let parent = incoming[i].map(|k| {
-                        let s = seams[k];
-                        let to: ParentMap = match s.join.edge {
-                            Edge::End => ParentMap::Chain,
-                            e => {
-                                ParentMap::Side(if e == Edge::First { 0.0 } else { 1.0 }, ranges[k])
-                            }
-                        };
-                        (&faces[s.a].surface, to)
-                    });
-                    let (mut dev, mut span_u) = measure_face(&surface, &check[i], tols[i], parent);
+                    let (mut dev, mut span_u, mut span_v) =
+                        measure_face(&surface, &check[i], tols[i], parent);
                     if dev.max <= tols[i] {
                         // and the fitted points themselves (foot points one depth
                         // finer promise nothing for them)
-                        let (at_data, spans) = measure_face(&surface, &data[i], tols[i], parent);
-                        if at_data.max > tols[i] {
-                            (dev, span_u) = (at_data, spans);
+                        let at_data = measure_face(&surface, &data[i], tols[i], parent);
+                        if at_data.0.max > tols[i] {
+                            (dev, span_u, span_v) = at_data;
                         }
                     }
-                    last = Some((surface.clone(), dev));
+                    if best.as_ref().is_none_or(|(_, b)| dev.max < b.max) {
+                        best = Some((surface, dev));
+                    }
                     if dev.max <= tols[i] || rounds >= MAX_ROUNDS || ku.count() >= data[i].u.len() {
-                        break (surface, dev);
+                        break best.take().expect("this round's at least");
                     }
                     rounds += 1;
-                    // split every span over the tolerance (at most as many knots as
-                    // the grid has room for)
+                    // v spans over the tolerance that the column pass' own
+                    // residual explains are split at the rows' quantiles, as
+                    // the fit alone splits them (docs/math.md §10): held
+                    // boundaries cost `u` spans, and splitting those cannot
+                    // bring a row the v knots miss within the tolerance
+                    let res_v = pass.residuals_v(&data[i]);
+                    let mut new_v = Vec::new();
+                    for j in (0..span_v.len()).filter(|&j| span_v[j] > tols[i]) {
+                        if res_v[j] >= RESIDUAL_SHARE * tols[i] {
+                            let pieces = pieces_for(res_v[j], tols[i], q);
+                            split_points(&kv, &data[i].v, j, pieces, &mut new_v);
+                        }
+                    }
+                    // u spans over the tolerance are halved (at most as many
+                    // knots as the grid has room for); while v spans are
+                    // split, only those the row pass' residual explains
                     let room = data[i].u.len() - ku.count();
+                    let res_u = if new_v.is_empty() {
+                        Vec::new()
+                    } else {
+                        pass.residuals_u(&data[i])
+                    };
                     let mids: Vec<f64> = (0..span_u.len())
                         .filter(|&j| span_u[j] > tols[i])
+                        .filter(|&j| new_v.is_empty() || res_u[j] >= RESIDUAL_SHARE * tols[i])
                         .map(|j| {
                             let (lo, hi) = ku.span_range(j);
                             0.5 * (lo + hi)
@@ -551,10 +628,15 @@ pub fn fit_shell(
                     for u in mids {
                         grew |= ku.insert(u);
                     }
+                    for v in new_v {
+                        grew |= kv.insert(v);
+                    }
                     if !grew {
-                        break (surface, dev);
+                        break best.take().expect("kept above");
                     }
                 };
+                // the knots of the round kept
+                kv = surface.knots_v.clone();
                 if dev.max > tols[i] && is_side && side_hold {
                     side_hold = false;
                     if let Some(k) = incoming[i] {
@@ -568,12 +650,15 @@ pub fn fit_shell(
             // for the turning of the earlier face's normal it leaves a residual
             // angle; those v spans are split and the face fitted again (a side
             // patch of its own v knots: its chain, if any, is fitted after it)
-            if let Some((poles, Smooth::Side(d))) = &held
+            if let (Some(c), Some(d)) = (&piece, &cross)
                 && side_hold
                 && root[i] == i
                 && v_rounds < MAX_V_ROUNDS
             {
-                let seam = Curve::new(&kv, poles.clone());
+                let seam = c.refined_to(&kv).ok_or_else(|| ShellError::Seam {
+                    seam: incoming[i].unwrap_or(0),
+                    problem: "the seam piece does not fit on the shared knots".into(),
+                })?;
                 let spans = seam_angles(&surface, &seam, d);
                 let rows = &data[i].v;
                 let holds = |lo: f64, hi: f64| rows.iter().any(|x| *x > lo && *x < hi);
@@ -589,7 +674,6 @@ pub fn fit_shell(
                 }
                 if grew {
                     v_rounds += 1;
-                    group_kv[i] = Some(kv.clone());
                     continue;
                 }
             }
@@ -605,6 +689,20 @@ pub fn fit_shell(
                 tolerance: tols[i],
             });
         }
+        // the chain's faces share the face's v knots: the earlier ones are
+        // refined onto them (knots inserted, the same surfaces), each seam
+        // curve by the same insertions as the later face's copy of it
+        let kv = surface.knots_v.clone();
+        for m in (0..i).filter(|&m| root[m] == root[i]) {
+            if faces[m].surface.knots_v != kv {
+                faces[m].surface =
+                    refined_v(&faces[m].surface, &kv).ok_or_else(|| ShellError::Seam {
+                        seam: incoming[i].unwrap_or(0),
+                        problem: "the shared v knots do not hold an earlier face's".into(),
+                    })?;
+            }
+        }
+        group_kv[root[i]] = Some(kv);
         faces.push(ShellFace {
             name: patches[i].name.clone(),
             surface,
