@@ -324,3 +324,48 @@ fn a_g2_head_s_own_pipeline_waits_and_is_built_afresh_when_the_run_ends() {
         "{last:?}"
     );
 }
+
+/// A drag of the hood's seam handle (2, 4), which heads the G2 run with the
+/// screen and carries the wing on its last edge, at depth 5: after each
+/// step every patch's mesh normals (`PatchSurface::normals`, made again in
+/// the moved rows ± 1 and, in a run's member, from one column before the
+/// first point placed again; the wing's levels re-blended in its stack's
+/// own grids) are the whole mesh's normals of its finest points
+/// (`SurfaceMesh::from_points`, docs/math.md §4), bit for bit, and every
+/// stack and seam is the whole build's. Control: the hood's normals were
+/// written in place (`PatchSurface::rows`), so the windows were taken.
+#[test]
+fn a_drag_of_the_g2_head_keeps_every_normal_the_whole_mesh_s() {
+    use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
+    let mut doc = hood();
+    doc.display_depth = 5;
+    let mut app = app(&doc);
+    let ids = patches(&mut app);
+    let mut dir = doc.patches[0].design.net().get(2, 4);
+    for step in 0..4 {
+        dir = (dir + DVec3::new(0.0, 0.01, 0.015 * (step as f64 - 1.5))).normalize();
+        set_first(&mut app, &mut doc, 2, 4, dir);
+        // the seam column is one handle of the hood and the screen
+        doc.patches[1].design.set_tangent(2, 0, dir).unwrap();
+        app.update();
+        assert_as_built(&mut app, &doc);
+        for (k, &p) in ids.iter().enumerate() {
+            let surface = app.world().get::<PatchSurface>(p).unwrap();
+            let points = surface.stack().unwrap().finest_points();
+            let whole = SurfaceMesh::from_points(points);
+            let f = |v: &[DVec3]| {
+                v.iter()
+                    .map(|n| n.to_array().map(f64::to_bits))
+                    .collect::<Vec<_>>()
+            };
+            assert_eq!(
+                f(&surface.normals),
+                f(&whole.normals),
+                "patch {k}, step {step}"
+            );
+            if k == 0 && step > 0 {
+                assert!(surface.rows.is_some(), "the hood written in place");
+            }
+        }
+    }
+}

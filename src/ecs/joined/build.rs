@@ -302,6 +302,8 @@ pub(crate) fn build_joined(
     let mut normals: Vec<Option<Vec<DVec3>>> = vec![None; n];
     // the display depth's rows an update placed again (`None`: all)
     let mut moved: Vec<Option<RowSpan>> = vec![None; n];
+    // the first column of those rows placed again (a G2 run's member; 0: all)
+    let mut moved_col: Vec<usize> = vec![0; n];
     for i in 0..n {
         // a patch is rebuilt when its G2 run changed, or (below) when its
         // parent was rebuilt and moved what it reads
@@ -335,13 +337,14 @@ pub(crate) fn build_joined(
                     .collect();
                 let old: Option<Vec<Stack>> = members.iter().map(|&k| g2_old[k].take()).collect();
                 match super::g2::run(&mut states[i], &designs, depth, old) {
-                    Ok((stacks, changed, spans)) => {
-                        for (((&k, s), ch), span) in
-                            members.iter().zip(stacks).zip(changed).zip(spans)
+                    Ok((stacks, changed, spans, cols)) => {
+                        for ((((&k, s), ch), span), col) in
+                            members.iter().zip(stacks).zip(changed).zip(spans).zip(cols)
                         {
                             in_run[k] = true;
                             if ch {
                                 moved[k] = span;
+                                moved_col[k] = col;
                                 new[k] = Some(Ok(s));
                             } else {
                                 // not changed: put back as it is
@@ -452,8 +455,9 @@ pub(crate) fn build_joined(
         new[i] = Some(built);
     }
     // every rebuilt patch's normals (the seams and the drawing read them):
-    // a rejoin's in its moved rows ± 1 only, from the old ones (a normal
-    // reads its row's neighbours, docs/math.md §4), bit for bit the whole
+    // a rejoin's in its moved rows ± 1 only, from the old ones, and from
+    // one column before the first one placed again (a normal reads its
+    // row's and its column's neighbours, docs/math.md §4), bit for bit the whole
     let mut written: Vec<Option<RowSpan>> = vec![None; n];
     for i in 0..n {
         if normals[i].is_none()
@@ -462,15 +466,15 @@ pub(crate) fn build_joined(
             let p = s.finest_points();
             let last = p.rows().saturating_sub(1);
             let old = &mut rows[i].5.bypass_change_detection().normals;
-            let (mut out, lo, hi) = match moved[i] {
+            let (mut out, lo, hi, c0) = match moved[i] {
                 Some(span) if old.len() == p.data().len() && span.hi <= last => {
                     let (lo, hi) = (span.lo.saturating_sub(1), (span.hi + 1).min(last));
                     written[i] = Some(RowSpan { lo, hi });
-                    (std::mem::take(old), lo, hi)
+                    (std::mem::take(old), lo, hi, moved_col[i].saturating_sub(1))
                 }
-                _ => (vec![DVec3::Z; p.data().len()], 0, last),
+                _ => (vec![DVec3::Z; p.data().len()], 0, last, 0),
             };
-            normals_window(p.data(), p.cols(), lo, hi, 0, &mut out);
+            normals_window(p.data(), p.cols(), lo, hi, c0, &mut out);
             normals[i] = Some(out);
         }
     }

@@ -18,9 +18,10 @@ use streamline_kernel::joins::{JoinError, Stack};
 #[derive(Component, Debug, Default)]
 pub struct G2RunState(pub Option<G2State>);
 
-/// Each member's stack, whether it changed and the rows of its finest
-/// points placed again (`None` with a change: all of them).
-pub(crate) type RunBuilt = (Vec<Stack>, Vec<bool>, Vec<Option<RowSpan>>);
+/// Each member's stack, whether it changed, the rows of its finest points
+/// placed again (`None` with a change: all of them) and the first column
+/// placed again in those rows (0: all of them).
+pub(crate) type RunBuilt = (Vec<Stack>, Vec<bool>, Vec<Option<RowSpan>>, Vec<usize>);
 
 /// The run of `designs` (each one's seam column the previous one's last,
 /// with its details) at
@@ -35,7 +36,7 @@ pub(crate) fn run(
 ) -> Result<RunBuilt, JoinError> {
     if let (Some(st), Some(mut stacks)) = (state.as_mut(), old) {
         return match st.update_parts(designs, depth, &mut stacks) {
-            Ok(u) => Ok((stacks, u.changed, u.rows)),
+            Ok(u) => Ok((stacks, u.changed, u.rows, u.cols)),
             Err(e) => {
                 *state = None;
                 Err(e)
@@ -46,7 +47,7 @@ pub(crate) fn run(
         Ok((st, stacks)) => {
             *state = Some(st);
             let n = designs.len();
-            Ok((stacks, vec![true; n], vec![None; n]))
+            Ok((stacks, vec![true; n], vec![None; n], vec![0; n]))
         }
         Err(e) => {
             *state = None;

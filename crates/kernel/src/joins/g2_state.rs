@@ -53,6 +53,11 @@ pub struct G2Update {
     /// again (`None`: none; a whole build, every row), so that what reads
     /// the points (the mesh normals, the drawing) can be local too.
     pub rows: Vec<Option<RowSpan>>,
+    /// Per patch, the first column of its finest points placed again in
+    /// those rows (the columns before it kept their bits; 0 with a whole
+    /// build), so that the mesh normals, which read a point's neighbours
+    /// (docs/math.md §4), can be made again from one column before it.
+    pub cols: Vec<usize>,
     /// Merged tangents re-blended, over all levels (a whole build counts
     /// every entry of levels `1 ..= d`).
     pub reblended: usize,
@@ -66,6 +71,8 @@ pub struct G2Update {
 struct Marks<'a> {
     changed: &'a mut [bool],
     rows: Option<&'a mut [Option<RowSpan>]>,
+    /// With `rows`: each patch's first column placed again.
+    cols: &'a mut [usize],
 }
 
 /// The tangents of levels `1 ..= d` (what a whole build re-blends).
@@ -195,17 +202,25 @@ impl G2State {
         }
         let mut changed = vec![false; n];
         let mut rows = vec![None; n];
+        let mut cols = vec![usize::MAX; n];
         let last = self.levels.len() - 1;
         for (d, w) in prop_dirty.into_iter().enumerate() {
             let marks = Marks {
                 changed: &mut changed,
                 rows: (d == last).then_some(&mut rows[..]),
+                cols: &mut cols,
             };
             self.recut_level(d, w, params, same_curve && !params, stacks, marks);
+        }
+        for c in &mut cols {
+            if *c == usize::MAX {
+                *c = 0;
+            }
         }
         Ok(G2Update {
             changed,
             rows,
+            cols,
             reblended,
             whole: false,
         })
@@ -231,6 +246,7 @@ impl G2State {
         let Marks {
             changed,
             rows: mut placed,
+            cols: first_col,
         } = marks;
         let scheme = self.run.design.scheme();
         let level = &self.levels[d];
@@ -258,6 +274,15 @@ impl G2State {
         // the first merged column the window changed (none: only starts moved)
         let from = window.map_or(usize::MAX, |w| w.cols.lo);
         for r in (0..nrows).filter(|&r| rows[r]) {
+            // the window's tangents (and parameters) of the row cut again
+            // into each patch's level while the row is at hand (every
+            // window row is placed again)
+            if let Some(w) = window.filter(|w| w.rows.lo <= r && r <= w.rows.hi) {
+                for (p, stack) in stacks.iter_mut().enumerate() {
+                    let part = &mut stack.levels[d];
+                    changed[p] |= recut_window_row(level, w, &cuts, p, params, part, r);
+                }
+            }
             let moved = bits(before[r]) != bits(self.origins[d][r]);
             let k = segment_at(level.params.s.row(r), level.params.sigma[r]);
             // a patch's points read the merged tangents up to its last
@@ -291,12 +316,15 @@ impl G2State {
                         lo: s.lo.min(r),
                         hi: s.hi.max(r),
                     }));
+                    // the first point `cut_row_from` writes
+                    let (lo, hi) = (cuts[p], cuts[p + 1]);
+                    let at = if start <= lo {
+                        0
+                    } else {
+                        (start - lo).min(hi - lo + 1)
+                    };
+                    first_col[p] = first_col[p].min(at);
                 }
-            }
-        }
-        if let Some(w) = window {
-            for (p, stack) in stacks.iter_mut().enumerate() {
-                changed[p] |= recut_window(level, w, &cuts, p, params, &mut stack.levels[d]);
             }
         }
     }
@@ -326,6 +354,7 @@ impl G2State {
                     (n > 0).then(|| RowSpan { lo: 0, hi: n - 1 })
                 })
                 .collect(),
+            cols: vec![0; patches.len()],
             reblended: whole_count(&self.levels),
             whole: true,
         })
@@ -437,45 +466,45 @@ fn merged_point(stacks: &[Stack], d: usize, r: usize, cuts: &[usize], m: usize) 
     stacks[p].points[d].get(r, m - cuts[p])
 }
 
-/// Patch `p`'s level (`part`) cut again from the merged `level` inside its
-/// window `w` (Eq. 69): the tangents of the window's cells in the patch's
-/// columns and, when `params` (an edit that changed a parameter; else they
-/// are as they were), their `s` and the window rows' `t` and `σ` (the first
-/// patch's merged `σ`, a later one's first `s`). Whether any of them changed.
-fn recut_window(
+/// Row `r` (of window `w`'s rows) of patch `p`'s level (`part`) cut again
+/// from the merged `level` inside its window `w` (Eq. 69): the tangents of
+/// the window's cells in the patch's columns and, when `params` (an edit
+/// that changed a parameter; else they are as they were), their `s` and the
+/// row's `t` and `σ` (the first patch's merged `σ`, a later one's first
+/// `s`). Whether any of them changed.
+fn recut_window_row(
     level: &LevelState,
     w: DirtyWindow,
     cuts: &[usize],
     p: usize,
     params: bool,
     part: &mut crate::levels::design::Level,
+    r: usize,
 ) -> bool {
     let (lo, hi) = (cuts[p], cuts[p + 1]);
     let mut changed = false;
     let (c0, c1) = (w.cols.lo.max(lo), w.cols.hi.min(hi));
-    for r in w.rows.iter() {
-        if params {
-            let sigma = if p == 0 {
-                level.params.sigma[r]
-            } else {
-                level.params.s.get(r, lo)
-            };
-            changed |= assign_f64(&mut part.params.t[r..=r], &level.params.t[r..=r]);
-            changed |= assign_f64(&mut part.params.sigma[r..=r], &[sigma]);
-        }
-        if c0 > c1 {
-            continue;
-        }
-        changed |= assign(
-            &mut part.tangents.row_mut(r)[c0 - lo..=c1 - lo],
-            &level.tangents.row(r)[c0..=c1],
+    if params {
+        let sigma = if p == 0 {
+            level.params.sigma[r]
+        } else {
+            level.params.s.get(r, lo)
+        };
+        changed |= assign_f64(&mut part.params.t[r..=r], &level.params.t[r..=r]);
+        changed |= assign_f64(&mut part.params.sigma[r..=r], &[sigma]);
+    }
+    if c0 > c1 {
+        return changed;
+    }
+    changed |= assign(
+        &mut part.tangents.row_mut(r)[c0 - lo..=c1 - lo],
+        &level.tangents.row(r)[c0..=c1],
+    );
+    if params {
+        changed |= assign_f64(
+            &mut part.params.s.row_mut(r)[c0 - lo..=c1 - lo],
+            &level.params.s.row(r)[c0..=c1],
         );
-        if params {
-            changed |= assign_f64(
-                &mut part.params.s.row_mut(r)[c0 - lo..=c1 - lo],
-                &level.params.s.row(r)[c0..=c1],
-            );
-        }
     }
     changed
 }

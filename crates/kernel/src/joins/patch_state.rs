@@ -15,6 +15,10 @@
 //! column before it; that column is kept per level ([`PatchState`]), so a
 //! move of the parent's edge projects again without re-blending.
 //!
+//! The levels' tangents and parameters are held once, by the patch's
+//! stack: an update lends them to the state, re-blends and fixes them in
+//! place and gives them back, so no window is copied between the two.
+//!
 //! Fine tuning reads every row of a level (its constraint, docs/math.md
 //! §6): a tuned level whose tangents, parameters or starts changed places
 //! all its rows again, while its levels are still re-blended in the window
@@ -44,7 +48,11 @@ pub struct PatchState {
     design: Design,
     details: Details,
     tuning: Option<SurfaceTuning>,
+    /// Each level's blend state; its tangents and parameters are the
+    /// stack's, lent to it during an update ([`lend`]) and empty between.
     levels: Vec<LevelState>,
+    /// Each level's shape (rows, columns), to check a stack against.
+    shapes: Vec<(usize, usize)>,
     /// Per level, column 0 before a G1 join's fix (after the step and the
     /// details); empty for other starts. The next update's step reads it
     /// there: an in-place step (s-first Kobbelt) reads the level's own
@@ -88,11 +96,35 @@ impl PatchUpdate {
     }
 }
 
-/// The level of a [`LevelState`], copied.
-fn level_of(s: &LevelState) -> Level {
-    Level {
-        tangents: s.tangents.clone(),
-        params: s.params.clone(),
+/// The tangents and parameters of a [`LevelState`], moved out (its own
+/// left empty: between updates the patch's stack holds them, [`lend`]).
+fn take_level(s: &mut LevelState) -> Level {
+    let empty = Level {
+        tangents: crate::grid::Grid::filled(0, 0, DVec3::ZERO),
+        params: crate::levels::params::ParamGrid {
+            s: crate::grid::Grid::filled(0, 0, 0.0),
+            t: Vec::new(),
+            sigma: Vec::new(),
+        },
+    };
+    let mut out = empty;
+    lend_one(s, &mut out);
+    out
+}
+
+/// Swaps a level's tangents and parameters between the state and `level`.
+fn lend_one(s: &mut LevelState, level: &mut Level) {
+    std::mem::swap(&mut s.tangents, &mut level.tangents);
+    std::mem::swap(&mut s.params, &mut level.params);
+}
+
+/// Swaps every level's tangents and parameters between the state's
+/// `levels` and `stack`'s: the state keeps one copy of them, the stack's
+/// (module documentation), and an update borrows it to re-blend in place
+/// and gives it back, so that no window is copied from one to the other.
+fn lend(levels: &mut [LevelState], stack: &mut Stack) {
+    for (s, level) in levels.iter_mut().zip(&mut stack.levels) {
+        lend_one(s, level);
     }
 }
 
@@ -141,17 +173,17 @@ impl PatchState {
             levels.push(level);
         }
         let tuning = parts.tuning;
+        let starts: Vec<Vec<DVec3>> = (levels.iter().enumerate())
+            .map(|(d, ls)| parent.starts(design, d, ls))
+            .collect();
+        let shapes = levels.iter().map(LevelState::shape).collect();
         let mut stack = Stack {
-            levels: levels.iter().map(level_of).collect(),
+            levels: levels.iter_mut().map(take_level).collect(),
             points: Vec::with_capacity(levels.len()),
         };
-        let mut starts = Vec::with_capacity(levels.len());
-        for (d, (ls, level)) in levels.iter().zip(&stack.levels).enumerate() {
-            let s = parent.starts(design, d, ls);
-            stack
-                .points
-                .push(place_level(parent.kind, design, level, &s, tuning));
-            starts.push(s);
+        for (level, s) in stack.levels.iter().zip(&starts) {
+            let points = place_level(parent.kind, design, level, s, tuning);
+            stack.points.push(points);
         }
         let me = PatchState {
             kind: parent.kind,
@@ -159,6 +191,7 @@ impl PatchState {
             details,
             tuning: tuning.cloned(),
             levels,
+            shapes,
             before,
             starts,
         };
@@ -227,6 +260,7 @@ impl PatchState {
         let levels = depth as usize + 1;
         start.kind() == self.kind
             && self.levels.len() == levels
+            && self.shapes.len() == levels
             && stack.levels.len() == levels
             && stack.points.len() == levels
             && old.net().rows() == design.net().rows()
@@ -234,13 +268,18 @@ impl PatchState {
             && old.scheme() == design.scheme()
             && old.order() == design.order()
             && old.anchor() == design.anchor()
-            && (stack.levels.iter().zip(&self.levels))
-                .all(|(l, s)| l.tangents.rows() == s.shape().0 && l.tangents.cols() == s.shape().1)
+            && (stack.levels.iter().zip(&self.shapes)).all(|(l, &(rows, cols))| {
+                l.tangents.rows() == rows
+                    && l.tangents.cols() == cols
+                    && l.params.s.rows() == rows
+                    && l.params.s.cols() == cols
+                    && l.params.t.len() == rows
+                    && l.params.sigma.len() == rows
+            })
             && match start {
                 Start::Edge {
                     a, edge: Edge::End, ..
-                } => (a.levels.iter().zip(&self.levels))
-                    .all(|(al, s)| al.tangents.rows() == s.shape().0),
+                } => (a.levels.iter().zip(&self.shapes)).all(|(al, s)| al.tangents.rows() == s.0),
                 _ => true,
             }
     }
@@ -271,7 +310,9 @@ impl PatchState {
         rs.zip(cs).map(|(rows, cols)| DirtyWindow { rows, cols })
     }
 
-    /// The update in place (module documentation).
+    /// The update in place (module documentation): the levels are
+    /// re-blended and fixed in the stack's own tangents and parameters,
+    /// lent to the state ([`lend`]), then the moved rows are placed again.
     fn update_levels(
         &mut self,
         parts: PatchParts,
@@ -281,6 +322,55 @@ impl PatchState {
     ) -> Result<PatchUpdate, JoinError> {
         let design = parts.design;
         let tuning_changed = parts.tuning != self.tuning.as_ref();
+        // (given back also on an error: the stack then holds what the
+        // failed update wrote, as when it was written in place)
+        lend(&mut self.levels, stack);
+        let stepped = self.step_levels(design, parent, seed);
+        lend(&mut self.levels, stack);
+        let (place, reblended) = stepped?;
+        self.tuning = parts.tuning.cloned();
+        let mut rows_out = Vec::with_capacity(place.len());
+        for (d, place) in place.into_iter().enumerate() {
+            let (old, points) = (&stack.levels[d], &mut stack.points[d]);
+            let rows = old.tangents.rows();
+            let placed = match parts.tuning {
+                Some(t) if place.is_some() || tuning_changed => {
+                    *points = place_level(parent.kind, design, old, &self.starts[d], Some(t));
+                    Some(Span::all(rows))
+                }
+                Some(_) => None,
+                None if tuning_changed => {
+                    *points = place_level(parent.kind, design, old, &self.starts[d], None);
+                    Some(Span::all(rows))
+                }
+                None => {
+                    if let Some(p) = place {
+                        for r in p.iter() {
+                            place_row(parent.kind, old, self.starts[d][r], r, points.row_mut(r));
+                        }
+                    }
+                    place
+                }
+            };
+            rows_out.push(placed.map(|s| RowSpan { lo: s.lo, hi: s.hi }));
+        }
+        Ok(PatchUpdate {
+            rows: rows_out,
+            reblended,
+            whole: false,
+        })
+    }
+
+    /// Each level re-blended inside the edit's window and fixed again, in
+    /// the tangents and parameters lent to the state, and each level's rows
+    /// to place again (the window's, those whose `t`, `σ` or start moved),
+    /// with the tangents re-blended.
+    fn step_levels(
+        &mut self,
+        design: &Design,
+        parent: &Parent,
+        seed: Option<DirtyWindow>,
+    ) -> Result<(Vec<Option<Span>>, usize), JoinError> {
         let same_curve = self.design.initial().same_bits(design.initial());
         // whether a parameter changed at level 0 (else the levels'
         // parameters are re-blended by no step)
@@ -293,13 +383,16 @@ impl PatchState {
             })
         });
         self.design = design.clone();
-        self.tuning = parts.tuning.cloned();
         let mut reblended = 0;
-        let mut rows_out = Vec::with_capacity(self.levels.len());
+        let mut out = Vec::with_capacity(self.levels.len());
         let mut window: Option<DirtyWindow> = None;
         for d in 0..self.levels.len() {
             let (above, below) = self.levels.split_at_mut(d);
             let level = &mut below[0];
+            // column 0, `t` and `σ` as last built, to find what the fix moved
+            let rows = level.tangents.rows();
+            let col0: Vec<DVec3> = (0..rows).map(|r| level.tangents.get(r, 0)).collect();
+            let (t_was, sigma_was) = (level.params.t.clone(), level.params.sigma.clone());
             // the step (level 0: the net itself, inside the seed)
             let fresh = match d {
                 0 => seed.inspect(|w| {
@@ -334,16 +427,15 @@ impl PatchState {
             };
             parent.fix(d, level, fresh, before)?;
             // what the fix changed outside the step's window: column 0, `t`
-            // and `σ`, against the stack's level as it was
-            let old = &mut stack.levels[d];
+            // and `σ`, against the level as it was
             let mut col: Option<Span> = None;
             let mut moved_rows: Option<Span> = None;
-            for r in 0..level.tangents.rows() {
-                if bits(level.tangents.get(r, 0)) != bits(old.tangents.get(r, 0)) {
+            for r in 0..rows {
+                if bits(level.tangents.get(r, 0)) != bits(col0[r]) {
                     col = add_row(col, r);
                 }
-                if level.params.t[r].to_bits() != old.params.t[r].to_bits()
-                    || level.params.sigma[r].to_bits() != old.params.sigma[r].to_bits()
+                if level.params.t[r].to_bits() != t_was[r].to_bits()
+                    || level.params.sigma[r].to_bits() != sigma_was[r].to_bits()
                 {
                     moved_rows = add_row(moved_rows, r);
                 }
@@ -356,17 +448,6 @@ impl PatchState {
                 (Some(f), Some(c)) => Some(f.union(c)),
                 (f, c) => f.or(c),
             };
-            // the stack's level brought up to date inside the window
-            if let Some(w) = window {
-                for r in w.rows.iter() {
-                    let cs = w.cols.lo..=w.cols.hi;
-                    old.tangents.row_mut(r)[cs.clone()]
-                        .copy_from_slice(&level.tangents.row(r)[cs.clone()]);
-                    old.params.s.row_mut(r)[cs.clone()].copy_from_slice(&level.params.s.row(r)[cs]);
-                }
-            }
-            old.params.t.clone_from(&level.params.t);
-            old.params.sigma.clone_from(&level.params.sigma);
             // the rows to place again: the window's, those whose `t`, `σ`
             // or start moved
             let starts = match (parent.kind, same_curve, moved_rows) {
@@ -386,33 +467,8 @@ impl PatchState {
                 }
                 self.starts[d].clone_from(s);
             }
-            let rows = level.tangents.rows();
-            let points = &mut stack.points[d];
-            let placed = match parts.tuning {
-                Some(t) if place.is_some() || tuning_changed => {
-                    *points = place_level(parent.kind, design, &*old, &self.starts[d], Some(t));
-                    Some(Span::all(rows))
-                }
-                Some(_) => None,
-                None if tuning_changed => {
-                    *points = place_level(parent.kind, design, &*old, &self.starts[d], None);
-                    Some(Span::all(rows))
-                }
-                None => {
-                    if let Some(p) = place {
-                        for r in p.iter() {
-                            place_row(parent.kind, old, self.starts[d][r], r, points.row_mut(r));
-                        }
-                    }
-                    place
-                }
-            };
-            rows_out.push(placed.map(|s| RowSpan { lo: s.lo, hi: s.hi }));
+            out.push(place);
         }
-        Ok(PatchUpdate {
-            rows: rows_out,
-            reblended,
-            whole: false,
-        })
+        Ok((out, reblended))
     }
 }
