@@ -12,22 +12,20 @@ use crate::scene::design::model::Scene;
 use streamline_kernel::KernelError;
 use streamline_kernel::grid::Grid;
 use streamline_kernel::joins::Stack;
-use streamline_kernel::levels::incremental::{reference_levels, tuned_points};
 use streamline_kernel::nurbs::{Fit, FitError, FitOptions, Samples, ShellError, deviation_field};
 
 /// The scene's streamline points at `depth` with their fit parameters; a
 /// mirrored scene's are the doubled design's (one surface over both halves).
+/// Built as every patch is, by [`Stack::build_parts`] of
+/// [`shown_document`]'s one patch (its details and fine tuning included),
+/// so they are the points [`fit_scene`] fits, bit for bit.
 pub fn samples(scene: &Scene, depth: u32) -> Result<Samples, FitError> {
-    let design = scene.shown_design()?;
-    let levels = reference_levels(&design, &scene.details, depth)?;
-    let level = levels.last().expect("level 0 at least");
-    let points = tuned_points(
-        design.initial(),
-        &level.tangents,
-        &level.params,
-        scene.tuning.as_ref(),
-    );
-    Samples::from_level(level, points)
+    let doc = shown_document(scene)?;
+    let patch = &doc.patches[0];
+    let mut stack = Stack::build_parts(patch.parts(&patch.design), depth)?;
+    let d = depth as usize;
+    let points = std::mem::replace(&mut stack.points[d], Grid::filled(0, 0, Default::default()));
+    Samples::from_level(&stack.levels[d], points)
 }
 
 /// A fit of a scene with its time.
@@ -96,4 +94,59 @@ pub fn fit_shown(scene: &Scene, opts: &FitOptions) -> Result<(SceneFit, Grid<f64
     let shown = samples(scene, depth)?;
     let field = deviation_field(&f.fit.surface, &shown);
     Ok((f, field))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+    use std::path::Path;
+    use streamline_kernel::levels::incremental::{reference_levels, tuned_points};
+
+    /// The points the one-patch pipeline shows, made independently of the
+    /// stack: the kernel's reference levels and tuned points of the shown
+    /// design (docs/math.md §5, §6).
+    fn pipeline_points(scene: &Scene, depth: u32) -> Grid<DVec3> {
+        let design = scene.shown_design().unwrap();
+        let levels = reference_levels(&design, &scene.details, depth).unwrap();
+        let level = levels.last().unwrap();
+        let tuning = scene.tuning.as_ref();
+        tuned_points(design.initial(), &level.tangents, &level.params, tuning)
+    }
+
+    /// The samples are the pipeline's points bit for bit, with details,
+    /// fine tuning, interpolated tangents and a mirror, at depths 0–4;
+    /// negative control: without the detail they differ.
+    #[test]
+    fn the_samples_are_the_pipeline_s_points() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/car1-tuned.ron");
+        let text = std::fs::read_to_string(&path).unwrap();
+        let mut scene = Scene::parse(&text, &path).unwrap();
+        assert!(scene.tuning.is_some());
+        scene
+            .details
+            .insert((1, 2, 3), DVec3::new(0.2, -0.1, 1.0).normalize());
+        for (mirror, interpolate) in [(false, false), (true, false), (false, true), (true, true)] {
+            scene.mirror = mirror;
+            scene.interpolate_tangents = interpolate;
+            for depth in 0..=4 {
+                let got = samples(&scene, depth).unwrap().points;
+                let want = pipeline_points(&scene, depth);
+                assert_eq!((got.rows(), got.cols()), (want.rows(), want.cols()));
+                let same = (got.data().iter().zip(want.data()))
+                    .all(|(a, b)| a.to_array().map(f64::to_bits) == b.to_array().map(f64::to_bits));
+                assert!(
+                    same,
+                    "mirror {mirror}, interpolated {interpolate}, depth {depth}"
+                );
+            }
+        }
+        let mut plain = scene.clone();
+        plain.details = Default::default();
+        let (a, b) = (
+            samples(&plain, 2).unwrap().points,
+            pipeline_points(&scene, 2),
+        );
+        assert!(a.data().iter().zip(b.data()).any(|(p, q)| p != q));
+    }
 }
