@@ -50,6 +50,8 @@
 
 mod args;
 pub(crate) mod part21;
+mod scan;
+mod syntax_error;
 mod units;
 
 use args::{as_list, as_real, as_ref, describe};
