@@ -1,10 +1,11 @@
 //! What a fit checks before it starts (`docs/math.md §12`, "Refusals"):
-//! options within their ranges, and a reference without zero-length rows,
+//! options within their ranges, a tolerance that is a positive number, and
+//! a reference not closed along the streamlines, without zero-length rows,
 //! poles or non-finite derivatives.
 
 use crate::fit::construct::{initial_nodes, phantoms};
 use crate::fit::error::ReferenceFitError;
-use crate::fit::options::{MAX_FIT_DEPTH, MAX_NET_SIDE, ReferenceFitOptions};
+use crate::fit::options::{MAX_FIT_DEPTH, MAX_NET_SIDE, ReferenceFitOptions, Tolerance};
 use crate::fit::reference::Frame;
 
 pub(super) fn check_options(opts: &ReferenceFitOptions) -> Result<(), ReferenceFitError> {
@@ -30,9 +31,33 @@ pub(super) fn check_options(opts: &ReferenceFitOptions) -> Result<(), ReferenceF
     Ok(())
 }
 
-/// Checks the reference's edges and a grid of points for zero-length rows
-/// and poles.
+/// The absolute tolerance `ε`: a relative one times the reference's
+/// bounding-box diagonal `diag`; refused unless a positive number.
+pub(super) fn absolute_tolerance(
+    tolerance: Tolerance,
+    diag: f64,
+) -> Result<f64, ReferenceFitError> {
+    let tol = match tolerance {
+        Tolerance::Relative(x) => {
+            if !(x.is_finite() && x > 0.0) {
+                return Err(ReferenceFitError::BadTolerance { value: x });
+            }
+            x * diag
+        }
+        Tolerance::Absolute(a) => a,
+    };
+    if !(tol.is_finite() && tol > 0.0) {
+        return Err(ReferenceFitError::BadTolerance { value: tol });
+    }
+    Ok(tol)
+}
+
+/// Checks that the reference is not closed along the streamlines, then its
+/// edges and a grid of points for zero-length rows and poles.
 pub(super) fn check_reference(f: &Frame<'_>) -> Result<(), ReferenceFitError> {
+    if f.closed_along() {
+        return Err(ReferenceFitError::Closed { along: f.along() });
+    }
     for &v in [f.dv[0], f.dv[1]].iter() {
         let fastest = f
             .panels_u
