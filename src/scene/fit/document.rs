@@ -121,8 +121,10 @@ fn deeper_helps(e: &ShellError) -> bool {
     )
 }
 
-/// At the deepest depth, a grid too coarse says so with the depth.
-fn at_deepest(e: ShellError, depth: u32) -> ShellError {
+/// At the deepest depth, a grid too coarse says so with the depth, and
+/// with the patch's scheme when it is an approximating one, whose surface
+/// moves between depths (docs/math.md §11.5).
+fn at_deepest(doc: &Document, e: ShellError, depth: u32) -> ShellError {
     match e {
         ShellError::Fit {
             patch,
@@ -133,16 +135,20 @@ fn at_deepest(e: ShellError, depth: u32) -> ShellError {
                     tolerance,
                     reached,
                 },
-        } => ShellError::Fit {
-            patch,
-            error: FitError::TooFewPointsAtDeepest {
-                direction,
-                points,
-                tolerance,
-                reached,
-                depth,
-            },
-        },
+        } => {
+            let scheme = doc.index(&patch).map(|i| doc.patches[i].design.scheme());
+            ShellError::Fit {
+                patch,
+                error: FitError::TooFewPointsAtDeepest {
+                    direction,
+                    points,
+                    tolerance,
+                    reached,
+                    depth,
+                    moving: scheme.filter(|s| !s.is_interpolatory()),
+                },
+            }
+        }
         e => e,
     }
 }
@@ -204,7 +210,7 @@ pub fn fit_document(
                 });
             }
             Err(e) if deeper_helps(&e) && depth < deepest => depth += 1,
-            Err(e) => return Err(DocumentFitError::Shell(at_deepest(e, depth))),
+            Err(e) => return Err(DocumentFitError::Shell(at_deepest(doc, e, depth))),
         }
     }
 }

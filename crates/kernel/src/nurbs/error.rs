@@ -1,6 +1,7 @@
 //! What can be wrong with a fit, each with what to do.
 
 use crate::error::KernelError;
+use crate::levels::surface::SurfaceScheme;
 use std::fmt;
 
 /// A parameter direction of the surface.
@@ -46,6 +47,12 @@ pub enum FitError {
         reached: f64,
         /// The depth of that grid.
         depth: u32,
+        /// The patch's scheme, when it is an approximating one (Catmull–Clark
+        /// or Doo–Sabin): its surface moves between depths by a length that
+        /// halves per depth (docs/math.md §11.5, "Where it does not reach"),
+        /// which the check grid one depth finer reads, so no pole is
+        /// missing and the message says which tolerance does export.
+        moving: Option<SurfaceScheme>,
     },
     /// Parameters that do not rise strictly from 0 to 1 (or sizes that do not match).
     BadSamples { problem: String },
@@ -74,11 +81,24 @@ impl fmt::Display for FitError {
                 "fitting within {tolerance:e} needs more control points in {direction} than the grid's {points} points (the closest it came was {reached:e}); loosen the tolerance or export deeper"
             ),
             FitError::TooFewPointsAtDeepest {
+                tolerance,
+                reached,
+                depth,
+                moving: Some(scheme),
+                ..
+            } => write!(
+                f,
+                "a {} surface moves between depths by a length that only halves per depth (docs/math.md §11.5): at depth {depth}, the deepest an export samples, its points one depth finer are still {reached:.3e} from the closest fit, over the tolerance {tolerance:.3e}; export with a tolerance of at least {:.1e}, or choose the Kobbelt scheme, whose surface stays put",
+                scheme_name(*scheme),
+                round_up(*reached)
+            ),
+            FitError::TooFewPointsAtDeepest {
                 direction,
                 points,
                 tolerance,
                 reached,
                 depth,
+                moving: None,
             } => write!(
                 f,
                 "fitting within {tolerance:e} needs more control points in {direction} than even depth {depth}'s {points} points, the deepest an export samples (the closest it came was {reached:e}); loosen the tolerance"
@@ -90,6 +110,30 @@ impl fmt::Display for FitError {
 }
 
 impl std::error::Error for FitError {}
+
+/// A scheme's name as the editor shows it.
+fn scheme_name(scheme: SurfaceScheme) -> &'static str {
+    match scheme {
+        SurfaceScheme::Kobbelt { .. } => "Kobbelt",
+        SurfaceScheme::CatmullClark => "Catmull–Clark",
+        SurfaceScheme::DooSabin => "Doo–Sabin",
+    }
+}
+
+/// `x` rounded up to two significant digits (a tolerance to suggest that is
+/// not below what was reached).
+fn round_up(x: f64) -> f64 {
+    if !(x.is_finite() && x > 0.0) {
+        return x;
+    }
+    let unit = 10f64.powf(x.log10().floor() - 1.0);
+    let up = (x / unit).ceil() * unit;
+    // the printed two digits (`{:.1e}`) are never below `x`
+    match format!("{up:.1e}").parse::<f64>() {
+        Ok(v) if v >= x => v,
+        _ => up + unit,
+    }
+}
 
 impl From<KernelError> for FitError {
     fn from(e: KernelError) -> Self {
