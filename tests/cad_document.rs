@@ -514,6 +514,9 @@ fn obj_and_stl_hold_one_object_per_patch_and_bad_names_say_what_to_do() {
 /// Catmull–Clark and Doo–Sabin. Negative control: one step of the
 /// suggested two digits below it is refused the same way (for one patch;
 /// a shell's faces, each with its own rounds, may pass a little lower).
+/// And a side patch whose rows run past the end of its parent's streamline,
+/// which an approximating scheme shortens as it is sampled deeper, is
+/// refused saying so (hood-screen-wing turned Catmull–Clark, its screen G1).
 #[test]
 fn a_catmull_clark_or_doo_sabin_design_refused_says_which_tolerance_exports() {
     use streamline_kernel::SurfaceScheme;
@@ -579,5 +582,28 @@ fn a_catmull_clark_or_doo_sabin_design_refused_says_which_tolerance_exports() {
             "{tag}: {below}"
         );
     }
+    // a side row past the end of its parent's streamline, which an
+    // approximating scheme shortens as it is sampled deeper: said so
+    let mut doc = turn(hood_screen_wing(), SurfaceScheme::CatmullClark);
+    for p in &mut doc.patches {
+        if let Start::Edge { join, .. } = &mut p.start {
+            join.continuity = streamline_kernel::joins::Continuity::G1;
+        }
+    }
+    let built = doc.build(doc.display_depth).unwrap();
+    let refused = export_document(
+        &doc,
+        &built,
+        &dir.join("side-past-the-end.step"),
+        &DocumentExportSettings::default(),
+    )
+    .err()
+    .expect("a side row past its parent's streamline exported")
+    .to_string();
+    eprintln!("hood-screen-wing, Catmull–Clark, G1: {refused}");
+    assert!(
+        refused.contains("past the end of the earlier patch's Last streamline"),
+        "{refused}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -44,8 +44,18 @@ pub(super) fn side_params(
     let row = a.points.row(r);
     let scale = a.diagonal().max(f64::MIN_POSITIVE);
     let mut us = Vec::with_capacity(b.points.rows());
+    let ends = (a.u[0], a.u[a.u.len() - 1]);
     for j in 0..b.points.rows() {
         let (u, d) = on_polyline(row, &a.u, b.points.get(j, 0));
+        if d > 1e-9 * scale && (u == ends.0 || u == ends.1) {
+            // past an end: the parent's streamline is shorter at this depth
+            // than the row's `t` (an approximating scheme shortens it with
+            // depth, docs/math.md §11.5)
+            return Err(format!(
+                "the later patch's row {j} starts {d:.3e} past the end of the earlier patch's {} streamline as sampled for the export; a Catmull–Clark or Doo–Sabin streamline gets shorter as it is sampled deeper, so keep the later patch's rows (its t) further inside it, or choose the Kobbelt scheme",
+                edge.name()
+            ));
+        }
         if d > 1e-9 * scale {
             return Err(format!(
                 "the later patch's row {j} starts {d:.3e} away from the earlier patch's {} streamline; build both with joins::join",
