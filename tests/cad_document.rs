@@ -597,8 +597,7 @@ fn a_catmull_clark_or_doo_sabin_design_refused_says_which_tolerance_exports() {
         &dir.join("side-past-the-end.step"),
         &DocumentExportSettings::default(),
     )
-    .err()
-    .expect("a side row past its parent's streamline exported")
+    .expect_err("a side row past its parent's streamline exported")
     .to_string();
     eprintln!("hood-screen-wing, Catmull–Clark, G1: {refused}");
     assert!(
