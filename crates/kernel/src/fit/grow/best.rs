@@ -8,7 +8,7 @@ use super::plan::Plan;
 use crate::fit::closest::Distances;
 use crate::fit::construct::Nodes;
 use crate::fit::error::ReferenceFitError;
-use crate::fit::measure::{RowCache, from_reference, measure};
+use crate::fit::measure::{RowCache, from_reference};
 use crate::levels::builder::Builder;
 use crate::levels::design::Design;
 
@@ -63,18 +63,7 @@ pub(super) fn measure_in_full(
     builder.build(&b.design, plan.opts.depth)?;
     if let Some(level) = builder.level() {
         let points = &builder.mesh().positions;
-        let m = measure(
-            plan.f,
-            plan.anchor,
-            &b.nodes,
-            plan.lt,
-            level,
-            points,
-            (1, 2),
-            plan.stop,
-            plan.fraction,
-            cache,
-        )?;
+        let m = plan.measure(&b.nodes, level, points, (1, 2), cache)?;
         b.to = Distances::of(&m.dist);
         b.from = Some(Distances::of(
             &from_reference(plan.f, plan.anchor, level, points, &m.tables)?.0,

@@ -9,7 +9,7 @@ use super::plan::Plan;
 use crate::fit::closest::Distances;
 use crate::fit::construct::Nodes;
 use crate::fit::error::ReferenceFitError;
-use crate::fit::measure::{Measure, RowCache, from_reference, measure};
+use crate::fit::measure::{Measure, RowCache, from_reference};
 use crate::levels::builder::Builder;
 
 /// Meshes with more points than this are measured at every other row and
@@ -54,35 +54,13 @@ pub(super) fn measure_net(
     // strided while far, every point once close
     let (rows_d, cols_d) = (level.tangents.rows(), level.tangents.cols());
     let mut stride = if rows_d * cols_d > STRIDE_FROM { 2 } else { 1 };
-    let mut m = measure(
-        plan.f,
-        plan.anchor,
-        nodes,
-        plan.lt,
-        level,
-        points,
-        (stride, stride),
-        plan.stop,
-        plan.fraction,
-        cache,
-    )?;
+    let mut m = plan.measure(nodes, level, points, (stride, stride), cache)?;
     let mut to = Distances::of(&m.dist);
     if to.max <= plan.tol && stride > 1 {
         // every point now (the strided rows lend theirs), the cells
         // scored as they were
         stride = 1;
-        m = measure(
-            plan.f,
-            plan.anchor,
-            nodes,
-            plan.lt,
-            level,
-            points,
-            (1, 2),
-            plan.stop,
-            plan.fraction,
-            cache,
-        )?;
+        m = plan.measure(nodes, level, points, (1, 2), cache)?;
         to = Distances::of(&m.dist);
     }
     let mut from = None;

@@ -3,10 +3,14 @@
 //! the anchor curve, the design's setup beyond its nodes, the tolerance and
 //! the net's cap less the phantoms.
 
-use crate::fit::construct::{Setup, phantoms};
+use crate::fit::construct::{Nodes, Setup, phantoms};
+use crate::fit::error::ReferenceFitError;
+use crate::fit::measure::{Measure, RowCache, measure};
 use crate::fit::options::ReferenceFitOptions;
 use crate::fit::reference::{AnchorCurve, Frame};
+use crate::levels::design::Level;
 use crate::streamline::initial_curve::InitialCurve;
+use glam::DVec3;
 
 /// What every net of one fit is built and measured with.
 pub(super) struct Plan<'f, 'a> {
@@ -68,5 +72,29 @@ impl<'f, 'a> Plan<'f, 'a> {
             cap_rows,
             cap_cols,
         }
+    }
+
+    /// The mesh `points` of `level` (the net of `nodes`) measured to the
+    /// reference (eq. 12.6) at the rows and columns `(stride, every)`.
+    pub(super) fn measure(
+        &self,
+        nodes: &Nodes,
+        level: &Level,
+        points: &[DVec3],
+        stride: (usize, usize),
+        cache: &mut RowCache,
+    ) -> Result<Measure, ReferenceFitError> {
+        measure(
+            self.f,
+            self.anchor,
+            nodes,
+            self.lt,
+            level,
+            points,
+            stride,
+            self.stop,
+            self.fraction,
+            cache,
+        )
     }
 }
