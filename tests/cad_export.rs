@@ -2,7 +2,8 @@
 //! scenes, a Cylinder template and a mirrored design read back by OpenCascade (tests/python/check_cad.py, in the test
 //! virtual environment that `scripts/setup.sh --tests` makes), scenes with
 //! hostile names read back with their names, and `.glb`
-//! files read back by the `gltf` crate against the OBJ of the same build.
+//! files read back by the `gltf` crate against the OBJ of the same build;
+//! Catmull–Clark and Doo–Sabin designs refused saying which tolerance exports.
 
 mod common;
 
@@ -465,4 +466,106 @@ fn the_fitted_points_are_the_edited_surface() {
             .fold(0.0, f64::max);
         assert!(worst < 1e-12, "{name}: {worst:e}");
     }
+}
+
+/// A design on an approximating scheme refused at the default tolerance
+/// says why (its surface moves between depths, docs/math.md §11.5) and which
+/// tolerance exports, and that tolerance exports: the car turned
+/// Catmull–Clark and Doo–Sabin. Negative control: one step of the
+/// suggested two digits below it is refused the same way (for one patch;
+/// a shell's faces, each with its own rounds, may pass a little lower).
+/// And a side patch whose rows run past the end of its parent's streamline,
+/// which an approximating scheme shortens as it is sampled deeper, is
+/// refused saying so (hood-screen-wing turned Catmull–Clark, its screen G1).
+#[test]
+fn a_catmull_clark_or_doo_sabin_design_refused_says_which_tolerance_exports() {
+    use streamline_kernel::nurbs::Tolerance;
+    use streamline_studio::scene::design::document::Start;
+    use streamline_studio::scene::design::document_io::load;
+    let dir = scratch("moving");
+    let turn = |mut doc: Document, scheme: SurfaceScheme| {
+        for p in &mut doc.patches {
+            p.design.set_scheme(scheme).unwrap();
+        }
+        doc
+    };
+    let car = || Document::from_scene(builtin::scene("car1").unwrap());
+    let cases = [
+        (
+            "car-catmull-clark",
+            turn(car(), SurfaceScheme::CatmullClark),
+        ),
+        ("car-doo-sabin", turn(car(), SurfaceScheme::DooSabin)),
+    ];
+    for (tag, doc) in cases {
+        let built = doc.build(doc.display_depth).unwrap();
+        let path = dir.join(format!("{tag}.step"));
+        let export = |tolerance: f64| {
+            let settings = DocumentExportSettings {
+                fit: FitOptions {
+                    tolerance: Tolerance::Absolute(tolerance),
+                    ..FitOptions::DEFAULT
+                },
+                ..Default::default()
+            };
+            export_document(&doc, &built, &path, &settings)
+        };
+        let refused = export_document(&doc, &built, &path, &DocumentExportSettings::default())
+            .err()
+            .unwrap_or_else(|| panic!("{tag}: exported at the default tolerance"))
+            .to_string();
+        eprintln!("{tag}: {refused}");
+        assert!(
+            refused.contains("surface moves between depths"),
+            "{tag}: {refused}"
+        );
+        let hint = refused
+            .split("with a tolerance of at least ")
+            .nth(1)
+            .and_then(|r| r.split(',').next())
+            .and_then(|h| h.parse::<f64>().ok())
+            .unwrap_or_else(|| panic!("{tag}: no tolerance in {refused}"));
+        let out = export(hint).unwrap_or_else(|e| panic!("{tag}: {hint} suggested, {e}"));
+        assert!(path.exists(), "{tag}: nothing written");
+        for f in &out.faces {
+            assert!(f.deviation.max <= hint, "{tag}: {} over {hint}", f.name);
+        }
+        eprintln!("{tag}: exported within {hint} at depth {}", out.depth);
+        // the two digits are the least that export: one step below is refused
+        let unit = 10f64.powf(hint.log10().floor() - 1.0);
+        let below = export(hint - unit)
+            .err()
+            .unwrap_or_else(|| panic!("{tag}: {} exported too", hint - unit))
+            .to_string();
+        assert!(
+            below.contains("surface moves between depths"),
+            "{tag}: {below}"
+        );
+    }
+    // a side row past the end of its parent's streamline, which an
+    // approximating scheme shortens as it is sampled deeper: said so
+    let mut doc = turn(
+        load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron")).unwrap(),
+        SurfaceScheme::CatmullClark,
+    );
+    for p in &mut doc.patches {
+        if let Start::Edge { join, .. } = &mut p.start {
+            join.continuity = streamline_kernel::joins::Continuity::G1;
+        }
+    }
+    let built = doc.build(doc.display_depth).unwrap();
+    let refused = export_document(
+        &doc,
+        &built,
+        &dir.join("side-past-the-end.step"),
+        &DocumentExportSettings::default(),
+    )
+    .expect_err("a side row past its parent's streamline exported")
+    .to_string();
+    eprintln!("hood-screen-wing, Catmull–Clark, G1: {refused}");
+    assert!(
+        refused.contains("past the end of the earlier patch's Last streamline"),
+        "{refused}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }
