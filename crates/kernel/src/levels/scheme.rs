@@ -60,6 +60,15 @@ impl SurfaceScheme {
         }
     }
 
+    /// The name as a designer reads it (`Kobbelt`, `Catmull–Clark`, `Doo–Sabin`).
+    pub fn title(self) -> &'static str {
+        match self {
+            SurfaceScheme::Kobbelt { .. } => "Kobbelt",
+            SurfaceScheme::CatmullClark => "Catmull–Clark",
+            SurfaceScheme::DooSabin => "Doo–Sabin",
+        }
+    }
+
     /// Whether the scheme keeps the control net at even indices.
     pub fn is_interpolatory(self) -> bool {
         matches!(self, SurfaceScheme::Kobbelt { .. })

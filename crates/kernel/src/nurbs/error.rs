@@ -89,7 +89,7 @@ impl fmt::Display for FitError {
             } => write!(
                 f,
                 "a {} surface moves between depths by a length that only halves per depth (docs/math.md §11.5): at depth {depth}, the deepest an export samples, its points one depth finer are still {reached:.3e} from the closest fit, over the tolerance {tolerance:.3e}; export with a tolerance of at least {:.1e}, or choose the Kobbelt scheme, whose surface stays put",
-                scheme_name(*scheme),
+                scheme.title(),
                 round_up(*reached)
             ),
             FitError::TooFewPointsAtDeepest {
@@ -110,15 +110,6 @@ impl fmt::Display for FitError {
 }
 
 impl std::error::Error for FitError {}
-
-/// A scheme's name as the editor shows it.
-fn scheme_name(scheme: SurfaceScheme) -> &'static str {
-    match scheme {
-        SurfaceScheme::Kobbelt { .. } => "Kobbelt",
-        SurfaceScheme::CatmullClark => "Catmull–Clark",
-        SurfaceScheme::DooSabin => "Doo–Sabin",
-    }
-}
 
 /// `x` rounded up to two significant digits (a tolerance to suggest that is
 /// not below what was reached).
