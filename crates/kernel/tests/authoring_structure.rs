@@ -82,8 +82,8 @@ proptest! {
             prop_assert!((gs - tn[k]).abs() < 1e-12 * (1.0 + gs.abs()), "s {k}: {gs} vs {}", tn[k]);
         }
         prop_assert_eq!(e.count(axis), n + 1);
-        let s_anchor: Vec<f64> = (0..e.net().rows()).map(|r| e.params().s.get(r, e.anchor())).collect();
-        prop_assert_eq!(&e.params().sigma, &s_anchor, "σ is s of the anchor column");
+        let s_anchor: Vec<f64> = (0..e.net().rows()).map(|r| anchor_s(&e, r)).collect();
+        prop_assert_eq!(&e.params().sigma, &s_anchor, "σ is s of the anchor column, or its row's limit end");
         // the anchor stays on the same column
         if col {
             prop_assert_eq!(e.anchor(), d.anchor() + usize::from(d.anchor() >= at));

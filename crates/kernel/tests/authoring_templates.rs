@@ -20,9 +20,18 @@ proptest! {
         let d = Design::from_template(rows, cols, len, Template::Flat { width }, scheme, BlendOrder::SFirst).unwrap();
         let p = points(&d, depth);
         let tol = 1e-12 * len.max(width);
+        // the rows are anchored at their limit start (docs/math.md §4, "The
+        // anchor"), one spacing in for the cubic B-spline, half of one for
+        // Chaikin: the rectangle is moved back by that much
+        let h = len / (cols - 1) as f64;
+        let a = match scheme {
+            SurfaceScheme::CatmullClark if cols >= 3 => h,
+            SurfaceScheme::DooSabin => 0.5 * h,
+            _ => 0.0,
+        };
         for v in p.data() {
             prop_assert!(v.z == 0.0, "z = {} at {v:?}", v.z);
-            prop_assert!(v.x >= -tol && v.x <= len + tol && v.y >= -tol && v.y <= width + tol, "{v:?} outside [0,{len}]x[0,{width}]");
+            prop_assert!(v.x >= -a - tol && v.x <= len - a + tol && v.y >= -tol && v.y <= width + tol, "{v:?} outside [{},{}]x[0,{width}]", -a, len - a);
         }
         if scheme.is_interpolatory() {
             let [lo, hi] = bounds(p.data().iter().copied());

@@ -157,7 +157,10 @@ fn check_invariants(d: &Design) -> Result<(), TestCaseError> {
         let s = p.s.row(r);
         prop_assert!(s.iter().all(|x| x.is_finite() && x.abs() <= MAX_COORDINATE));
         prop_assert!(s.windows(2).all(|w| w[1] > w[0]), "row {r}: {s:?}");
-        prop_assert_eq!(p.sigma[r].to_bits(), s[d.anchor()].to_bits());
+        prop_assert_eq!(
+            p.sigma[r].to_bits(),
+            common::authoring::anchor_s(d, r).to_bits()
+        );
     }
     prop_assert!(d.scheme().validate().is_ok());
     // and it builds, or says why, with finite output

@@ -63,7 +63,9 @@ impl Design {
     }
 
     /// The anchor column `col`: each streamline meets the initial curve at its
-    /// tangent of that column (000 Fig. 1(b)); `σ_j = s_{col, j}`.
+    /// tangent of that column (000 Fig. 1(b)); `σ_j = s_{col, j}`, or where
+    /// the row's limit starts or ends at a first or last column
+    /// ([`crate::levels::params::anchor_sigma`]).
     pub fn with_anchor(&self, col: usize) -> Result<Design, KernelError> {
         self.with_net(
             self.net.clone(),

@@ -88,7 +88,7 @@ impl Design {
         }
         let net = Grid::new(2 * m - 1, cols, net).expect("2m − 1 rows");
         let s = Grid::new(2 * m - 1, cols, s).expect("2m − 1 rows");
-        let params = crate::levels::params::ParamGrid::new(s, t, self.anchor)?;
+        let params = crate::levels::params::ParamGrid::new(s, t, self.anchor, self.scheme)?;
         Ok(Design {
             net,
             params,

@@ -231,7 +231,7 @@ impl Design {
             });
         }
         self.scheme.check_depth(net.rows(), net.cols(), 0)?;
-        let params = ParamGrid::new(s, t, anchor)?;
+        let params = ParamGrid::new(s, t, anchor, self.scheme)?;
         Ok(Design {
             net,
             params,

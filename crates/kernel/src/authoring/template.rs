@@ -126,7 +126,7 @@ impl Design {
         let length = check_length("streamline length", length)?;
         let (tangents, width) = template.initial()?;
         let initial = InitialCurve::new(&tangents, TEMPLATE_ORDER, width, DVec3::ZERO)?;
-        let params = ParamGrid::uniform(rows, cols, length, width, 0)?;
+        let params = ParamGrid::uniform(rows, cols, length, width, 0, scheme)?;
         Design::new(
             &Grid::filled(rows, cols, DVec3::X),
             params.s,

@@ -72,6 +72,28 @@ impl CurveScheme {
         }
     }
 
+    /// Where the limit of the scalars `s` starts and ends (docs/math.md §4,
+    /// "The anchor"): the ends themselves for the interpolating 4-point rule;
+    /// for the approximating schemes, which shorten a row at every step, the
+    /// limit masks at the ends, Chaikin's `(s₀ + s₁)/2` and the cubic
+    /// B-spline's `(s₀ + 4s₁ + s₂)/6`, mirrored at the far end. The masks are
+    /// exact on scalars, so a row gives the same two values at every level.
+    /// Rows shorter than [`Self::min_len`] give their ends.
+    pub fn limit_ends(self, s: &[f64]) -> (f64, f64) {
+        let n = s.len();
+        let (Some(&first), Some(&last)) = (s.first(), s.last()) else {
+            return (0.0, 0.0);
+        };
+        match self {
+            CurveScheme::Chaikin if n >= 2 => (0.5 * (s[0] + s[1]), 0.5 * (s[n - 2] + s[n - 1])),
+            CurveScheme::CubicBSpline if n >= 3 => (
+                (s[0] + 4.0 * s[1] + s[2]) / 6.0,
+                (s[n - 3] + 4.0 * s[n - 2] + s[n - 1]) / 6.0,
+            ),
+            _ => (first, last),
+        }
+    }
+
     #[cfg(test)]
     /// Number of tangents after `depth` steps from `n`, or `None` on overflow.
     pub(crate) fn len_at_depth(self, mut n: usize, depth: u32) -> Option<usize> {

@@ -67,7 +67,7 @@ impl Design {
             });
         }
         scheme.check_depth(net.rows(), net.cols(), 0)?;
-        let params = ParamGrid::new(s, t, anchor)?;
+        let params = ParamGrid::new(s, t, anchor, scheme)?;
         Ok(Design {
             net,
             params,
@@ -114,10 +114,13 @@ impl Design {
         &self.initial
     }
 
-    /// Replaces the scheme, validated, and checked against the net's size.
+    /// Replaces the scheme, validated, and checked against the net's size;
+    /// `σ` follows the scheme's limit ends ([`crate::levels::params::anchor_sigma`]).
     pub fn set_scheme(&mut self, scheme: SurfaceScheme) -> Result<(), KernelError> {
         let scheme = scheme.validate()?;
         scheme.check_depth(self.net.rows(), self.net.cols(), 0)?;
+        let s = self.params.s.clone();
+        self.params = ParamGrid::new(s, self.params.t.clone(), self.anchor, scheme)?;
         self.scheme = scheme;
         Ok(())
     }
@@ -168,7 +171,7 @@ impl Design {
         }
         let mut grid = self.params.s.clone();
         grid.row_mut(row).copy_from_slice(s);
-        self.params = ParamGrid::new(grid, self.params.t.clone(), self.anchor)?;
+        self.params = ParamGrid::new(grid, self.params.t.clone(), self.anchor, self.scheme)?;
         Ok(())
     }
 

@@ -1,13 +1,36 @@
 //! Parameter grids (docs/math.md §4): an arc-length parameter `s` per control tangent,
 //! strictly increasing along its row; per row a `t` (arc length along the
 //! initial curve where the streamline starts) and an anchor arc length `σ`
-//! (`s` of the anchor column at level 0). All are subdivided with the same
-//! scheme as the tangents, as planar scalars, so every refined tangent has its
-//! `s` and every refined row its `(t, σ)`.
+//! (level 0's `s` of the anchor column, or where the row's limit starts or
+//! ends when that column is its first or last: [`anchor_sigma`]). All are
+//! subdivided with the same scheme as the tangents, as planar scalars, so
+//! every refined tangent has its `s` and every refined row its `(t, σ)`.
 
+use crate::curve::scheme::CurveScheme;
 use crate::error::{KernelError, Place};
 use crate::grid::Grid;
 use crate::levels::surface::{BlendOrder, SurfaceScheme, refine_grid_into};
+
+/// `σ` of a level-0 row anchored at column `anchor` (docs/math.md §4, "The
+/// anchor"): the column's `s`, except at the row's first or last column,
+/// where it is the arc length at which the row's limit starts or ends
+/// ([`CurveScheme::limit_ends`]). An approximating scheme shortens the row
+/// at every step, so its first column's `s` ends up before the row: placed
+/// there, the row would reach `σ` along its first tangent, which turns at
+/// every level, and the whole row would move by a length that only halves
+/// per level. At the limit start the row's own point is anchored at every
+/// level, and it sits on the initial curve. The 4-point rule keeps its ends:
+/// `σ` is the column's `s`, bit for bit.
+pub fn anchor_sigma(curve: CurveScheme, row: &[f64], anchor: usize) -> f64 {
+    let (a, b) = curve.limit_ends(row);
+    if anchor == 0 {
+        a
+    } else if anchor + 1 == row.len() {
+        b
+    } else {
+        row[anchor]
+    }
+}
 
 /// The parameters of one subdivision level.
 #[derive(Debug, Clone, PartialEq)]
@@ -22,8 +45,14 @@ pub struct ParamGrid {
 
 impl ParamGrid {
     /// Level-0 parameters: `s` per tangent, `t` per row, and the anchor column
-    /// whose `s` gives `σ`. Checks finiteness, sizes and strict increase.
-    pub fn new(s: Grid<f64>, t: Vec<f64>, anchor: usize) -> Result<Self, KernelError> {
+    /// that gives `σ` under `scheme` ([`anchor_sigma`]). Checks finiteness,
+    /// sizes and strict increase.
+    pub fn new(
+        s: Grid<f64>,
+        t: Vec<f64>,
+        anchor: usize,
+        scheme: SurfaceScheme,
+    ) -> Result<Self, KernelError> {
         if t.len() != s.rows() {
             return Err(KernelError::LengthMismatch {
                 what: "row parameters t",
@@ -62,7 +91,10 @@ impl ParamGrid {
                 value: v,
             });
         }
-        let sigma = (0..s.rows()).map(|r| s.get(r, anchor)).collect();
+        let curve = scheme.curve();
+        let sigma = (0..s.rows())
+            .map(|r| anchor_sigma(curve, s.row(r), anchor))
+            .collect();
         let p = ParamGrid { s, t, sigma };
         p.check(0)?;
         Ok(p)
@@ -76,6 +108,7 @@ impl ParamGrid {
         length: f64,
         width: f64,
         anchor: usize,
+        scheme: SurfaceScheme,
     ) -> Result<Self, KernelError> {
         let s = (0..rows * cols)
             .map(|i| length * (i % cols) as f64 / (cols - 1).max(1) as f64)
@@ -83,7 +116,7 @@ impl ParamGrid {
         let t = (0..rows)
             .map(|r| width * r as f64 / (rows - 1).max(1) as f64)
             .collect();
-        ParamGrid::new(Grid::new(rows, cols, s)?, t, anchor)
+        ParamGrid::new(Grid::new(rows, cols, s)?, t, anchor, scheme)
     }
 
     /// Every `s` finite and strictly increasing along its row; `t`, `σ` finite.

@@ -18,6 +18,24 @@ pub fn points(d: &Design, depth: u32) -> Grid<DVec3> {
     d.streamlines(&level)
 }
 
+/// `σ` of row `r` (docs/math.md §4, "The anchor"): `s` of the anchor
+/// column, or at a first or last column of an approximating scheme the
+/// limit mask there (Chaikin's ½ ½, the cubic B-spline's ⅙ ⅔ ⅙).
+pub fn anchor_s(d: &Design, r: usize) -> f64 {
+    let (s, a) = (d.params().s.row(r), d.anchor());
+    let n = s.len();
+    // a row too short for the mask keeps its ends
+    match (d.scheme(), a == 0, a + 1 == n) {
+        (SurfaceScheme::CatmullClark, true, _) if n >= 3 => (s[0] + 4.0 * s[1] + s[2]) / 6.0,
+        (SurfaceScheme::CatmullClark, _, true) if n >= 3 => {
+            (s[n - 3] + 4.0 * s[n - 2] + s[n - 1]) / 6.0
+        }
+        (SurfaceScheme::DooSabin, true, _) if n >= 2 => 0.5 * (s[0] + s[1]),
+        (SurfaceScheme::DooSabin, _, true) if n >= 2 => 0.5 * (s[n - 2] + s[n - 1]),
+        _ => s[a],
+    }
+}
+
 /// A random design: a gently turning net with uneven positive intervals.
 pub fn design() -> impl Strategy<Value = Design> {
     (
