@@ -252,7 +252,10 @@ fn opencascade_reads_the_document_as_one_shell_and_as_iges_faces() {
     eprintln!("from depth 0: sampled at depth {}", raised.depth);
     // the negative control: at depth 0 the shell is refused
     let grids: Vec<PatchGrid> = (0..3)
-        .map(|i| PatchGrid::from_stack("p", &built.patches[i], 0).unwrap())
+        .map(|i| {
+            let curve = doc.patches[i].design.scheme().curve();
+            PatchGrid::from_stack("p", &built.patches[i], 0, curve).unwrap()
+        })
         .collect();
     let specs: Vec<SeamSpec> = (built.seams.iter())
         .map(|s| SeamSpec {

@@ -134,7 +134,11 @@ fn grids(stacks: &[Stack]) -> Vec<PatchGrid> {
     stacks
         .iter()
         .enumerate()
-        .map(|(i, s)| PatchGrid::from_stack(&format!("patch {i}"), s, DEPTH).unwrap())
+        .map(|(i, s)| {
+            // the car's scheme, Kobbelt's 4-point rule along the rows
+            let curve = car().scheme().curve();
+            PatchGrid::from_stack(&format!("patch {i}"), s, DEPTH, curve).unwrap()
+        })
         .collect()
 }
 

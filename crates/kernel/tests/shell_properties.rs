@@ -16,6 +16,7 @@ use glam::DVec3;
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use streamline_kernel::KernelError;
+use streamline_kernel::curve::scheme::CurveScheme;
 use streamline_kernel::joins::edge_curve::EdgeCurve;
 use streamline_kernel::joins::{Continuity, Edge, Join, JoinError, Stack, join};
 use streamline_kernel::nurbs::{
@@ -53,13 +54,13 @@ fn angle_deg(a: DVec3, b: DVec3) -> f64 {
 
 /// The pair built, or `None` where a build is refused for uneven intervals
 /// (docs/math.md §8) or the fit needs more points than the depth has.
-fn grids(r: Result<(Stack, Stack), JoinError>) -> Option<Vec<PatchGrid>> {
+fn grids(r: Result<(Stack, Stack), JoinError>, curve: CurveScheme) -> Option<Vec<PatchGrid>> {
     let (a, b) = match r {
         Ok(p) => p,
         Err(JoinError::Kernel(KernelError::ParamsNotIncreasing { .. })) => return None,
         Err(e) => panic!("refused: {e}"),
     };
-    let g = |n: &str, s: &Stack| PatchGrid::from_stack(n, s, DEPTH).ok();
+    let g = |n: &str, s: &Stack| PatchGrid::from_stack(n, s, DEPTH, curve).ok();
     Some(vec![g("A", &a)?, g("B", &b)?])
 }
 
@@ -146,7 +147,7 @@ proptest! {
         let order = if continuity == Continuity::G2 { spec.order_a } else { spec.order_b };
         let b = spec.b_chain(&a, Field::Bent, continuity >= Continuity::G1, order);
         let jn = Join { edge: Edge::End, continuity };
-        let patches = grids(join(&a, &b, jn, DEPTH + 1));
+        let patches = grids(join(&a, &b, jn, DEPTH + 1), spec.scheme.curve());
         prop_assume!(patches.is_some());
         let patches = patches.unwrap();
         let seam = SeamSpec { a: 0, b: 1, join: jn };
@@ -176,7 +177,7 @@ proptest! {
         let edge = if last { Edge::Last } else { Edge::First };
         let pair = side_pair(&spec, edge);
         prop_assume!(pair.is_some());
-        let patches = grids(pair.unwrap());
+        let patches = grids(pair.unwrap(), spec.scheme.curve());
         prop_assume!(patches.is_some());
         let patches = patches.unwrap();
         let jn = Join { edge, continuity: Continuity::G1 };
@@ -205,7 +206,7 @@ fn bad_seams_are_refused_with_the_fix() {
         .current();
     let a = spec.a(Field::Bent);
     let sa = Stack::build(&a, DEPTH + 1).unwrap();
-    let g = PatchGrid::from_stack("A", &sa, DEPTH).unwrap();
+    let g = PatchGrid::from_stack("A", &sa, DEPTH, a.scheme().curve()).unwrap();
     let patches = vec![g.clone(), g];
     let jn = |edge, continuity| Join { edge, continuity };
     let cases = [

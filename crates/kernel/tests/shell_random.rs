@@ -298,8 +298,10 @@ fn export(a: &Design, b: &Design, jn: Join) -> Result<Exported, (String, Vec<Pat
             }
             Err(e) => return Err((format!("not built: {e}"), vec![])),
         };
-        let grid = |n: &str, s| PatchGrid::from_stack(n, s, depth).map_err(|e| e.to_string());
-        let grids = match (grid("A", &sa), grid("B", &sb)) {
+        let grid = |n: &str, s, d: &Design| {
+            PatchGrid::from_stack(n, s, depth, d.scheme().curve()).map_err(|e| e.to_string())
+        };
+        let grids = match (grid("A", &sa, a), grid("B", &sb, b)) {
             (Ok(a), Ok(b)) => vec![a, b],
             (Err(e), _) | (_, Err(e)) => return Err((format!("not built: {e}"), vec![])),
         };

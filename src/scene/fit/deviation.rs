@@ -11,9 +11,7 @@ use super::document::{DocumentFitError, FaceFit, fit_document};
 use crate::scene::design::document::Document;
 use std::time::Instant;
 use streamline_kernel::grid::Grid;
-use streamline_kernel::nurbs::{
-    Deviation, FitOptions, Samples, ShellError, deviation_field, face_rows,
-};
+use streamline_kernel::nurbs::{Deviation, FitOptions, Samples, deviation_field, face_rows};
 
 /// One patch's face and the distance of each of its shown points to it.
 #[derive(Debug, Clone, PartialEq)]
@@ -57,18 +55,23 @@ pub fn document_deviation(
     // the fit checks one depth finer: build that far once
     let built = doc.build(depth + 1).map_err(DocumentFitError::Build)?;
     let fit = fit_document(doc, &built, depth, opts, FaceFit::Shell)?;
-    // every patch's points as shown, each with its own parameters first
-    let shown = (built.patches.iter().zip(&doc.patches))
-        .map(|(stack, p)| {
+    // every patch's points as shown, each with its own parameters first, in
+    // the frame of the points its face was fitted to (nurbs::Samples::pair)
+    let deeper;
+    let at_fit = if fit.depth > depth + 1 {
+        deeper = doc.build(fit.depth).map_err(DocumentFitError::Build)?;
+        &deeper
+    } else {
+        &built
+    };
+    let shown: Vec<Samples> = (built.patches.iter().zip(&at_fit.patches).zip(&doc.patches))
+        .map(|((stack, fitted), p)| {
             let d = depth as usize;
-            Samples::from_level(&stack.levels[d], stack.points[d].clone()).map_err(|error| {
-                DocumentFitError::Shell(ShellError::Fit {
-                    patch: p.name.clone(),
-                    error,
-                })
-            })
+            let data = &fitted.levels[fit.depth as usize];
+            let curve = p.design.scheme().curve();
+            Samples::in_frame_of((&stack.levels[d], stack.points[d].clone()), data, curve)
         })
-        .collect::<Result<Vec<_>, _>>()?;
+        .collect();
     let rows = face_rows(&shown, &fit.seams);
     let patches = (fit.faces.iter().zip(shown).zip(rows))
         .map(|((face, s), v)| PatchDeviation {

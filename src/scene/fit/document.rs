@@ -11,7 +11,7 @@
 //! ([`FitError::TooFewPointsAtDeepest`], whose message says to loosen the
 //! tolerance).
 
-use crate::scene::design::document::Document;
+use crate::scene::design::document::{Document, Start};
 use crate::scene::design::document_build::{BuildError, BuiltDocument};
 use std::borrow::Cow;
 use std::fmt;
@@ -122,8 +122,8 @@ fn deeper_helps(e: &ShellError) -> bool {
 }
 
 /// At the deepest depth, a grid too coarse says so with the depth, and
-/// with the patch's scheme when it is an approximating one, whose surface
-/// moves between depths (docs/math.md §11.5).
+/// with the patch's scheme when it is an approximating one on an earlier
+/// patch's edge, which moves between depths (docs/math.md §11.5).
 fn at_deepest(doc: &Document, e: ShellError, depth: u32) -> ShellError {
     match e {
         ShellError::Fit {
@@ -136,7 +136,11 @@ fn at_deepest(doc: &Document, e: ShellError, depth: u32) -> ShellError {
                     reached,
                 },
         } => {
-            let scheme = doc.index(&patch).map(|i| doc.patches[i].design.scheme());
+            // a patch on an earlier one's edge, which moves with depth
+            let scheme = doc
+                .index(&patch)
+                .filter(|&i| matches!(doc.patches[i].start, Start::Edge { .. }))
+                .map(|i| doc.patches[i].design.scheme());
             ShellError::Fit {
                 patch,
                 error: FitError::TooFewPointsAtDeepest {
@@ -173,12 +177,14 @@ pub fn fit_document(
             .iter()
             .zip(&doc.patches)
             .map(|(s, p)| {
-                PatchGrid::from_stack(&p.name, s, depth).map_err(|error| {
-                    DocumentFitError::Shell(ShellError::Fit {
-                        patch: p.name.clone(),
-                        error,
-                    })
-                })
+                PatchGrid::from_stack(&p.name, s, depth, p.design.scheme().curve()).map_err(
+                    |error| {
+                        DocumentFitError::Shell(ShellError::Fit {
+                            patch: p.name.clone(),
+                            error,
+                        })
+                    },
+                )
             })
             .collect::<Result<Vec<_>, _>>()?;
         let start = Instant::now();
@@ -237,4 +243,52 @@ fn fit_each(
         reports.push(f.report);
     }
     Ok((faces, reports))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+    use streamline_kernel::SurfaceScheme;
+    use streamline_kernel::nurbs::Direction;
+
+    /// A refusal at the deepest depth names the moving edge only for an
+    /// approximating patch that starts on an earlier patch's edge
+    /// (docs/math.md §11.5): the wing of hood-screen-wing turned
+    /// Catmull–Clark; not its root, the hood; not the wing on Kobbelt.
+    #[test]
+    fn only_an_approximating_patch_on_an_edge_is_said_to_move() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron");
+        let doc = crate::scene::design::document_io::load(&path).unwrap();
+        let turned = |scheme| {
+            let mut d = doc.clone();
+            for p in &mut d.patches {
+                p.design.set_scheme(scheme).unwrap();
+            }
+            d
+        };
+        let refused = |d: &Document, patch: &str| {
+            let e = ShellError::Fit {
+                patch: patch.into(),
+                error: FitError::TooFewPoints {
+                    direction: Direction::U,
+                    points: 9,
+                    tolerance: 1e-4,
+                    reached: 1.234e-3,
+                },
+            };
+            at_deepest(d, e, 8).to_string()
+        };
+        let cc = turned(SurfaceScheme::CatmullClark);
+        let wing = refused(&cc, "wing");
+        assert!(
+            wing.contains("starts on the edge of an earlier Catmull–Clark patch")
+                && wing.contains("at least 1.3e-3"),
+            "{wing}"
+        );
+        let hood = refused(&cc, "hood");
+        assert!(hood.contains("needs more control points"), "{hood}");
+        let kobbelt = refused(&doc, "wing");
+        assert!(kobbelt.contains("needs more control points"), "{kobbelt}");
+    }
 }

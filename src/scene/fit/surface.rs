@@ -91,7 +91,18 @@ pub fn fit_scene(scene: &Scene, depth: u32, opts: &FitOptions) -> Result<SceneFi
 pub fn fit_shown(scene: &Scene, opts: &FitOptions) -> Result<(SceneFit, Grid<f64>), FitError> {
     let depth = scene.display_depth;
     let f = fit_scene(scene, depth, opts)?;
-    let shown = samples(scene, depth)?;
+    // the points shown, in the frame of the points the face was fitted to
+    let doc = shown_document(scene)?;
+    let patch = &doc.patches[0];
+    let mut stack = Stack::build_parts(patch.parts(&patch.design), f.depth)?;
+    let d = depth as usize;
+    let points = std::mem::replace(&mut stack.points[d], Grid::filled(0, 0, Default::default()));
+    let curve = patch.design.scheme().curve();
+    let shown = Samples::in_frame_of(
+        (&stack.levels[d], points),
+        &stack.levels[f.depth as usize],
+        curve,
+    );
     let field = deviation_field(&f.fit.surface, &shown);
     Ok((f, field))
 }

@@ -48,10 +48,12 @@ pub enum FitError {
         /// The depth of that grid.
         depth: u32,
         /// The patch's scheme, when it is an approximating one (Catmull–Clark
-        /// or Doo–Sabin): its surface moves between depths by a length that
-        /// halves per depth (docs/math.md §11.5, "Where it does not reach"),
-        /// which the check grid one depth finer reads, so no pole is
-        /// missing and the message says which tolerance does export.
+        /// or Doo–Sabin) and the patch starts on an earlier patch's edge:
+        /// that edge, where the earlier patch's shortened streamlines end,
+        /// moves between depths by a length that halves per depth
+        /// (docs/math.md §11.5, "Where it does not reach"), which the check
+        /// grid one depth finer reads, so no pole is missing and the message
+        /// says which tolerance does export.
         moving: Option<SurfaceScheme>,
     },
     /// Parameters that do not rise strictly from 0 to 1 (or sizes that do not match).
@@ -88,7 +90,7 @@ impl fmt::Display for FitError {
                 ..
             } => write!(
                 f,
-                "a {} surface moves between depths by a length that only halves per depth (docs/math.md §11.5): at depth {depth}, the deepest an export samples, its points one depth finer are still {reached:.3e} from the closest fit, over the tolerance {tolerance:.3e}; export with a tolerance of at least {:.1e}, or choose the Kobbelt scheme, whose surface stays put",
+                "this patch starts on the edge of an earlier {} patch, where its streamlines end, and that edge moves between depths by a length that only halves per depth (docs/math.md §11.5): at depth {depth}, the deepest an export samples, its points one depth finer are still {reached:.3e} from the closest fit, over the tolerance {tolerance:.3e}; export with a tolerance of at least {:.1e}, or choose the Kobbelt scheme, whose edges stay put",
                 scheme.title(),
                 round_up(*reached)
             ),

@@ -117,8 +117,7 @@ pub(crate) fn check_options(opts: &FitOptions, data: &Samples) -> Result<f64, Fi
 
 /// Fits the design built at `depth`, checked against `depth + 1`.
 pub fn fit_design(design: &Design, depth: u32, opts: &FitOptions) -> Result<Fit, FitError> {
-    let data = Samples::build(design, depth)?;
-    let check = Samples::build(design, depth + 1)?;
+    let (data, check) = Samples::build_pair(design, depth)?;
     fit(&data, &check, opts)
 }
 

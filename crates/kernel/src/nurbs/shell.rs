@@ -61,6 +61,7 @@ use super::knots::KnotVector;
 use super::samples::Samples;
 use super::seam_params::{ParentMap, check_params, measure_face};
 use super::surface::BSplineSurface;
+use crate::curve::scheme::CurveScheme;
 use crate::joins::{Edge, Join, Stack};
 use hold::Incoming;
 use prepare::Prepared;
@@ -79,14 +80,21 @@ pub struct PatchGrid {
 }
 
 impl PatchGrid {
-    /// Levels `depth` and `depth + 1` of a built patch (`stack.depth() > depth`).
-    pub fn from_stack(name: &str, stack: &Stack, depth: u32) -> Result<Self, FitError> {
+    /// Levels `depth` and `depth + 1` of a patch built with `curve` along
+    /// its rows (`stack.depth() > depth`), in one frame ([`Samples::pair`]).
+    pub fn from_stack(
+        name: &str,
+        stack: &Stack,
+        depth: u32,
+        curve: CurveScheme,
+    ) -> Result<Self, FitError> {
         let d = depth as usize;
-        let at = |d: usize| Samples::from_level(&stack.levels[d], stack.points[d].clone());
+        let at = |d: usize| (&stack.levels[d], stack.points[d].clone());
+        let (data, check) = Samples::pair(at(d), at(d + 1), curve)?;
         Ok(PatchGrid {
             name: name.to_string(),
-            data: at(d)?,
-            check: at(d + 1)?,
+            data,
+            check,
         })
     }
 }
