@@ -22,13 +22,14 @@
 //! plane read more than 1°.
 //!
 //! Catmull–Clark and Doo–Sabin are drawn with `STREAMLINE_SHELL_SCHEMES=3`.
-//! Their points drift between depths by a length that halves per depth,
-//! over the whole patch (not a strip at the seam): a root of 4 × 6 tangents
-//! at depths 4–7 lies 5.1e-5, 2.6e-5, 1.3e-5, 6.5e-6 from its own fit one
-//! depth finer (foot points; the tolerance 3.9e-6), and a later patch,
-//! started on the earlier one's seam of that depth, 5–20 tolerances at depth
-//! 6. The check grid one depth finer measures that drift, so such designs
-//! are refused at the deepest depth whichever way the seam is held.
+//! A root patch on them stays put between depths (docs/math.md §4, "The
+//! anchor"; its check grid read in its data's frame, §10), but a later
+//! patch starts on the root's edge, which moves between depths by a length
+//! that halves per depth, and with it the later patch (§11.5, "Where it
+//! does not reach"): the check grid one depth finer reads that, so most
+//! such draws are refused at the deepest depth, the later patch refused
+//! alone too (seeds 1–21: of 14 draws, the two G2 chains and one
+//! Doo–Sabin side join export).
 //!
 //! Seeded: `STREAMLINE_SHELL_SEED` is the first seed, `STREAMLINE_SHELL_CASES`
 //! how many draws, and the seeds of `FIXED` are drawn too (rough ω = 0.6

@@ -42,11 +42,14 @@ fn check_params(p: &[f64], what: &str) -> Result<(), FitError> {
     Ok(())
 }
 
-fn check_rising(p: &[f64], what: &str) -> Result<(), FitError> {
-    if let Some(i) = p
-        .windows(2)
+/// The first index whose next value does not rise strictly above it (NaN included).
+fn first_not_rising(p: &[f64]) -> Option<usize> {
+    p.windows(2)
         .position(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
-    {
+}
+
+fn check_rising(p: &[f64], what: &str) -> Result<(), FitError> {
+    if let Some(i) = first_not_rising(p) {
         return Err(FitError::BadSamples {
             problem: format!(
                 "{what} parameter {} ({}) does not rise above the one before ({}); give strictly increasing parameters",
@@ -105,10 +108,7 @@ fn mapped(x: &mut [f64], from: (f64, f64)) {
 
 /// The error of a level whose `t` stops rising.
 fn t_not_rising(v: &[f64]) -> Result<(), FitError> {
-    if let Some(r) = v
-        .windows(2)
-        .position(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
-    {
+    if let Some(r) = first_not_rising(v) {
         return Err(FitError::BadSamples {
             problem: format!(
                 "the row parameter t stops rising at row {} of {} at this depth (subdivision bends it back where rows are spaced very unevenly); space the rows more evenly",
@@ -123,6 +123,24 @@ fn t_not_rising(v: &[f64]) -> Result<(), FitError> {
 impl Samples {
     /// Checks sizes, finiteness and that both parameter lists rise strictly from 0 to 1.
     pub fn new(points: Grid<DVec3>, u: Vec<f64>, v: Vec<f64>) -> Result<Self, FitError> {
+        Samples::checked(points, u, v, check_params)
+    }
+
+    /// [`Samples::new`] for a grid measured against a fit, whose
+    /// parameters rise strictly within `[0, 1]` without having to reach
+    /// either end (a check grid inside its data, [`Samples::pair`]).
+    pub fn inside(points: Grid<DVec3>, u: Vec<f64>, v: Vec<f64>) -> Result<Self, FitError> {
+        Samples::checked(points, u, v, check_rising)
+    }
+
+    /// The samples once their sizes, their parameters (by `params`) and
+    /// their points (finite) are checked.
+    fn checked(
+        points: Grid<DVec3>,
+        u: Vec<f64>,
+        v: Vec<f64>,
+        params: fn(&[f64], &str) -> Result<(), FitError>,
+    ) -> Result<Self, FitError> {
         if (points.rows(), points.cols()) != (v.len(), u.len()) {
             return Err(FitError::BadSamples {
                 problem: format!(
@@ -141,38 +159,8 @@ impl Samples {
                 problem: "the point grid needs at least 2 rows and 2 columns".into(),
             });
         }
-        check_params(&u, "u")?;
-        check_params(&v, "v")?;
-        Samples::checked(points, u, v)
-    }
-
-    /// [`Samples::new`] for a grid measured against a fit, whose
-    /// parameters rise strictly within `[0, 1]` without having to reach
-    /// either end (a check grid inside its data, [`Samples::pair`]).
-    pub fn inside(points: Grid<DVec3>, u: Vec<f64>, v: Vec<f64>) -> Result<Self, FitError> {
-        if (points.rows(), points.cols()) != (v.len(), u.len())
-            || points.rows() < 2
-            || points.cols() < 2
-        {
-            return Err(FitError::BadSamples {
-                problem: format!(
-                    "a {}×{} check grid needs at least 2 rows and 2 columns, and {} v and {} u parameters, got {} and {}",
-                    points.rows(),
-                    points.cols(),
-                    points.rows(),
-                    points.cols(),
-                    v.len(),
-                    u.len()
-                ),
-            });
-        }
-        check_rising(&u, "u")?;
-        check_rising(&v, "v")?;
-        Samples::checked(points, u, v)
-    }
-
-    /// The samples once their parameters are checked: refused when a point is not finite.
-    fn checked(points: Grid<DVec3>, u: Vec<f64>, v: Vec<f64>) -> Result<Self, FitError> {
+        params(&u, "u")?;
+        params(&v, "v")?;
         if let Some(i) = points.data().iter().position(|p| !p.is_finite()) {
             return Err(FitError::BadSamples {
                 problem: format!(
