@@ -11,7 +11,7 @@
 //! ([`FitError::TooFewPointsAtDeepest`], whose message says to loosen the
 //! tolerance).
 
-use crate::scene::design::document::{Document, Start};
+use crate::scene::design::document::Document;
 use crate::scene::design::document_build::{BuildError, BuiltDocument};
 use std::borrow::Cow;
 use std::fmt;
@@ -121,9 +121,10 @@ fn deeper_helps(e: &ShellError) -> bool {
     )
 }
 
-/// At the deepest depth, a grid too coarse says so with the depth, and
-/// with the patch's scheme when it is an approximating one on an earlier
-/// patch's edge, which moves between depths (docs/math.md §11.5).
+/// At the deepest depth, a grid too coarse says so with the depth, and for
+/// a patch on an earlier patch's edge with the approximating scheme of the
+/// one or the other: where it starts moves between depths (docs/math.md
+/// §11.5).
 fn at_deepest(doc: &Document, e: ShellError, depth: u32) -> ShellError {
     match e {
         ShellError::Fit {
@@ -136,11 +137,15 @@ fn at_deepest(doc: &Document, e: ShellError, depth: u32) -> ShellError {
                     reached,
                 },
         } => {
-            // a patch on an earlier one's edge, which moves with depth
-            let scheme = doc
-                .index(&patch)
-                .filter(|&i| matches!(doc.patches[i].start, Start::Edge { .. }))
-                .map(|i| doc.patches[i].design.scheme());
+            // a patch on an earlier one's edge, where either is on an
+            // approximating scheme: where it starts moves with depth
+            let scheme = doc.index(&patch).and_then(|i| {
+                let (parent, _) = doc.parent(i)?;
+                [i, parent]
+                    .into_iter()
+                    .map(|k| doc.patches[k].design.scheme())
+                    .find(|s| !s.is_interpolatory())
+            });
             ShellError::Fit {
                 patch,
                 error: FitError::TooFewPointsAtDeepest {
@@ -149,7 +154,7 @@ fn at_deepest(doc: &Document, e: ShellError, depth: u32) -> ShellError {
                     tolerance,
                     reached,
                     depth,
-                    moving: scheme.filter(|s| !s.is_interpolatory()),
+                    moving: scheme,
                 },
             }
         }
@@ -252,10 +257,12 @@ mod tests {
     use streamline_kernel::SurfaceScheme;
     use streamline_kernel::nurbs::Direction;
 
-    /// A refusal at the deepest depth names the moving edge only for an
-    /// approximating patch that starts on an earlier patch's edge
-    /// (docs/math.md §11.5): the wing of hood-screen-wing turned
-    /// Catmull–Clark; not its root, the hood; not the wing on Kobbelt.
+    /// A refusal at the deepest depth names the moving edge only for a
+    /// patch on an earlier patch's edge where either is on an approximating
+    /// scheme (docs/math.md §11.5): the wing (on the hood's edge) of
+    /// hood-screen-wing turned
+    /// Catmull–Clark, and the Kobbelt wing on a Catmull–Clark hood; not
+    /// the root, the hood; not the wing when both are Kobbelt.
     #[test]
     fn only_an_approximating_patch_on_an_edge_is_said_to_move() {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hood-screen-wing.ron");
@@ -282,13 +289,23 @@ mod tests {
         let cc = turned(SurfaceScheme::CatmullClark);
         let wing = refused(&cc, "wing");
         assert!(
-            wing.contains("starts on the edge of an earlier Catmull–Clark patch")
-                && wing.contains("at least 1.3e-3"),
+            wing.contains(
+                "starts on the edge of an earlier patch, and on the Catmull–Clark scheme"
+            ) && wing.contains("at least 1.3e-3"),
             "{wing}"
         );
         let hood = refused(&cc, "hood");
         assert!(hood.contains("needs more control points"), "{hood}");
         let kobbelt = refused(&doc, "wing");
         assert!(kobbelt.contains("needs more control points"), "{kobbelt}");
+        // a Kobbelt wing on a Catmull–Clark hood: the hood's edge moves
+        let mut under = doc.clone();
+        let hood = under.index("hood").unwrap();
+        under.patches[hood]
+            .design
+            .set_scheme(SurfaceScheme::CatmullClark)
+            .unwrap();
+        let on_cc = refused(&under, "wing");
+        assert!(on_cc.contains("on the Catmull–Clark scheme"), "{on_cc}");
     }
 }

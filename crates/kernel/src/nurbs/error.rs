@@ -47,9 +47,9 @@ pub enum FitError {
         reached: f64,
         /// The depth of that grid.
         depth: u32,
-        /// The patch's scheme, when it is an approximating one (Catmull–Clark
-        /// or Doo–Sabin) and the patch starts on an earlier patch's edge:
-        /// that edge, where the earlier patch's shortened streamlines end,
+        /// For a patch on an earlier patch's edge, the approximating scheme
+        /// (Catmull–Clark or Doo–Sabin) of the one or the other: where the
+        /// patch starts, on the earlier patch's shortened rows or its own,
         /// moves between depths by a length that halves per depth
         /// (docs/math.md §11.5, "Where it does not reach"), which the check
         /// grid one depth finer reads, so no pole is missing and the message
@@ -90,7 +90,7 @@ impl fmt::Display for FitError {
                 ..
             } => write!(
                 f,
-                "this patch starts on the edge of an earlier {} patch, where its streamlines end, and that edge moves between depths by a length that only halves per depth (docs/math.md §11.5): at depth {depth}, the deepest an export samples, its points one depth finer are still {reached:.3e} from the closest fit, over the tolerance {tolerance:.3e}; export with a tolerance of at least {:.1e}, or choose the Kobbelt scheme, whose edges stay put",
+                "this patch starts on the edge of an earlier patch, and on the {} scheme where it starts moves between depths by a length that only halves per depth, as the rows shorten when sampled deeper (docs/math.md §11.5): at depth {depth}, the deepest an export samples, its points one depth finer are still {reached:.3e} from the closest fit, over the tolerance {tolerance:.3e}; export with a tolerance of at least {:.1e}, or choose the Kobbelt scheme for both patches, whose edges stay put",
                 scheme.title(),
                 round_up(*reached)
             ),
