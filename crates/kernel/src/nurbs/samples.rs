@@ -96,13 +96,15 @@ fn raw_params(level: &Level, limit: impl Fn(&[f64]) -> (f64, f64)) -> (Vec<f64>,
     (u, v)
 }
 
-/// `x` mapped by the affine map that takes `from.0` to 0 and `from.1` to 1.
+/// `x` mapped by the affine map that takes `from.0` to 0 and `from.1` to 1
+/// (left as it is when that map is the identity), then clamped to `[0, 1]`.
 fn mapped(x: &mut [f64], from: (f64, f64)) {
-    if from != (0.0, 1.0) {
-        let w = from.1 - from.0;
-        for y in x.iter_mut() {
-            *y = ((*y - from.0) / w).clamp(0.0, 1.0);
+    let w = from.1 - from.0;
+    for y in x.iter_mut() {
+        if from != (0.0, 1.0) {
+            *y = (*y - from.0) / w;
         }
+        *y = y.clamp(0.0, 1.0);
     }
 }
 
@@ -225,11 +227,6 @@ impl Samples {
         let (du, dv) = raw_params(data, ends);
         mapped(&mut u, (du[0], du[du.len() - 1]));
         mapped(&mut v, (dv[0], dv[dv.len() - 1]));
-        for x in [&mut u, &mut v] {
-            for y in x.iter_mut() {
-                *y = y.clamp(0.0, 1.0);
-            }
-        }
         Samples {
             points: shown.1,
             u,
