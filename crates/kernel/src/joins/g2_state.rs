@@ -17,9 +17,8 @@
 use crate::bits::bits;
 use crate::grid::Grid;
 use crate::joins::error::JoinError;
-use crate::joins::merged::{
-    MergedRun, check_no_tuning, cut, cut_row_from, cuts, merge_g2, merged_details,
-};
+use crate::joins::g2_recut::{RowJob, place_and_cut};
+use crate::joins::merged::{MergedRun, check_no_tuning, cut, cuts, merge_g2, merged_details};
 use crate::joins::parts::PatchParts;
 use crate::joins::stack::RowSpan;
 use crate::joins::stack::Stack;
@@ -27,7 +26,7 @@ use crate::levels::design::Design;
 use crate::levels::dirty_window::{DirtyWindow, Span};
 use crate::levels::incremental::{LevelState, build_levels, propagate};
 use crate::levels::multires::Details;
-use crate::streamline::integrate::{place_slice_from, segment_at};
+use crate::streamline::integrate::{place_slice, segment_at};
 use glam::DVec3;
 
 /// A G2 run's merged levels at every depth `0 ..= d` (their points are
@@ -136,8 +135,14 @@ impl G2State {
         for (d, (level, origins)) in self.levels.iter().zip(&self.origins).enumerate() {
             let (rows, cols) = level.shape();
             let mut points = Grid::filled(rows, cols + 1, DVec3::ZERO);
-            for r in 0..rows {
-                place(level, origins, r, 0, points.row_mut(r));
+            for (r, &origin) in origins.iter().enumerate().take(rows) {
+                place_slice(
+                    level.tangents.row(r),
+                    level.params.s.row(r),
+                    level.params.sigma[r],
+                    origin,
+                    points.row_mut(r),
+                );
             }
             let points = &points;
             let cuts = cuts(scheme, &self.run.seams, d as u32, cols);
@@ -245,7 +250,7 @@ impl G2State {
     ) {
         let Marks {
             changed,
-            rows: mut placed,
+            rows: placed,
             cols: first_col,
         } = marks;
         let scheme = self.run.design.scheme();
@@ -270,61 +275,57 @@ impl G2State {
         }
         let (nrows, cols) = level.shape();
         let cuts = cuts(scheme, &self.run.seams, d as u32, cols);
-        let mut row = vec![DVec3::ZERO; cols + 1];
-        // the first merged column the window changed (none: only starts moved)
-        let from = window.map_or(usize::MAX, |w| w.cols.lo);
-        for r in (0..nrows).filter(|&r| rows[r]) {
-            // the window's tangents (and parameters) of the row cut again
-            // into each patch's level while the row is at hand (every
-            // window row is placed again)
-            if let Some(w) = window.filter(|w| w.rows.lo <= r && r <= w.rows.hi) {
+        // the window's tangents (and parameters) cut again into each
+        // patch's level (every window row is placed again below)
+        if let Some(w) = window {
+            for r in w.rows.lo..=w.rows.hi {
                 for (p, stack) in stacks.iter_mut().enumerate() {
                     let part = &mut stack.levels[d];
                     changed[p] |= recut_window_row(level, w, &cuts, p, params, part, r);
                 }
             }
-            let moved = bits(before[r]) != bits(self.origins[d][r]);
-            let k = segment_at(level.params.s.row(r), level.params.sigma[r]);
-            // a patch's points read the merged tangents up to its last
-            // column and `s` one further, and the anchor's segment (Eq.
-            // 65): left of the window, they are as they were
-            let kept = |p: usize| !moved && cuts[p + 1].max(k) + 1 < from;
-            let Some(first) = (0..stacks.len()).find(|&p| !kept(p)) else {
-                continue;
-            };
-            // the row summed again from the point before the window (its
-            // sums up to there read nothing the window changed; that point
-            // read back from the stack it was cut into), and only what
-            // changed cut again: the same bits as placing it whole
-            let again = match from.checked_sub(1) {
-                Some(a) if !moved && (1..cols).contains(&a) => {
-                    row[a] = merged_point(stacks, d, r, &cuts, a);
-                    a
-                }
-                _ => 0,
-            };
-            let start = place(level, &self.origins[d], r, again, &mut row);
-            for (p, stack) in stacks.iter_mut().enumerate().skip(first) {
-                if kept(p) {
-                    continue;
-                }
-                let to = stack.points[d].row_mut(r);
-                cut_row_from(level, &row, r, &cuts, p, start, to);
-                changed[p] = true;
-                if let Some(out) = placed.as_deref_mut() {
-                    out[p] = Some(out[p].map_or(RowSpan { lo: r, hi: r }, |s| RowSpan {
-                        lo: s.lo.min(r),
-                        hi: s.hi.max(r),
-                    }));
-                    // the first point `cut_row_from` writes
-                    let (lo, hi) = (cuts[p], cuts[p + 1]);
-                    let at = if start <= lo {
-                        0
-                    } else {
-                        (start - lo).min(hi - lo + 1)
-                    };
-                    first_col[p] = first_col[p].min(at);
-                }
+        }
+        // the first merged column the window changed (none: only starts moved)
+        let from = window.map_or(usize::MAX, |w| w.cols.lo);
+        let jobs: Vec<RowJob> = (0..nrows)
+            .filter(|&r| rows[r])
+            .filter_map(|r| {
+                let moved = bits(before[r]) != bits(self.origins[d][r]);
+                let k = segment_at(level.params.s.row(r), level.params.sigma[r]);
+                // a patch's points read the merged tangents up to its last
+                // column and `s` one further, and the anchor's segment (Eq.
+                // 65): left of the window, they are as they were (the
+                // patches kept are the first ones, as the cuts increase)
+                let kept = |p: usize| !moved && cuts[p + 1].max(k) + 1 < from;
+                let first = (0..stacks.len()).find(|&p| !kept(p))?;
+                // the row summed again from the point before the window
+                // (its sums up to there read nothing the window changed),
+                // and only what changed cut again: the same bits as
+                // placing it whole
+                let again = match from.checked_sub(1) {
+                    Some(a) if !moved && (1..cols).contains(&a) => a,
+                    _ => 0,
+                };
+                Some(RowJob { r, first, again })
+            })
+            .collect();
+        if jobs.is_empty() {
+            return;
+        }
+        let done = place_and_cut(level, &self.origins[d], &cuts, &jobs, stacks, d);
+        for (c, d) in changed.iter_mut().zip(&done.changed) {
+            *c |= d;
+        }
+        if let Some(out) = placed {
+            for (p, span) in done.spans.iter().enumerate() {
+                out[p] = match (out[p], *span) {
+                    (Some(a), Some(b)) => Some(RowSpan {
+                        lo: a.lo.min(b.lo),
+                        hi: a.hi.max(b.hi),
+                    }),
+                    (a, b) => a.or(b),
+                };
+                first_col[p] = first_col[p].min(done.cols[p]);
             }
         }
     }
@@ -437,33 +438,6 @@ fn origins(design: &Design, level: &LevelState) -> Vec<DVec3> {
         .iter()
         .map(|&t| design.initial().point(t))
         .collect()
-}
-
-/// Row `r` of `level` placed from its start `origins[r]` (Eq. 65, as
-/// [`Design::place_row`]); with `from > 0`, after its tangents and `s`
-/// changed from column `from + 1` on, `out[from]` holding the row's point
-/// there as placed before: summed again from there (the same sums, so the
-/// same bits). The first point written: `from + 1`, or 0 when the whole row
-/// was placed (`from` 0, or the anchor's segment reads the change;
-/// [`place_slice_from`]).
-fn place(level: &LevelState, origins: &[DVec3], r: usize, from: usize, out: &mut [DVec3]) -> usize {
-    place_slice_from(
-        level.tangents.row(r),
-        level.params.s.row(r),
-        level.params.sigma[r],
-        origins[r],
-        from,
-        out,
-    )
-}
-
-/// Point `m` (`1 ..=` the last tangent column) of merged row `r` of level
-/// `d`, read back from the stack it was cut into
-/// ([`super::merged::cut_row`]: patch `p`'s points `1 ..= hi − lo` are the
-/// merged points `lo + 1 ..= hi`).
-fn merged_point(stacks: &[Stack], d: usize, r: usize, cuts: &[usize], m: usize) -> DVec3 {
-    let p = cuts.partition_point(|&c| c < m) - 1;
-    stacks[p].points[d].get(r, m - cuts[p])
 }
 
 /// Row `r` (of window `w`'s rows) of patch `p`'s level (`part`) cut again

@@ -20,6 +20,7 @@ pub mod build;
 pub mod chain;
 pub mod edge_curve;
 pub mod error;
+mod g2_recut;
 pub mod g2_state;
 pub mod kinds;
 pub mod merged;

@@ -144,6 +144,15 @@ pub fn place_slices_from(jobs: &mut [SliceJob<'_>]) {
 
 /// [`place_slices_from`] on the calling thread.
 fn place_slices_here(jobs: &mut [SliceJob<'_>]) {
+    sum_slices(jobs);
+    for j in jobs {
+        j.bounds = slice_bounds(j.out);
+    }
+}
+
+/// [`place_slices_from`] on the calling thread, without the boxes (each
+/// job's `bounds` left as it was): the points and `moved_from` alone.
+pub(crate) fn sum_slices(jobs: &mut [SliceJob<'_>]) {
     let mut summed: Vec<usize> = Vec::with_capacity(jobs.len());
     for (i, j) in jobs.iter_mut().enumerate() {
         let n = j.tangents.len() - 1;
@@ -176,9 +185,6 @@ fn place_slices_here(jobs: &mut [SliceJob<'_>]) {
             integrate_from(j.tangents, j.s, j.from, j.out);
             rest = &rest[1..];
         }
-    }
-    for j in jobs {
-        j.bounds = slice_bounds(j.out);
     }
 }
 
