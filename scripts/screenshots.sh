@@ -107,6 +107,9 @@ mkdir -p "$T/cad"
 echo '(steps: [Export("car1.step")])' > "$T/cad/export.ron"
 cd "$T/cad"
 shot panel-cad-export car1 --panel file --script "$T/cad/export.ron"
+# and of a design of several patches: one line per face
+echo '(steps: [Export("hood-screen-wing.step")])' > "$T/cad/export-patches.ron"
+shot panel-cad-export-patches "$ROOT/scenes/hood-screen-wing.ron" --panel file --script "$T/cad/export-patches.ron"
 cd "$ROOT"
 # docs/editor.md: Run script with a million steps, in progress
 asked panel-file-script && awk 'BEGIN { print "(steps: ["; for (i = 0; i < 250000; i++) {

@@ -21,8 +21,6 @@ use crate::ecs::exchange::{ExportSettings, LastExport};
 use crate::ecs::joined::{PatchSlot, PatchStart, PatchSurface, SeamState};
 use crate::ecs::warnings::BuildWarnings;
 use crate::ecs::{self, Edit, EditLog, ModelConfig, Stats, SurfaceData};
-use crate::scene::Document;
-use crate::scene::export::document::{DocumentExportSettings, export_document};
 use crate::scene::files::reference_link::ReferenceLink;
 use crate::scene::fit::reference;
 use bevy::prelude::*;
@@ -124,9 +122,10 @@ struct BuildReport {
     length_error: LengthError,
     timings_us: ecs::EditStats,
     export: Option<PathBuf>,
+    /// A STEP or IGES export of one patch: its face's fit.
     #[serde(skip_serializing_if = "Option::is_none")]
     fit: Option<FitFigures>,
-    /// A STEP or IGES export of several patches: each face written.
+    /// A STEP or IGES export: each face written (one per patch).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     faces: Vec<FaceFigures>,
     /// What the build blended about a fixed axis (antipodal neighbours,
@@ -270,43 +269,15 @@ fn patches_and_seams(
     Ok((patches, seams))
 }
 
-/// A fitted face of an export of several patches, as the report gives it.
+/// A fitted face of an export, as the report gives it.
 #[derive(Serialize)]
 struct FaceFigures {
     name: String,
     depth: u32,
+    /// In `u` (along the streamlines) and in `v`, as the fit's.
     poles: [usize; 2],
     tolerance: f64,
     max_deviation: f64,
-}
-
-/// Writes every patch of `doc` to `out` (`scene::export::document`).
-fn export_patches(
-    doc: &Document,
-    depth: u32,
-    fit: FitOptions,
-    out: &std::path::Path,
-) -> Result<Vec<FaceFigures>, CliError> {
-    let built = doc
-        .build(depth)
-        .map_err(|e| CliError::Usage(format!("{}: {e}", out.display())))?;
-    let settings = DocumentExportSettings {
-        depth: Some(depth),
-        fit,
-        colors: None,
-    };
-    let done = export_document(doc, &built, out, &settings)?;
-    Ok(done
-        .faces
-        .iter()
-        .map(|f| FaceFigures {
-            name: f.name.clone(),
-            depth: done.depth,
-            poles: [f.surface.poles.rows(), f.surface.poles.cols()],
-            tolerance: f.tolerance,
-            max_deviation: f.deviation.max,
-        })
-        .collect())
 }
 
 /// Builds and prints the stats.
@@ -335,10 +306,8 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         ecs::headless_document_app(&doc, Some(scene.display_depth), ModelConfig::default());
     let build_stats = app.world().resource::<Stats>().last.clone();
     app.world_mut().resource_mut::<ExportSettings>().fit = fit;
-    let mut faces = Vec::new();
-    if let Some(out) = a.export.as_ref().filter(|_| doc.patches.len() > 1) {
-        faces = export_patches(&doc, scene.display_depth, fit, out)?;
-    } else if let Some(out) = &a.export {
+    // every patch, through the editor's own export (`Edit::Export`)
+    if let Some(out) = &a.export {
         ecs::send(&mut app, Edit::Export(out.clone()));
         app.update();
         if let Some(Err(e)) = app.world().resource::<EditLog>().entries.first() {
@@ -406,23 +375,35 @@ pub fn build(a: BuildArgs) -> Result<(), CliError> {
         timings_us: build_stats,
         warnings: w.resource::<BuildWarnings>().lines.clone(),
         export: a.export.clone(),
-        faces,
+        faces: w
+            .resource::<LastExport>()
+            .written
+            .iter()
+            .flat_map(|(_, out)| {
+                out.faces.iter().map(|f| FaceFigures {
+                    name: f.name.clone(),
+                    depth: out.depth,
+                    poles: f.surface.pole_counts().into(),
+                    tolerance: f.tolerance,
+                    max_deviation: f.deviation.max,
+                })
+            })
+            .collect(),
         fit: w
             .resource::<LastExport>()
             .written
             .as_ref()
-            .and_then(|(_, _, f)| f.as_ref())
-            .map(|f| {
-                let r = &f.fit.report;
-                FitFigures {
-                    depth: f.depth,
-                    degree: [r.degree.0, r.degree.1],
-                    poles: [r.poles.0, r.poles.1],
-                    tolerance: r.tolerance,
-                    max_deviation: r.deviation.max,
-                    mean_deviation: r.deviation.mean,
-                    seconds: f.seconds,
-                }
+            .and_then(|(_, out)| match out.faces.as_slice() {
+                [f] => Some(FitFigures {
+                    depth: out.depth,
+                    degree: f.surface.degree().into(),
+                    poles: f.surface.pole_counts().into(),
+                    tolerance: f.tolerance,
+                    max_deviation: f.deviation.max,
+                    mean_deviation: f.deviation.mean,
+                    seconds: out.seconds,
+                }),
+                _ => None,
             }),
     };
     write_stdout(&report)

@@ -3,8 +3,7 @@
 //! export carries, and what the last export wrote (for the command line's
 //! report and the editor's File section).
 
-use crate::scene::export::format::Format;
-use crate::scene::fit::surface::SceneFit;
+use crate::scene::export::document::DocumentExported;
 use bevy::prelude::*;
 use std::path::PathBuf;
 use streamline_kernel::nurbs::FitOptions;
@@ -22,6 +21,7 @@ pub struct ExportSettings {
 /// What the last successful export wrote.
 #[derive(Resource, Debug, Clone, Default)]
 pub struct LastExport {
-    /// The file, its format and, for STEP and IGES, the fit.
-    pub written: Option<(PathBuf, Format, Option<SceneFit>)>,
+    /// The file and what was written: its format, patches and, for STEP
+    /// and IGES, every face with its fit's figures.
+    pub written: Option<(PathBuf, DocumentExported)>,
 }

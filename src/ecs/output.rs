@@ -73,40 +73,30 @@ pub(crate) fn write_files(
                     seams: Vec::new(),
                 };
                 match export_document(&doc, &unbuilt, path, &opts) {
-                    Ok(out) if several => {
-                        log.entries.push(Ok(format!(
-                            "exported {} ({}, {} patches: {})",
-                            path.display(),
-                            out.format.name(),
-                            out.patches.len(),
-                            out.patches.join(", ")
-                        )));
-                        last.written = Some((path.clone(), out.format, None));
-                    }
                     Ok(out) => {
-                        let what = match &out.one {
-                            Some(f) => {
-                                let r = &f.fit.report;
-                                format!(
-                                    "{}x{} poles, degree {}x{}, sampled at depth {}, largest deviation {:.2e} <= {:.2e}, {:.1} ms",
-                                    r.poles.0,
-                                    r.poles.1,
-                                    r.degree.0,
-                                    r.degree.1,
-                                    f.depth,
-                                    r.deviation.max,
-                                    r.tolerance,
-                                    f.seconds * 1e3
-                                )
+                        // the format, the patches of several, and the fit
+                        // of STEP and IGES or the triangles of one mesh
+                        let mut what = vec![out.format.name().to_string()];
+                        if several {
+                            what.push(format!(
+                                "{} patches: {}",
+                                out.patches.len(),
+                                out.patches.join(", ")
+                            ));
+                        }
+                        match out.fit_summary() {
+                            Some(fit) => what.push(fit),
+                            None if !several => {
+                                what.push(format!("{} triangles", surface.triangle_count()))
                             }
-                            None => format!("{} triangles", surface.triangle_count()),
-                        };
+                            None => {}
+                        }
                         log.entries.push(Ok(format!(
-                            "exported {} ({}, {what})",
+                            "exported {} ({})",
                             path.display(),
-                            out.format.name()
+                            what.join(", ")
                         )));
-                        last.written = Some((path.clone(), out.format, out.one));
+                        last.written = Some((path.clone(), out));
                     }
                     Err(e) => log.entries.push(Err(EditError::Export(e))),
                 }

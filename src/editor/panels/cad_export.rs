@@ -101,34 +101,27 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut CadExportSection, files
                     open_save::browse(files_ui, PathAction::Export(f.format), f.path.trim(), None);
                 }
             });
-            match &s.last_export.written {
-                Some((path, format, Some(fit))) => {
-                    let r = &fit.fit.report;
-                    ui.label(
-                        egui::RichText::new(format!(
-                            "{}: {} — {}×{} poles, degree {}×{}, sampled at depth {}\nlargest {:.2e}, mean {:.2e}, within {:.2e}; {:.1} ms",
-                            format.name(),
-                            path.file_name().map(|n| n.to_string_lossy()).unwrap_or_default(),
-                            r.poles.0,
-                            r.poles.1,
-                            r.degree.0,
-                            r.degree.1,
-                            fit.depth,
-                            r.deviation.max,
-                            r.deviation.mean,
-                            r.tolerance,
-                            fit.seconds * 1e3
-                        ))
-                        .small(),
-                    )
-                    .on_hover_text("The last fit: net size, the depth the surface was sampled at (the display depth, or deeper when the tolerance needed more points), deviation one depth finer than that, time");
+            if let Some((path, out)) = &s.last_export.written {
+                let file = path.file_name().map(|n| n.to_string_lossy()).unwrap_or_default();
+                let mut text = format!("{}: {file}", out.format.name());
+                if !out.faces.is_empty() {
+                    text += &format!(" — sampled at depth {}, {:.1} ms", out.depth, out.seconds * 1e3);
                 }
-                Some((path, format, None)) => {
-                    ui.label(
-                        egui::RichText::new(format!("{}: {}", format.name(), path.display())).small(),
+                // one line per face (a design of one patch writes one)
+                for f in &out.faces {
+                    let ((p, q), (nu, nv)) = (f.surface.degree(), f.surface.pole_counts());
+                    let name = match out.faces.len() {
+                        1 => String::new(),
+                        _ => format!("{}: ", f.name),
+                    };
+                    text += &format!(
+                        "\n{name}{nu}×{nv} poles, degree {p}×{q}, largest {:.2e} ≤ {:.2e}",
+                        f.deviation.max, f.tolerance
                     );
                 }
-                None => {}
+                ui.label(egui::RichText::new(text).small()).on_hover_text(
+                    "The last export: for STEP and IGES the depth the surface was sampled at (the display depth, or deeper when the tolerance needed more points) and the fit's time, then each face's net size, degree and largest deviation one depth finer, within the tolerance",
+                );
             }
         });
     ui.data_mut(|d| d.insert_temp(id, f));

@@ -29,7 +29,7 @@ use crate::scene::design::model::Scene;
 use crate::scene::files::error::SceneError;
 use crate::scene::files::io::write_atomic;
 use crate::scene::fit::document::{DocumentFit, FaceFit, built_to, fit_document};
-use crate::scene::fit::surface::{SceneFit, fit_scene, shown_document};
+use crate::scene::fit::surface::{fit_scene, shown_document};
 use std::borrow::Cow;
 use std::path::Path;
 use streamline_kernel::nurbs::{FitOptions, ShellFace, ShellFit};
@@ -59,15 +59,49 @@ pub struct DocumentExported {
     pub patches: Vec<String>,
     /// The mesh depth, or for STEP and IGES the depth sampled.
     pub depth: u32,
-    /// For STEP and IGES of several patches, the faces written (reflections included).
+    /// For STEP and IGES, the faces written, in the file's order: one per
+    /// patch (reflections included), each with its surface, deviation and
+    /// tolerance; a design of one patch writes one face. Empty for a mesh.
     pub faces: Vec<ShellFace>,
-    /// For STEP and IGES of several patches, the fit of the originals.
+    /// For STEP and IGES, the seconds the fit took (the builds not
+    /// counted); 0 for a mesh.
+    pub seconds: f64,
+    /// For STEP and IGES of several patches, the fit of the originals with
+    /// the points each face was fitted to and checked at.
     pub fit: Option<DocumentFit>,
     /// For a mirrored STEP shell, the faces `(i, N + i)` whose first
     /// streamline (in the mirror plane) is one edge.
     pub mirror_seams: Vec<(usize, usize)>,
-    /// For STEP and IGES of a design of one patch, its face's fit.
-    pub one: Option<SceneFit>,
+}
+
+impl DocumentExported {
+    /// What the fit of a STEP or IGES export made, for the designer: the
+    /// depth sampled, each face's poles, degree and largest deviation
+    /// within its tolerance, and the time; `None` for a mesh.
+    pub fn fit_summary(&self) -> Option<String> {
+        let faces: Vec<String> = (self.faces.iter())
+            .map(|f| {
+                let (p, q) = f.surface.degree();
+                let (nu, nv) = f.surface.pole_counts();
+                let named = match self.faces.len() {
+                    1 => String::new(),
+                    _ => format!("`{}` ", f.name),
+                };
+                format!(
+                    "{named}{nu}x{nv} poles, degree {p}x{q}, largest deviation {:.2e} <= {:.2e}",
+                    f.deviation.max, f.tolerance
+                )
+            })
+            .collect();
+        (!faces.is_empty()).then(|| {
+            format!(
+                "sampled at depth {}, {}; {:.1} ms",
+                self.depth,
+                faces.join("; "),
+                self.seconds * 1e3
+            )
+        })
+    }
 }
 
 /// A mesh turned over: triangles wound the other way, normals negated (a
@@ -159,9 +193,9 @@ pub fn export_document(
         patches,
         depth,
         faces: Vec::new(),
+        seconds: 0.0,
         fit: None,
         mirror_seams: Vec::new(),
-        one: None,
     })
 }
 
@@ -181,9 +215,9 @@ fn export_face(
     // the writers read the surface, the name and the tolerance
     let face = ShellFace {
         name: doc.name.clone(),
-        surface: fit.fit.surface.clone(),
         deviation: r.deviation,
         tolerance: r.tolerance,
+        surface: fit.fit.surface,
         v: (Vec::new(), Vec::new()),
     };
     let shell = ShellFit {
@@ -199,10 +233,10 @@ fn export_face(
         format,
         patches: vec![doc.patches[0].name.clone()],
         depth: fit.depth,
-        faces: Vec::new(),
+        faces: shell.faces,
+        seconds: fit.seconds,
         fit: None,
         mirror_seams: Vec::new(),
-        one: Some(fit),
     })
 }
 
@@ -253,9 +287,9 @@ fn export_faces(
         patches: names,
         depth: fit.depth,
         faces: shell.faces,
+        seconds: fit.seconds,
         fit: Some(fit),
         mirror_seams,
-        one: None,
     })
 }
 
