@@ -175,6 +175,16 @@ fn entry(
 ) -> serde_json::Value {
     let fit = out.fit.as_ref().expect("a CAD export has its fit");
     let n = doc.patches.len();
+    // what the designer reads (the status line, File ▸ CAD export): every face
+    let summary = out
+        .fit_summary()
+        .expect("a CAD export says what its fit made");
+    for f in &out.faces {
+        let (nu, nv) = f.surface.pole_counts();
+        let line = format!("`{}` {nu}x{nv} poles", f.name);
+        assert!(summary.contains(&line), "{tag}: {line} not in {summary}");
+    }
+    assert!(summary.starts_with(&format!("sampled at depth {}", out.depth)));
     let points: Vec<String> = (0..out.faces.len())
         .map(|f| {
             // the points the fit's tolerance is promised at: the check grid

@@ -317,6 +317,19 @@ fn cli_build_exports_step_and_iges_with_the_fit() {
         let mean = fit["mean_deviation"].as_f64().unwrap();
         assert!(0.0 < mean && mean <= max && max <= tol, "{out}");
         assert!(fit["poles"][0].as_u64().unwrap() >= 4 && fit["seconds"].as_f64().unwrap() > 0.0);
+        // one patch lists its face as several patches list theirs
+        let faces = v["faces"].as_array().expect("a CAD export lists its faces");
+        assert_eq!(faces.len(), 1, "{out}");
+        let f = &faces[0];
+        assert_eq!(
+            (&f["poles"], &f["depth"]),
+            (&fit["poles"], &fit["depth"]),
+            "{out}"
+        );
+        assert_eq!(
+            (&f["max_deviation"], &f["tolerance"]),
+            (&fit["max_deviation"], &fit["tolerance"])
+        );
         assert!(
             std::fs::read_to_string(&path).unwrap().starts_with(head),
             "{name}"
