@@ -108,16 +108,8 @@ pub fn show(ui: &mut egui::Ui, p: &mut PanelCtx, s: &mut CadExportSection, files
                     text += &format!(" — sampled at depth {}, {:.1} ms", out.depth, out.seconds * 1e3);
                 }
                 // one line per face (a design of one patch writes one)
-                for f in &out.faces {
-                    let ((p, q), (nu, nv)) = (f.surface.degree(), f.surface.pole_counts());
-                    let name = match out.faces.len() {
-                        1 => String::new(),
-                        _ => format!("{}: ", f.name),
-                    };
-                    text += &format!(
-                        "\n{name}{nu}×{nv} poles, degree {p}×{q}, largest {:.2e} ≤ {:.2e}",
-                        f.deviation.max, f.tolerance
-                    );
+                for line in out.face_lines() {
+                    text += &format!("\n{line}");
                 }
                 ui.label(egui::RichText::new(text).small()).on_hover_text(
                     "The last export: for STEP and IGES the depth the surface was sampled at (the display depth, or deeper when the tolerance needed more points) and the fit's time, then each face's net size, degree and largest deviation one depth finer, within the tolerance",

@@ -75,11 +75,11 @@ pub struct DocumentExported {
 }
 
 impl DocumentExported {
-    /// What the fit of a STEP or IGES export made, for the designer: the
-    /// depth sampled, each face's poles, degree and largest deviation
-    /// within its tolerance, and the time; `None` for a mesh.
-    pub fn fit_summary(&self) -> Option<String> {
-        let faces: Vec<String> = (self.faces.iter())
+    /// One line per face written by a STEP or IGES export: its poles,
+    /// degree and largest deviation within its tolerance, named when there
+    /// are several; none for a mesh.
+    pub fn face_lines(&self) -> Vec<String> {
+        (self.faces.iter())
             .map(|f| {
                 let (p, q) = f.surface.degree();
                 let (nu, nv) = f.surface.pole_counts();
@@ -92,7 +92,14 @@ impl DocumentExported {
                     f.deviation.max, f.tolerance
                 )
             })
-            .collect();
+            .collect()
+    }
+
+    /// What the fit of a STEP or IGES export made, for the designer: the
+    /// depth sampled, each face's line ([`Self::face_lines`]) and the time;
+    /// `None` for a mesh.
+    pub fn fit_summary(&self) -> Option<String> {
+        let faces = self.face_lines();
         (!faces.is_empty()).then(|| {
             format!(
                 "sampled at depth {}, {}; {:.1} ms",

@@ -56,13 +56,7 @@ impl RowMarks {
     fn merge(mut self, o: RowMarks) -> RowMarks {
         for p in 0..self.changed.len() {
             self.changed[p] |= o.changed[p];
-            self.spans[p] = match (self.spans[p], o.spans[p]) {
-                (Some(a), Some(b)) => Some(RowSpan {
-                    lo: a.lo.min(b.lo),
-                    hi: a.hi.max(b.hi),
-                }),
-                (a, b) => a.or(b),
-            };
+            self.spans[p] = RowSpan::join(self.spans[p], o.spans[p]);
             self.cols[p] = self.cols[p].min(o.cols[p]);
         }
         self
@@ -156,13 +150,8 @@ fn place_here(
             for p in j.first..m {
                 cut_row_from(level, &*sum.out, j.r, cuts, p, start, outs[b * m + p]);
                 marks.changed[p] = true;
-                marks.spans[p] =
-                    Some(
-                        marks.spans[p].map_or(RowSpan { lo: j.r, hi: j.r }, |s| RowSpan {
-                            lo: s.lo.min(j.r),
-                            hi: s.hi.max(j.r),
-                        }),
-                    );
+                let row = RowSpan { lo: j.r, hi: j.r };
+                marks.spans[p] = RowSpan::join(marks.spans[p], Some(row));
                 // the first point `cut_row_from` writes
                 let (lo, hi) = (cuts[p], cuts[p + 1]);
                 let at = if start <= lo {

@@ -318,13 +318,7 @@ impl G2State {
         }
         if let Some(out) = placed {
             for (p, span) in done.spans.iter().enumerate() {
-                out[p] = match (out[p], *span) {
-                    (Some(a), Some(b)) => Some(RowSpan {
-                        lo: a.lo.min(b.lo),
-                        hi: a.hi.max(b.hi),
-                    }),
-                    (a, b) => a.or(b),
-                };
+                out[p] = RowSpan::join(out[p], *span);
                 first_col[p] = first_col[p].min(done.cols[p]);
             }
         }

@@ -162,3 +162,16 @@ pub struct RowSpan {
     /// The last moved row.
     pub hi: usize,
 }
+
+impl RowSpan {
+    /// The span of both (`None`: no row).
+    pub fn join(a: Option<RowSpan>, b: Option<RowSpan>) -> Option<RowSpan> {
+        match (a, b) {
+            (Some(a), Some(b)) => Some(RowSpan {
+                lo: a.lo.min(b.lo),
+                hi: a.hi.max(b.hi),
+            }),
+            (a, b) => a.or(b),
+        }
+    }
+}
