@@ -426,8 +426,9 @@ fn load_and_recover_replace_every_patch_and_a_failed_load_keeps_the_design() {
 }
 
 /// The census counts every patch, and says per patch what it owns as
-/// entities: a joined patch its net handles only (its levels and points
-/// are the values of its built stack).
+/// entities: its handles (a joined patch its net's), a level per depth and
+/// a streamline per row of its display depth (a joined patch's values are
+/// its built stack's, `tests/joined_entities.rs`).
 #[test]
 fn the_census_counts_every_patch_and_what_each_owns() {
     let doc = hood();
@@ -438,8 +439,15 @@ fn the_census_counts_every_patch_and_what_each_owns() {
     assert_eq!(names, ["hood", "screen", "wing"]);
     let first = &c.per_patch[0];
     assert!(!first.joined);
-    assert_eq!(first.levels, c.levels);
-    assert_eq!(first.streamlines, c.streamlines);
+    assert_eq!(first.levels, doc.display_depth as usize + 1);
+    assert_eq!(
+        c.levels,
+        c.per_patch.iter().map(|p| p.levels).sum::<usize>()
+    );
+    assert_eq!(
+        c.streamlines,
+        c.per_patch.iter().map(|p| p.streamlines).sum::<usize>()
+    );
     let curve = match &doc.patches[0].start {
         streamline_studio::scene::design::document::Start::Curve(c) => c.tangents.len(),
         _ => unreachable!(),
@@ -448,9 +456,13 @@ fn the_census_counts_every_patch_and_what_each_owns() {
         first.handles,
         doc.patches[0].design.net().data().len() + curve
     );
-    for (p, d) in c.per_patch.iter().zip(&doc.patches).skip(1) {
+    let ids = common::built::patches(&mut app);
+    for (i, (p, d)) in c.per_patch.iter().zip(&doc.patches).enumerate().skip(1) {
         assert!(p.joined);
-        assert_eq!((p.levels, p.streamlines), (0, 0));
+        let rows = (app.world().get::<PatchSurface>(ids[i]))
+            .and_then(|s| s.stack())
+            .map(|s| s.finest_points().rows());
+        assert_eq!((p.levels, Some(p.streamlines)), (p.stack_depths, rows));
         assert_eq!(p.handles, d.design.net().data().len());
         assert_eq!(p.stack_depths, doc.display_depth as usize + 1);
     }

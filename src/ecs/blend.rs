@@ -60,7 +60,7 @@ fn refresh(
 pub(crate) fn reblend(
     meter: Res<super::meter::CpuMeter>,
     mut commands: Commands,
-    mut patches: Query<(Entity, &PatchStructure, &PatchKernel, &mut Dirty)>,
+    mut patches: Query<(Entity, Ref<PatchStructure>, &PatchKernel, &mut Dirty)>,
     mut levels: Query<(Entity, &SubdivisionLevel, &mut LevelData)>,
     mut lines: Query<(Entity, &Streamline, &mut StreamlineTangents)>,
     mut windows: Query<&mut LevelWindow>,
@@ -79,7 +79,9 @@ pub(crate) fn reblend(
     // the first patch drawn as its G2 run's cut: its own levels wait, to
     // be built afresh once it no longer is (docs/math.md §11.1)
     let (starts, surfaces) = runs;
-    if shows_run_cut(patch, starts.iter(), surfaces.get(patch).ok()) {
+    // (a new structure, such as another display depth, is built at once,
+    // so that its level and streamline entities are the structure's)
+    if shows_run_cut(patch, starts.iter(), surfaces.get(patch).ok()) && !st.is_changed() {
         dirty.take();
         dirty.rebuild();
         return;
@@ -88,7 +90,7 @@ pub(crate) fn reblend(
     if !full && !sd.iter().all(Option::is_none) {
         full = !reblend_windows(
             kernel,
-            st,
+            &st,
             &mut levels,
             &mut lines,
             &mut windows,
@@ -101,7 +103,7 @@ pub(crate) fn reblend(
         build_all(
             &mut commands,
             patch,
-            st,
+            &st,
             kernel,
             &levels,
             &lines,

@@ -2,12 +2,11 @@
 //! `"entities"`, the Stats panel), in all and patch by patch.
 //!
 //! Every patch entity owns its handles as children (net, initial curve,
-//! details). A patch built by the incremental pipeline (the first patch of
-//! a document) also owns its subdivision levels and streamlines as
-//! entities; a patch built through the joins (docs/math.md §11) keeps its
-//! levels in its `KeptPatch` or its G2 run's state and its points in its
-//! `PatchSurface` (a kernel `Stack`), so it counts 0 level and 0 streamline
-//! entities, and its `stack_depths` says how many depths that stack holds.
+//! details), a subdivision-level entity per depth and a streamline entity
+//! per row of its display depth: the first patch's from its incremental
+//! pipeline, a joined patch's (docs/math.md §11) from
+//! [`crate::ecs::joined::entities`], their values those of its
+//! `PatchSurface` (a kernel `Stack`, whose depths `stack_depths` counts).
 
 use crate::ecs::components::{Streamline, SubdivisionLevel};
 use crate::ecs::joined::components::{PatchSlot, PatchSurface};
@@ -52,9 +51,9 @@ pub struct PatchCensus {
     pub joined: bool,
     /// Its handle entities (net, initial curve, details).
     pub handles: usize,
-    /// Its subdivision-level entities (0 for a patch built by the joins).
+    /// Its subdivision-level entities, one per depth.
     pub levels: usize,
-    /// Its streamline entities (0 for a patch built by the joins).
+    /// Its streamline entities, one per row of its display depth.
     pub streamlines: usize,
     /// Depths held by its built stack of values (`0 ..= d`: d + 1; 0 when
     /// it has none, as a one-patch design's patch).

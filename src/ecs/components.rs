@@ -31,6 +31,13 @@ impl LevelData {
 #[derive(Component, Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct LevelWindow(pub Option<DirtyWindow>);
 
+/// Marks a level or streamline entity of a joined patch (docs/math.md §11),
+/// whose values are its patch's stack
+/// ([`crate::ecs::joined::entities`]); the first patch's pipeline skips it
+/// (`Without<JoinedChild>`).
+#[derive(Component, Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct JoinedChild;
+
 /// A streamline of the display depth: row `row`.
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Streamline {

@@ -26,7 +26,7 @@ pub(crate) fn retune(
     patch: PatchRef,
     levels: Query<(&SubdivisionLevel, Ref<LevelData>)>,
     mut lines: Query<(&Streamline, &StreamlineTangents, &mut StreamlineAlpha)>,
-    added: Query<(), Added<Streamline>>,
+    added: Query<(), (Added<Streamline>, Without<JoinedChild>)>,
 ) {
     let _meter = meter.start();
     let depth = patch.structure().display_depth;

@@ -17,9 +17,13 @@ use streamline_kernel::streamline::surface_mesh::{
     normals_and_indices, normals_rows_into, normals_window,
 };
 
+/// The first patch's streamlines whose points moved (a joined patch's,
+/// [`JoinedChild`], are rows of its own stack).
+type MovedLines = (Changed<StreamlinePoints>, Without<JoinedChild>);
+
 pub(crate) fn patch_mesh(
     meter: Res<super::meter::CpuMeter>,
-    changed: Query<(&Streamline, &StreamlinePoints), Changed<StreamlinePoints>>,
+    changed: Query<(&Streamline, &StreamlinePoints), MovedLines>,
     mut surface: ResMut<SurfaceData>,
     mut stats: ResMut<Stats>,
     mut changes: MessageWriter<SurfaceChanged>,

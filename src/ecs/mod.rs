@@ -101,11 +101,7 @@ impl Plugin for ModelPlugin {
             .add_systems(Update, edit::apply_edits.in_set(ModelSet::Edit))
             .add_systems(
                 Update,
-                (
-                    patch::track::track_handles,
-                    blend::reblend,
-                    warnings::find_antipodal_blends,
-                )
+                (patch::track::track_handles, blend::reblend)
                     .chain()
                     .in_set(ModelSet::Blend),
             )
@@ -116,7 +112,13 @@ impl Plugin for ModelPlugin {
                     .in_set(ModelSet::Integrate),
             )
             .add_systems(Update, mesh::patch_mesh.in_set(ModelSet::Mesh))
-            .add_systems(Update, output::write_files.in_set(ModelSet::Output))
+            // after the joined patches' build: every patch's levels are scanned
+            .add_systems(
+                Update,
+                (warnings::find_antipodal_blends, output::write_files)
+                    .chain()
+                    .in_set(ModelSet::Output),
+            )
             .add_plugins(joined::JoinedPlugin);
         patch::spawn_patch(app.world_mut(), &self.scene);
     }

@@ -513,6 +513,7 @@ pub(crate) fn build_joined(
             r.5.built = Some(b);
             r.5.normals = normals[i].take().unwrap_or_default();
             r.5.rows = written[i];
+            (r.5.placed, r.5.placed_from) = (moved[i], moved_col[i]);
         } else if let Some(s) = kept[i].take() {
             // not rebuilt: put back, not marked changed
             r.5.bypass_change_detection().built = Some(Ok(s));

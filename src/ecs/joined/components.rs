@@ -111,6 +111,14 @@ pub struct PatchSurface {
     /// the grid kept its shape; `None`: all of them (a whole build). What
     /// draws the patch may rewrite only these.
     pub rows: Option<RowSpan>,
+    /// The rows of the finest points that the last write placed again
+    /// (`None`: all of them, a whole build) and the first column placed
+    /// again in them (the points before it kept their bits): what its
+    /// streamline entities' [`crate::ecs::components::StreamlinePoints`]
+    /// say ([`super::entities`]).
+    pub placed: Option<RowSpan>,
+    /// The first column of [`Self::placed`]'s rows placed again.
+    pub placed_from: usize,
 }
 
 impl PatchSurface {
