@@ -31,6 +31,21 @@ impl LevelData {
 #[derive(Component, Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct LevelWindow(pub Option<DirtyWindow>);
 
+impl LevelWindow {
+    /// Rows `r` of a level `cols` columns wide, every column (what a joined
+    /// patch's update says of a level, [`crate::ecs::joined::entities`]).
+    pub fn rows(r: streamline_kernel::joins::RowSpan, cols: usize) -> Self {
+        use streamline_kernel::levels::dirty_window::Span;
+        LevelWindow(Some(DirtyWindow {
+            rows: Span { lo: r.lo, hi: r.hi },
+            cols: Span {
+                lo: 0,
+                hi: cols.saturating_sub(1),
+            },
+        }))
+    }
+}
+
 /// Marks a level or streamline entity of a joined patch (docs/math.md §11),
 /// whose values are its patch's stack
 /// ([`crate::ecs::joined::entities`]); the first patch's pipeline skips it

@@ -174,7 +174,8 @@ pub(crate) fn find_antipodal_blends(
         return;
     }
     if first_changed {
-        known.first_lines = first_lines(&patch, &levels, cut.map(|s| &**s), &mut known.first);
+        let cut = (cut.map(|s| &**s), cut.is_some_and(|s| s.is_changed()));
+        known.first_lines = first_lines(&patch, &levels, cut, &mut known.first);
     }
     if joined_changed {
         let mut of: HashMap<Entity, Vec<(u32, Ref<LevelWindow>)>> = HashMap::new();
@@ -235,17 +236,25 @@ pub(crate) fn find_antipodal_blends(
 fn first_lines(
     patch: &PatchRef,
     levels: &Levels,
-    cut: Option<&PatchSurface>,
+    (cut, surface_changed): (Option<&PatchSurface>, bool),
     known: &mut LevelPairs,
 ) -> Vec<String> {
-    if let Some(stack) = cut.and_then(PatchSurface::stack) {
+    if let Some((surface, stack)) = cut.and_then(|s| Some((s, s.stack()?))) {
         let below = stack.levels.len().saturating_sub(1);
+        // what its last build changed, when it says (docs/math.md §11.1:
+        // the run's merged window, whose rows every member shares)
+        let rows = (surface.level_rows.as_ref()).filter(|r| r.len() == stack.levels.len());
         let ls: Vec<ToScan> = (stack.levels[..below].iter().enumerate())
-            .map(|(k, l)| ToScan {
-                depth: k as u32,
-                tangents: &l.tangents,
-                changed: true,
-                window: None,
+            .map(|(k, l)| {
+                let r = rows.map(|r| r[k]);
+                ToScan {
+                    depth: k as u32,
+                    tangents: &l.tangents,
+                    changed: surface_changed && r != Some(None),
+                    window: r
+                        .flatten()
+                        .and_then(|r| LevelWindow::rows(r, l.tangents.cols()).0),
+                }
             })
             .collect();
         let mut lines = listed(&known.rescan(&ls));

@@ -92,8 +92,9 @@ fn stretch(patches: &mut [Design], p: usize, row: usize, col: usize, by: f64) {
 }
 
 /// Updates `state` and `stacks` to `patches` and checks them against the
-/// whole build: the same bits, `changed` every stack that differs and
-/// `rows` every finest row that moved.
+/// whole build: the same bits, `changed` every stack that differs, `rows`
+/// every finest row that moved and `levels` every row of a level whose
+/// tangents or parameters changed.
 fn check_update(
     state: &mut G2State,
     stacks: &mut Vec<Stack>,
@@ -125,6 +126,29 @@ fn check_update(
                     .zip(new.row(r))
                     .all(|(a, b)| bits(*a) == bits(*b));
                 prop_assert!(named || kept, "patch {} row {} moved unnamed", p, r);
+            }
+        }
+        // each level's tangents and parameters outside the rows `levels`
+        // names kept their bits
+        for (d, (lo, ln)) in before[p].levels.iter().zip(&got.levels).enumerate() {
+            let (t0, t1) = (&lo.tangents, &ln.tangents);
+            if (t0.rows(), t0.cols()) != (t1.rows(), t1.cols()) {
+                continue;
+            }
+            for r in 0..t1.rows() {
+                let named = u.levels[d].is_some_and(|s| s.lo <= r && r <= s.hi);
+                let kept = (t0.row(r).iter().zip(t1.row(r))).all(|(a, b)| bits(*a) == bits(*b))
+                    && (lo.params.s.row(r).iter().zip(ln.params.s.row(r)))
+                        .all(|(a, b)| a.to_bits() == b.to_bits())
+                    && lo.params.t[r].to_bits() == ln.params.t[r].to_bits()
+                    && lo.params.sigma[r].to_bits() == ln.params.sigma[r].to_bits();
+                prop_assert!(
+                    named || kept,
+                    "patch {} level {} row {} changed unnamed",
+                    p,
+                    d,
+                    r
+                );
             }
         }
     }

@@ -304,6 +304,8 @@ pub(crate) fn build_joined(
     let mut moved: Vec<Option<RowSpan>> = vec![None; n];
     // the first column of those rows placed again (a G2 run's member; 0: all)
     let mut moved_col: Vec<usize> = vec![0; n];
+    // per depth, the rows whose tangents or parameters may have changed (`None`: all)
+    let mut level_rows: Vec<Option<Vec<Option<RowSpan>>>> = vec![None; n];
     for i in 0..n {
         // a patch is rebuilt when its G2 run changed, or (below) when its
         // parent was rebuilt and moved what it reads
@@ -337,14 +339,15 @@ pub(crate) fn build_joined(
                     .collect();
                 let old: Option<Vec<Stack>> = members.iter().map(|&k| g2_old[k].take()).collect();
                 match super::g2::run(&mut states[i], &designs, depth, old) {
-                    Ok((stacks, changed, spans, cols)) => {
-                        for ((((&k, s), ch), span), col) in
-                            members.iter().zip(stacks).zip(changed).zip(spans).zip(cols)
-                        {
+                    Ok(b) => {
+                        let each = (b.stacks.into_iter().zip(b.changed))
+                            .zip(b.rows.into_iter().zip(b.cols));
+                        for (&k, ((s, ch), (span, col))) in members.iter().zip(each) {
                             in_run[k] = true;
                             if ch {
                                 moved[k] = span;
                                 moved_col[k] = col;
+                                level_rows[k].clone_from(&b.levels);
                                 new[k] = Some(Ok(s));
                             } else {
                                 // not changed: put back as it is
@@ -387,13 +390,15 @@ pub(crate) fn build_joined(
                         let done = super::kept::update(&mut state, parts, Start::Curve, depth, old);
                         kstates[i] = state;
                         match done {
-                            Ok(done) => match settle(i, done, &mut work, &mut moved) {
-                                Ok(s) => Ok(s),
-                                Err(s) => {
-                                    kept[i] = Some(s);
-                                    continue;
+                            Ok(done) => {
+                                match settle(i, done, &mut work, &mut moved, &mut level_rows) {
+                                    Ok(s) => Ok(s),
+                                    Err(s) => {
+                                        kept[i] = Some(s);
+                                        continue;
+                                    }
                                 }
-                            },
+                            }
                             Err(e) => Err(located(i, &e)),
                         }
                     }
@@ -441,7 +446,7 @@ pub(crate) fn build_joined(
                 let done = super::kept::update(&mut state, parts, start, depth, kept_hi[0].take());
                 kstates[i] = state;
                 match done {
-                    Ok(done) => match settle(i, done, &mut work, &mut moved) {
+                    Ok(done) => match settle(i, done, &mut work, &mut moved, &mut level_rows) {
                         Ok(s) => Ok(s),
                         Err(s) => {
                             kept_hi[0] = Some(s);
@@ -514,6 +519,7 @@ pub(crate) fn build_joined(
             r.5.normals = normals[i].take().unwrap_or_default();
             r.5.rows = written[i];
             (r.5.placed, r.5.placed_from) = (moved[i], moved_col[i]);
+            r.5.level_rows = level_rows[i].take();
         } else if let Some(s) = kept[i].take() {
             // not rebuilt: put back, not marked changed
             r.5.bypass_change_detection().built = Some(Ok(s));
@@ -551,19 +557,22 @@ pub(crate) fn build_joined(
     }
 }
 
-/// A kept patch's update settled: `Ok(stack)` when it moved (its work and
-/// the display depth's rows it placed again recorded for patch `i`),
+/// A kept patch's update settled: `Ok(stack)` when it moved (its work, the
+/// display depth's rows it placed again and each level's recorded for patch `i`),
 /// `Err(stack)` when nothing moved (put back as it was, not marked changed).
 fn settle(
     i: usize,
     (stack, u): (Stack, PatchUpdate),
     work: &mut [Option<PatchWork>],
     moved: &mut [Option<RowSpan>],
+    level_rows: &mut [Option<Vec<Option<RowSpan>>>],
 ) -> Result<Stack, Stack> {
     work[i] = Some(PatchWork::of(&u));
     if !u.whole && u.rows.iter().all(Option::is_none) {
         return Err(stack);
     }
+    // every row whose tangents or parameters moved is placed again
+    level_rows[i] = (!u.whole).then(|| u.rows.clone());
     moved[i] = match u.whole {
         true => None,
         false => u.rows.last().copied().flatten(),

@@ -119,6 +119,10 @@ pub struct PatchSurface {
     pub placed: Option<RowSpan>,
     /// The first column of [`Self::placed`]'s rows placed again.
     pub placed_from: usize,
+    /// Per depth `0 ..= d`, the rows of the level whose tangents or
+    /// parameters the last write may have changed (`None` at a depth: none
+    /// of them); `None`: any of them (a whole build).
+    pub level_rows: Option<Vec<Option<RowSpan>>>,
 }
 
 impl PatchSurface {

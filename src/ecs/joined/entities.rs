@@ -7,10 +7,10 @@
 //! its [`crate::ecs::SurfaceData`]; the entities say what the last build
 //! changed, by change detection:
 //! * a level's [`LevelWindow`] is written exactly when its tangents or
-//!   parameters may have changed: the rows the update placed again
-//!   ([`PatchWork::levels`], every row whose tangents, parameters or start
-//!   moved), or `None` when it was built whole (or by a G2 run, which says
-//!   only its finest rows);
+//!   parameters may have changed: the rows the build says
+//!   ([`PatchSurface::level_rows`]: every row a patch's update placed
+//!   again, whose tangents, parameters or start moved; a G2 run's merged
+//!   window's rows), or `None` when it was built whole;
 //! * a streamline's [`StreamlinePoints`] is written exactly when its points
 //!   were placed again ([`PatchSurface::placed`]), with the first point
 //!   that moved.
@@ -20,13 +20,11 @@
 //! pipeline skips them ([`JoinedChild`]).
 
 use super::components::PatchSurface;
-use super::kept::PatchWork;
 use crate::ecs::components::{
     JoinedChild, LevelWindow, Streamline, StreamlinePoints, SubdivisionLevel,
 };
 use crate::ecs::patch::Joined;
 use bevy::prelude::*;
-use streamline_kernel::levels::dirty_window::{DirtyWindow, Span};
 
 /// A joined patch's level entities (depth `k` at `levels[k]`) and
 /// streamline entities (row `r` at `streamlines[r]`).
@@ -42,7 +40,6 @@ pub struct JoinedEntities {
 type JoinedRow = (
     Entity,
     Ref<'static, PatchSurface>,
-    Option<Ref<'static, PatchWork>>,
     Option<&'static mut JoinedEntities>,
 );
 
@@ -55,7 +52,7 @@ pub(crate) fn sync_joined_entities(
     mut levels: Query<&mut LevelWindow, With<JoinedChild>>,
     mut lines: Query<&mut StreamlinePoints, With<JoinedChild>>,
 ) {
-    for (patch, surface, work, entities) in &mut patches {
+    for (patch, surface, entities) in &mut patches {
         if !surface.is_changed() && entities.is_some() {
             continue;
         }
@@ -69,20 +66,21 @@ pub(crate) fn sync_joined_entities(
             (s.levels.len(), p.rows(), p.cols())
         });
         // the rows of each level the build changed, when it says
-        let work = work.filter(|w| w.is_changed() && !w.whole && w.levels.len() == depths);
+        let changed_rows = (surface.level_rows.as_ref()).filter(|l| l.len() == depths);
         resize(&mut commands, patch, &mut have.levels, depths, |k| {
             (SubdivisionLevel(k as u32), LevelWindow(None))
         });
+        let width = |k: usize| surface.stack().map_or(1, |s| s.levels[k].tangents.cols());
         for (k, &e) in have.levels.iter().enumerate() {
-            let window = match &work {
-                Some(w) => match w.levels[k] {
-                    Some(r) => Some(level_window(&surface, k, r)),
+            let window = match changed_rows {
+                Some(l) => match l[k] {
+                    Some(r) => LevelWindow::rows(r, width(k)),
                     None => continue,
                 },
-                None => None,
+                None => LevelWindow(None),
             };
             if let Ok(mut lw) = levels.get_mut(e) {
-                *lw = LevelWindow(window);
+                *lw = window;
             }
         }
         resize(&mut commands, patch, &mut have.streamlines, rows, |r| {
@@ -100,25 +98,6 @@ pub(crate) fn sync_joined_entities(
         if let Some(fresh) = fresh {
             commands.entity(patch).try_insert(fresh);
         }
-    }
-}
-
-/// Level `k`'s window of the rows `r` (all its columns).
-fn level_window(
-    surface: &PatchSurface,
-    k: usize,
-    r: streamline_kernel::joins::RowSpan,
-) -> DirtyWindow {
-    let cols = surface
-        .stack()
-        .and_then(|s| s.levels.get(k))
-        .map_or(1, |l| l.tangents.cols());
-    DirtyWindow {
-        rows: Span { lo: r.lo, hi: r.hi },
-        cols: Span {
-            lo: 0,
-            hi: cols.saturating_sub(1),
-        },
     }
 }
 

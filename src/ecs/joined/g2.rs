@@ -18,10 +18,18 @@ use streamline_kernel::joins::{JoinError, Stack};
 #[derive(Component, Debug, Default)]
 pub struct G2RunState(pub Option<G2State>);
 
-/// Each member's stack, whether it changed, the rows of its finest points
-/// placed again (`None` with a change: all of them) and the first column
-/// placed again in those rows (0: all of them).
-pub(crate) type RunBuilt = (Vec<Stack>, Vec<bool>, Vec<Option<RowSpan>>, Vec<usize>);
+/// What a run's build did: each member's stack, whether it changed, the
+/// rows of its finest points placed again (`None` with a change: all of
+/// them) and the first column placed again in those rows (0: all of them),
+/// and per depth the rows of every member's level whose tangents or
+/// parameters may have changed (`None`: a whole build, every row).
+pub(crate) struct RunBuilt {
+    pub stacks: Vec<Stack>,
+    pub changed: Vec<bool>,
+    pub rows: Vec<Option<RowSpan>>,
+    pub cols: Vec<usize>,
+    pub levels: Option<Vec<Option<RowSpan>>>,
+}
 
 /// The run of `designs` (each one's seam column the previous one's last,
 /// with its details) at
@@ -36,7 +44,13 @@ pub(crate) fn run(
 ) -> Result<RunBuilt, JoinError> {
     if let (Some(st), Some(mut stacks)) = (state.as_mut(), old) {
         return match st.update_parts(designs, depth, &mut stacks) {
-            Ok(u) => Ok((stacks, u.changed, u.rows, u.cols)),
+            Ok(u) => Ok(RunBuilt {
+                stacks,
+                changed: u.changed,
+                rows: u.rows,
+                cols: u.cols,
+                levels: (!u.whole).then_some(u.levels),
+            }),
             Err(e) => {
                 *state = None;
                 Err(e)
@@ -47,7 +61,13 @@ pub(crate) fn run(
         Ok((st, stacks)) => {
             *state = Some(st);
             let n = designs.len();
-            Ok((stacks, vec![true; n], vec![None; n], vec![0; n]))
+            Ok(RunBuilt {
+                stacks,
+                changed: vec![true; n],
+                rows: vec![None; n],
+                cols: vec![0; n],
+                levels: None,
+            })
         }
         Err(e) => {
             *state = None;

@@ -28,10 +28,6 @@ pub struct PatchWork {
     pub reblended: usize,
     /// The display depth's rows placed again (`None`: none).
     pub rows: Option<RowSpan>,
-    /// Per depth `0 ..= d`, the rows placed again (`None`: none): every row
-    /// whose tangents, parameters or start moved, so every row of the level
-    /// its update changed ([`super::entities`] reads a level's window here).
-    pub levels: Vec<Option<RowSpan>>,
     /// Built whole.
     pub whole: bool,
 }
@@ -42,7 +38,6 @@ impl PatchWork {
         PatchWork {
             reblended: u.reblended,
             rows: u.rows.last().copied().flatten(),
-            levels: u.rows.clone(),
             whole: u.whole,
         }
     }

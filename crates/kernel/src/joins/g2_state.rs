@@ -57,6 +57,11 @@ pub struct G2Update {
     /// build), so that the mesh normals, which read a point's neighbours
     /// (docs/math.md §4), can be made again from one column before it.
     pub cols: Vec<usize>,
+    /// Per depth `0 ..= d`, the rows of every patch's level whose tangents
+    /// or parameters may have changed (the merged window's rows: the
+    /// patches of a run share their rows; `None`: none; a whole build,
+    /// every row).
+    pub levels: Vec<Option<RowSpan>>,
     /// Merged tangents re-blended, over all levels (a whole build counts
     /// every entry of levels `1 ..= d`).
     pub reblended: usize,
@@ -205,6 +210,9 @@ impl G2State {
                 Err(_) => return self.rebuild(patches, depth, stacks),
             }
         }
+        let levels = (prop_dirty.iter())
+            .map(|w| w.map(|w| RowSpan::from(w.rows)))
+            .collect();
         let mut changed = vec![false; n];
         let mut rows = vec![None; n];
         let mut cols = vec![usize::MAX; n];
@@ -226,6 +234,7 @@ impl G2State {
             changed,
             rows,
             cols,
+            levels,
             reblended,
             whole: false,
         })
@@ -350,6 +359,9 @@ impl G2State {
                 })
                 .collect(),
             cols: vec![0; patches.len()],
+            levels: (self.levels.iter())
+                .map(|l| l.shape().0.checked_sub(1).map(|hi| RowSpan { lo: 0, hi }))
+                .collect(),
             reblended: whole_count(&self.levels),
             whole: true,
         })

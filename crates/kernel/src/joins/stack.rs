@@ -175,3 +175,10 @@ impl RowSpan {
         }
     }
 }
+
+impl From<crate::levels::dirty_window::Span> for RowSpan {
+    /// A window's rows.
+    fn from(s: crate::levels::dirty_window::Span) -> Self {
+        RowSpan { lo: s.lo, hi: s.hi }
+    }
+}
