@@ -423,3 +423,37 @@ fn every_patch_s_warnings_equal_a_fresh_build() {
         }
     }
 }
+
+/// While the editor defers a drag's work (`DeferNormals`) the warnings are
+/// not scanned; the first frame after it scans whole every patch whose
+/// levels changed meanwhile, and the warnings are a fresh build's (control:
+/// during the drag they are not).
+#[test]
+fn warnings_deferred_by_a_drag_are_a_fresh_build_s_after_it() {
+    use streamline_studio::ecs::DeferNormals;
+    let lines = |app: &App| app.world().resource::<BuildWarnings>().lines.clone();
+    let doc = hood();
+    let mut app = app(&doc);
+    let x = DVec3::new(1.0, 0.0, 0.5).normalize();
+    let y = DVec3::new(0.2, 1.0, 0.1).normalize();
+    app.insert_resource(DeferNormals(true));
+    for (p, row, col, dir) in [
+        (2, 2, 2, x),
+        (2, 2, 3, -x),
+        (1, 3, 1, y),
+        (1, 3, 2, -y),
+        (0, 1, 2, x),
+        (0, 1, 3, -x),
+    ] {
+        let name = doc.patches[p].name.clone();
+        ecs::apply(&mut app, Edit::Patch(PatchEdit::SetPatch(name))).unwrap();
+        ecs::apply(&mut app, Edit::SetDirection { row, col, dir }).unwrap();
+    }
+    let now = document(app.world()).unwrap();
+    let fresh = ecs::headless_document_app(&now, None, ModelConfig::default());
+    assert!(lines(&fresh).len() >= 3, "{:?}", lines(&fresh));
+    assert!(lines(&app).is_empty(), "deferred: {:?}", lines(&app));
+    app.insert_resource(DeferNormals(false));
+    app.update();
+    assert_eq!(lines(&app), lines(&fresh));
+}

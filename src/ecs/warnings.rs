@@ -9,7 +9,7 @@ use super::components::{JoinedChild, LevelData, LevelWindow, SubdivisionLevel};
 use super::joined::{JoinedDesign, PatchSlot, PatchStart, PatchSurface, shows_run_cut};
 use super::patch::{Joined, PatchRef};
 use bevy::prelude::*;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use streamline_kernel::levels::antipodal::{AntipodalPair, antipodal_pairs, antipodal_pairs_from};
 use streamline_kernel::levels::dirty_window::DirtyWindow;
 use streamline_kernel::sphere::antipodal::antipodal_legs;
@@ -87,13 +87,15 @@ impl LevelPairs {
 }
 
 /// What the last run found: the first patch's pairs and lines, and each
-/// joined patch's.
+/// joined patch's; and the patches whose levels changed while a drag
+/// deferred the scan.
 #[derive(Default)]
 pub(crate) struct Known {
     first: LevelPairs,
     first_lines: Vec<String>,
     joined: HashMap<Entity, LevelPairs>,
     joined_lines: Vec<String>,
+    behind: HashSet<Entity>,
 }
 
 /// The first patch's levels, with the window of their last change.
@@ -144,7 +146,10 @@ type JoinedPatches<'w, 's> = Query<
 /// its columns (docs/math.md §3), so those are the pairs scanned; level 0 of
 /// a mirrored scene is the doubled net (docs/math.md §9), whose rows `m − 1 ±
 /// j` are the scene's row `j`: its pairs are named by the scene's cells. In
-/// a design of several patches each sentence names its patch.
+/// a design of several patches each sentence names its patch. While the
+/// editor defers a drag's work ([`super::resources::DeferNormals`]) nothing
+/// is scanned: the patches whose levels changed are noted and scanned whole
+/// on the first frame after it.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn find_antipodal_blends(
     meter: Res<super::meter::CpuMeter>,
@@ -154,28 +159,50 @@ pub(crate) fn find_antipodal_blends(
     joined: JoinedPatches,
     first: Query<(&PatchSlot, Ref<PatchSurface>), Without<Joined>>,
     starts: Query<&PatchStart>,
+    defer: Res<super::resources::DeferNormals>,
     mut warnings: ResMut<BuildWarnings>,
     mut known: Local<Known>,
 ) {
     let _meter = meter.start();
     // the first patch drawn as its G2 run's cut: its own levels wait
     // (docs/math.md §11.1), so the cut's are scanned
-    let head = first.get(patch.entity()).ok();
+    let me = patch.entity();
+    let head = first.get(me).ok();
     let cut = (head.as_ref())
-        .filter(|(_, s)| shows_run_cut(patch.entity(), starts.iter(), Some(s)))
+        .filter(|(_, s)| shows_run_cut(me, starts.iter(), Some(s)))
         .map(|(_, s)| s);
-    let first_changed = levels.iter().any(|(_, d, _)| d.is_changed())
+    let first_now = levels.iter().any(|(_, d, _)| d.is_changed())
         || patch.design_changed()
         || cut.is_some_and(|s| s.is_changed());
-    let joined_changed = joined_levels.iter().any(|(.., w)| w.is_changed())
-        || joined.iter().any(|r| r.3.is_changed() || r.4.is_changed())
-        || joined.iter().count() != known.joined.len();
+    let mut joined_now: Vec<Entity> = (joined_levels.iter())
+        .filter(|(.., w)| w.is_changed())
+        .map(|(p, ..)| p.parent())
+        .chain(
+            (joined.iter())
+                .filter(|r| r.3.is_changed() || r.4.is_changed())
+                .map(|r| r.0),
+        )
+        .collect();
+    // while the editor defers a drag's work, what changed is only noted,
+    // and scanned whole once the drag ends
+    if defer.0 {
+        known.behind.extend(joined_now);
+        if first_now {
+            known.behind.insert(me);
+        }
+        return;
+    }
+    let first_whole = known.behind.remove(&me);
+    joined_now.extend(known.behind.iter().copied());
+    let behind = std::mem::take(&mut known.behind);
+    let first_changed = first_now || first_whole;
+    let joined_changed = !joined_now.is_empty() || joined.iter().count() != known.joined.len();
     if !first_changed && !joined_changed {
         return;
     }
     if first_changed {
         let cut = (cut.map(|s| &**s), cut.is_some_and(|s| s.is_changed()));
-        known.first_lines = first_lines(&patch, &levels, cut, &mut known.first);
+        known.first_lines = first_lines(&patch, &levels, cut, first_whole, &mut known.first);
     }
     if joined_changed {
         let mut of: HashMap<Entity, Vec<(u32, Ref<LevelWindow>)>> = HashMap::new();
@@ -195,11 +222,12 @@ pub(crate) fn find_antipodal_blends(
                 let mut ls: Vec<ToScan> = (of.get(&e).into_iter().flatten())
                     .filter(|(k, _)| *k < finest)
                     .filter_map(|(k, w)| {
+                        let whole = behind.contains(&e);
                         Some(ToScan {
                             depth: *k,
                             tangents: &stack.levels.get(*k as usize)?.tangents,
-                            changed: w.is_changed(),
-                            window: w.0.filter(|_| !w.is_added()),
+                            changed: whole || w.is_changed(),
+                            window: w.0.filter(|_| !w.is_added() && !whole),
                         })
                     })
                     .collect();
@@ -237,20 +265,22 @@ fn first_lines(
     patch: &PatchRef,
     levels: &Levels,
     (cut, surface_changed): (Option<&PatchSurface>, bool),
+    whole: bool,
     known: &mut LevelPairs,
 ) -> Vec<String> {
     if let Some((surface, stack)) = cut.and_then(|s| Some((s, s.stack()?))) {
         let below = stack.levels.len().saturating_sub(1);
         // what its last build changed, when it says (docs/math.md §11.1:
         // the run's merged window, whose rows every member shares)
-        let rows = (surface.level_rows.as_ref()).filter(|r| r.len() == stack.levels.len());
+        let rows =
+            (surface.level_rows.as_ref()).filter(|r| !whole && r.len() == stack.levels.len());
         let ls: Vec<ToScan> = (stack.levels[..below].iter().enumerate())
             .map(|(k, l)| {
                 let r = rows.map(|r| r[k]);
                 ToScan {
                     depth: k as u32,
                     tangents: &l.tangents,
-                    changed: surface_changed && r != Some(None),
+                    changed: whole || (surface_changed && r != Some(None)),
                     window: r
                         .flatten()
                         .and_then(|r| LevelWindow::rows(r, l.tangents.cols()).0),
@@ -268,9 +298,9 @@ fn first_lines(
         .map(|(l, d, w)| {
             // the window the blend stage recomputed with this change, if it says
             let window = (w.as_ref())
-                .filter(|w| w.is_changed() && !d.is_added())
+                .filter(|w| w.is_changed() && !d.is_added() && !whole)
                 .and_then(|w| w.0);
-            let changed = d.is_changed();
+            let changed = whole || d.is_changed();
             ToScan {
                 depth: l.0,
                 tangents: &d.into_inner().0.tangents,
