@@ -129,6 +129,9 @@ cat > "$T/antipodal-steps.ron" <<'RON'
 RON
 "$BIN" play "$T/antipodal-steps.ron" >/dev/null
 shot warning-antipodal "$T/antipodal.ron" --panel stats --size 1100x700
+# ... and on a later patch: Stats of the active patch, the warning naming it
+echo '(steps: [SetPatch("wing"), SetDirection(row: 2, col: 2, dir: (1.0, 0.0, 0.5)), SetDirection(row: 2, col: 3, dir: (-1.0, 0.0, -0.5))])' > "$T/wing-antipodal.ron"
+shot warning-antipodal-patches "$ROOT/scenes/hood-screen-wing.ron" --script "$T/wing-antipodal.ron" --panel stats --size 1100x700
 # the Loop meshes (docs/editor.md, docs/loop.md)
 for m in snail fertility camelhead; do
   shot "mesh-$m" car1 --mesh "tests/data/meshes/$m.obj" --panel mesh

@@ -440,14 +440,7 @@ fn the_census_counts_every_patch_and_what_each_owns() {
     let first = &c.per_patch[0];
     assert!(!first.joined);
     assert_eq!(first.levels, doc.display_depth as usize + 1);
-    assert_eq!(
-        c.levels,
-        c.per_patch.iter().map(|p| p.levels).sum::<usize>()
-    );
-    assert_eq!(
-        c.streamlines,
-        c.per_patch.iter().map(|p| p.streamlines).sum::<usize>()
-    );
+    common::built::census_adds_up(&c);
     let curve = match &doc.patches[0].start {
         streamline_studio::scene::design::document::Start::Curve(c) => c.tangents.len(),
         _ => unreachable!(),

@@ -195,14 +195,7 @@ fn every_patch_owns_its_levels_and_streamlines() {
                 assert_eq!(have.streamlines.len(), p.streamlines);
             }
         }
-        assert_eq!(
-            c.levels,
-            c.per_patch.iter().map(|p| p.levels).sum::<usize>()
-        );
-        assert_eq!(
-            c.streamlines,
-            c.per_patch.iter().map(|p| p.streamlines).sum::<usize>()
-        );
+        common::built::census_adds_up(&c);
     };
     check(&mut app, doc.display_depth);
     ecs::apply(&mut app, Edit::SetDisplayDepth(doc.display_depth + 1)).unwrap();

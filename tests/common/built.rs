@@ -99,3 +99,15 @@ pub fn changed_ticks(app: &mut App) -> Vec<bevy::ecs::change_detection::Tick> {
         })
         .collect()
 }
+
+/// The census's totals are the sums of its patches' counts.
+pub fn census_adds_up(c: &streamline_studio::ecs::census::Census) {
+    assert_eq!(
+        c.levels,
+        c.per_patch.iter().map(|p| p.levels).sum::<usize>()
+    );
+    assert_eq!(
+        c.streamlines,
+        c.per_patch.iter().map(|p| p.streamlines).sum::<usize>()
+    );
+}

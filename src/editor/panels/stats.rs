@@ -2,6 +2,7 @@
 
 use super::PanelCtx;
 use crate::ecs::Stats;
+use crate::ecs::joined::{ActivePatch, JoinedDesign, PatchSlot, PatchSurface};
 use crate::ecs::warnings::BuildWarnings;
 use crate::editor::view::frame_timing::FrameTiming;
 use bevy::ecs::system::SystemParam;
@@ -16,33 +17,81 @@ pub struct StatsSection<'w, 's> {
     pub census: crate::ecs::census::CensusQuery<'w, 's>,
     pub timing: Res<'w, FrameTiming>,
     pub warnings: Res<'w, BuildWarnings>,
+    /// The patch the handles act on (`None`: the first).
+    pub active: Res<'w, ActivePatch>,
+    /// The joined patches' names, designs and built stacks.
+    pub joined: Query<
+        'w,
+        's,
+        (
+            &'static PatchSlot,
+            &'static JoinedDesign,
+            &'static PatchSurface,
+        ),
+    >,
+}
+
+/// A patch's sizes as Stats shows them.
+struct Sizes {
+    /// Its net, `(cols, rows)`.
+    net: (usize, usize),
+    /// Its levels' `(rows, cols)`, depth by depth.
+    levels: Vec<(usize, usize)>,
+    /// Its name (empty for the first patch).
+    name: String,
+}
+
+/// The active patch's sizes: a joined patch's from its design and stack,
+/// `None` for the first patch (read from its pipeline's [`Stats`]).
+fn active_sizes(section: &StatsSection) -> Option<Sizes> {
+    let (slot, design, surface) = section.joined.get(section.active.0?).ok()?;
+    let net = design.0.net();
+    let levels = (surface.stack().into_iter())
+        .flat_map(|s| s.levels.iter())
+        .map(|l| (l.tangents.rows(), l.tangents.cols()))
+        .collect();
+    Some(Sizes {
+        net: (net.cols(), net.rows()),
+        levels,
+        name: slot.name.clone(),
+    })
 }
 
 /// The section's rows: name, figure, tooltip.
 pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, &'static str)> {
-    let net = p.patch.design().net();
     let s = &section.stats;
+    // the active patch's sizes (a joined patch's, named), else the first's
+    let Sizes { net, levels, name } = active_sizes(section).unwrap_or_else(|| {
+        let net = p.patch.design().net();
+        Sizes {
+            net: (net.cols(), net.rows()),
+            levels: s.levels.clone(),
+            name: String::new(),
+        }
+    });
     let mut rows: Vec<(&'static str, String, &'static str)> = Vec::with_capacity(21);
     {
         let mut row = |k: &'static str, v: String, tip: &'static str| rows.push((k, v, tip));
+        let of = match name.is_empty() {
+            true => String::new(),
+            false => format!(" (`{name}`)"),
+        };
         row(
             "control net",
-            format!("{} × {}", net.cols(), net.rows()),
-            "Control tangents along × across the streamlines",
+            format!("{} × {}{of}", net.0, net.1),
+            "Control tangents along × across the streamlines, of the active patch",
         );
-        let finest = s
-            .levels
-            .last()
-            .map(|(r, c)| format!("{c} × {r} (level {})", s.levels.len() - 1));
+        let finest =
+            (levels.last()).map(|(r, c)| format!("{c} × {r} (level {})", levels.len() - 1));
         row(
             "finest level",
             finest.unwrap_or_default(),
-            "Tangents along × across at the deepest level built",
+            "Tangents along × across at the deepest level built, of the active patch",
         );
         row(
             "tangents",
-            s.tangents_total.to_string(),
-            "Tangents in all levels",
+            levels.iter().map(|(r, c)| r * c).sum::<usize>().to_string(),
+            "Tangents in all levels, of the active patch",
         );
         // the world's entities, counted by queries (the census of `build --json`)
         let c = section.census.count();
@@ -58,7 +107,7 @@ pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, 
                 0 => c.patches.to_string(),
                 j => format!("{} ({j} joined)", c.patches),
             },
-            "Patch entities: the first owns its handles, levels and streamlines; a joined patch owns its net handles, and its levels and points are values the joins build",
+            "Patch entities: each owns its handles, a level entity per depth and a streamline entity per row (a joined patch's values are those its join builds)",
         );
         row(
             "handles",
