@@ -450,3 +450,41 @@ fn warnings_deferred_by_a_drag_are_a_fresh_build_s_after_it() {
     app.update();
     assert_eq!(lines(&app), lines(&fresh));
 }
+
+/// A G2 run's member reports its last build as a kept patch does
+/// (`PatchWork`, which Stats shows for the active patch): an edit of the
+/// screen re-blends part of the run's merged net in place and names the
+/// rows it placed again; another display depth builds it whole (control).
+#[test]
+fn a_g2_member_reports_what_its_run_did() {
+    use streamline_studio::ecs::joined::PatchWork;
+    let doc = hood();
+    let mut app = app(&doc);
+    let ids = patches(&mut app);
+    let t = Turn {
+        p: 1,
+        row: 2,
+        col: 2,
+        axis: DVec3::Y,
+        angle: 0.05,
+    };
+    assert!(apply_turn(&mut app, &doc, &t));
+    let w = app
+        .world()
+        .get::<PatchWork>(ids[1])
+        .cloned()
+        .expect("reported");
+    // the run's whole build: every tangent of the hood's and the screen's
+    // levels 1 ..= d (their shared seam columns once each, so at most this)
+    let all: usize = (ids[..2].iter())
+        .flat_map(|&e| stack(&app, e).unwrap().levels.into_iter().skip(1))
+        .map(|l| l.tangents.data().len())
+        .sum();
+    assert!(!w.whole, "{w:?}");
+    assert!(w.reblended > 0 && w.reblended < all, "{w:?} of {all}");
+    let placed = app.world().get::<PatchSurface>(ids[1]).unwrap().placed;
+    assert_eq!(w.rows, placed);
+    ecs::apply(&mut app, Edit::SetDisplayDepth(doc.display_depth + 1)).unwrap();
+    let w = app.world().get::<PatchWork>(ids[1]).cloned().unwrap();
+    assert!(w.whole, "{w:?}");
+}

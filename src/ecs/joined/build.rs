@@ -45,7 +45,7 @@ use streamline_kernel::finetune::SurfaceTuning;
 use streamline_kernel::joins::PatchParts;
 use streamline_kernel::joins::RowSpan;
 use streamline_kernel::joins::g2_state::G2State;
-use streamline_kernel::joins::patch_state::{PatchState, PatchUpdate, Start};
+use streamline_kernel::joins::patch_state::{PatchState, Start};
 use streamline_kernel::joins::seam::{PatchMesh, chain_seam, side_seam};
 use streamline_kernel::joins::{Continuity, Edge, Stack};
 use streamline_kernel::levels::multires::Details;
@@ -348,6 +348,8 @@ pub(crate) fn build_joined(
                                 moved[k] = span;
                                 moved_col[k] = col;
                                 level_rows[k].clone_from(&b.levels);
+                                work[k] =
+                                    Some(PatchWork::of_run(b.reblended, b.levels.is_none(), span));
                                 new[k] = Some(Ok(s));
                             } else {
                                 // not changed: put back as it is
@@ -391,7 +393,13 @@ pub(crate) fn build_joined(
                         kstates[i] = state;
                         match done {
                             Ok(done) => {
-                                match settle(i, done, &mut work, &mut moved, &mut level_rows) {
+                                match super::kept::settle(
+                                    i,
+                                    done,
+                                    &mut work,
+                                    &mut moved,
+                                    &mut level_rows,
+                                ) {
                                     Ok(s) => Ok(s),
                                     Err(s) => {
                                         kept[i] = Some(s);
@@ -446,13 +454,15 @@ pub(crate) fn build_joined(
                 let done = super::kept::update(&mut state, parts, start, depth, kept_hi[0].take());
                 kstates[i] = state;
                 match done {
-                    Ok(done) => match settle(i, done, &mut work, &mut moved, &mut level_rows) {
-                        Ok(s) => Ok(s),
-                        Err(s) => {
-                            kept_hi[0] = Some(s);
-                            continue;
+                    Ok(done) => {
+                        match super::kept::settle(i, done, &mut work, &mut moved, &mut level_rows) {
+                            Ok(s) => Ok(s),
+                            Err(s) => {
+                                kept_hi[0] = Some(s);
+                                continue;
+                            }
                         }
-                    },
+                    }
                     Err(e) => Err(located(i, &e)),
                 }
             }
@@ -555,29 +565,6 @@ pub(crate) fn build_joined(
             _ => {}
         }
     }
-}
-
-/// A kept patch's update settled: `Ok(stack)` when it moved (its work, the
-/// display depth's rows it placed again and each level's recorded for patch `i`),
-/// `Err(stack)` when nothing moved (put back as it was, not marked changed).
-fn settle(
-    i: usize,
-    (stack, u): (Stack, PatchUpdate),
-    work: &mut [Option<PatchWork>],
-    moved: &mut [Option<RowSpan>],
-    level_rows: &mut [Option<Vec<Option<RowSpan>>>],
-) -> Result<Stack, Stack> {
-    work[i] = Some(PatchWork::of(&u));
-    if !u.whole && u.rows.iter().all(Option::is_none) {
-        return Err(stack);
-    }
-    // every row whose tangents or parameters moved is placed again
-    level_rows[i] = (!u.whole).then(|| u.rows.clone());
-    moved[i] = match u.whole {
-        true => None,
-        false => u.rows.last().copied().flatten(),
-    };
-    Ok(stack)
 }
 
 /// For a G1 or G2 chain, `B` with its first control column `A`'s last: the

@@ -29,6 +29,9 @@ pub(crate) struct RunBuilt {
     pub rows: Vec<Option<RowSpan>>,
     pub cols: Vec<usize>,
     pub levels: Option<Vec<Option<RowSpan>>>,
+    /// The merged tangents re-blended (a whole build: every one of levels
+    /// `1 ..= d`).
+    pub reblended: usize,
 }
 
 /// The run of `designs` (each one's seam column the previous one's last,
@@ -50,6 +53,7 @@ pub(crate) fn run(
                 rows: u.rows,
                 cols: u.cols,
                 levels: (!u.whole).then_some(u.levels),
+                reblended: u.reblended,
             }),
             Err(e) => {
                 *state = None;
@@ -59,6 +63,7 @@ pub(crate) fn run(
     }
     match G2State::build_parts(designs, depth) {
         Ok((st, stacks)) => {
+            let reblended = st.whole_count();
             *state = Some(st);
             let n = designs.len();
             Ok(RunBuilt {
@@ -67,6 +72,7 @@ pub(crate) fn run(
                 rows: vec![None; n],
                 cols: vec![0; n],
                 levels: None,
+                reblended,
             })
         }
         Err(e) => {

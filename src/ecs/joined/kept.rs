@@ -18,10 +18,11 @@ use streamline_kernel::joins::{JoinError, PatchParts, Stack};
 #[derive(Component, Debug, Default)]
 pub struct KeptPatch(pub Option<PatchState>);
 
-/// What the last build of a patch through its [`KeptPatch`] did: the
-/// tangents it re-blended, the rows of the display depth it placed again
-/// and whether it was built whole. Tests and benches read it (the first
-/// patch's pipeline reports the same in [`crate::ecs::Stats`]).
+/// What the last build of a patch through its [`KeptPatch`] or its G2 run
+/// did: the tangents it re-blended (a run's member: the run's merged
+/// tangents), the rows of the display depth it placed again and whether it
+/// was built whole. Tests, benches and the editor's Stats read it (the
+/// first patch's pipeline reports the same in [`crate::ecs::Stats`]).
 #[derive(Component, Debug, Clone, Default, PartialEq, Eq)]
 pub struct PatchWork {
     /// Tangents re-blended over the levels `1 ..= d`.
@@ -33,6 +34,16 @@ pub struct PatchWork {
 }
 
 impl PatchWork {
+    /// Of a member of a G2 run that re-blended `reblended` merged tangents
+    /// (built `whole` or not) and placed its finest rows `rows` again.
+    pub(crate) fn of_run(reblended: usize, whole: bool, rows: Option<RowSpan>) -> Self {
+        PatchWork {
+            reblended,
+            rows,
+            whole,
+        }
+    }
+
     /// From a kernel update.
     pub fn of(u: &PatchUpdate) -> Self {
         PatchWork {
@@ -67,4 +78,27 @@ pub(crate) fn update(
         *state = None;
     }
     done
+}
+
+/// A kept patch's update settled: `Ok(stack)` when it moved (its work, the
+/// display depth's rows it placed again and each level's recorded for patch `i`),
+/// `Err(stack)` when nothing moved (put back as it was, not marked changed).
+pub(crate) fn settle(
+    i: usize,
+    (stack, u): (Stack, PatchUpdate),
+    work: &mut [Option<PatchWork>],
+    moved: &mut [Option<RowSpan>],
+    level_rows: &mut [Option<Vec<Option<RowSpan>>>],
+) -> Result<Stack, Stack> {
+    work[i] = Some(PatchWork::of(&u));
+    if !u.whole && u.rows.iter().all(Option::is_none) {
+        return Err(stack);
+    }
+    // every row whose tangents or parameters moved is placed again
+    level_rows[i] = (!u.whole).then(|| u.rows.clone());
+    moved[i] = match u.whole {
+        true => None,
+        false => u.rows.last().copied().flatten(),
+    };
+    Ok(stack)
 }

@@ -2,7 +2,7 @@
 
 use super::PanelCtx;
 use crate::ecs::Stats;
-use crate::ecs::joined::{ActivePatch, JoinedDesign, PatchSlot, PatchSurface};
+use crate::ecs::joined::{ActivePatch, JoinedDesign, PatchSlot, PatchSurface, PatchWork};
 use crate::ecs::warnings::BuildWarnings;
 use crate::editor::view::frame_timing::FrameTiming;
 use bevy::ecs::system::SystemParam;
@@ -29,6 +29,8 @@ pub struct StatsSection<'w, 's> {
             &'static PatchSurface,
         ),
     >,
+    /// What each joined patch's last build did.
+    pub work: Query<'w, 's, &'static PatchWork>,
 }
 
 /// A patch's sizes as Stats shows them.
@@ -125,6 +127,8 @@ pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, 
             "Subdivision-level entities (0 to the deepest depth shown or edited)",
         );
         let l = &s.last;
+        // the active joined patch's last build, as its pipeline's for the first
+        let work = section.active.0.and_then(|e| section.work.get(e).ok());
         let mut edit: String = l.edit.chars().take(26).collect();
         if edit.len() < l.edit.len() {
             edit.push('…');
@@ -136,27 +140,29 @@ pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, 
         );
         row(
             "rebuild",
-            if l.full_rebuild {
+            if work.map_or(l.full_rebuild, |w| w.whole) {
                 "full".into()
             } else {
                 "incremental".into()
             },
-            "Full: the shape of the levels changed; incremental: only dirty windows",
+            "Full: the shape of the levels changed; incremental: only dirty windows (of the active patch's last build)",
         );
         row(
             "re-blended",
-            l.tangents_reblended.to_string(),
-            "Tangents blended again over all levels",
+            work.map_or(l.tangents_reblended, |w| w.reblended)
+                .to_string(),
+            "Tangents blended again over all levels (a G2 run's: of its merged net)",
         );
         row(
             "details",
             l.details_reapplied.to_string(),
             "Multiresolution details applied again",
         );
+        let placed = work.map(|w| w.rows.map_or(0, |r| r.hi + 1 - r.lo));
         row(
             "re-integrated",
-            l.streamlines_reintegrated.to_string(),
-            "Streamlines integrated again (Eq. 65)",
+            placed.unwrap_or(l.streamlines_reintegrated).to_string(),
+            "Streamlines integrated again (Eq. 65), of the active patch's last build",
         );
         row(
             "placed again",

@@ -89,6 +89,12 @@ fn whole_count(levels: &[LevelState]) -> usize {
 }
 
 impl G2State {
+    /// The merged tangents a whole build blends: every entry of levels
+    /// `1 ..= d` (what [`G2Update::reblended`] counts for one).
+    pub fn whole_count(&self) -> usize {
+        whole_count(&self.levels)
+    }
+
     /// The run of `patches` built whole to `depth`, and each patch's stack
     /// (bit for bit [`super::merged::g2_run`]'s).
     pub fn build(patches: &[&Design], depth: u32) -> Result<(Self, Vec<Stack>), JoinError> {
