@@ -23,6 +23,7 @@ mod common;
 
 use glam::DVec3;
 use std::path::{Path, PathBuf};
+use streamline_kernel::nurbs::Samples;
 use streamline_kernel::nurbs::fit::FitOptions;
 use streamline_studio::scene::design::document::Document;
 use streamline_studio::scene::export::document::{
@@ -101,18 +102,13 @@ impl Draw {
                 Kind::Side(e, _) => Kind::Side(e, ContinuitySpec::G0),
             };
         }
-        // Catmull–Clark and Doo–Sabin on G2 chains only: their points drift
-        // between depths over the whole patch, halving per depth, and on
-        // their side joins and G0/G1 chains the check grid one depth finer
-        // reads that drift as 5 to 20 tolerances inside the later patch at
-        // depth 6, beyond what any depth within 2²¹ check points removes
-        // (docs/math.md §11.5, "Where it does not reach";
-        // crates/kernel/tests/shell_random.rs draws them on request)
-        let pick = r.below(6);
-        let g2 = kind == Kind::Chain(ContinuitySpec::G2);
-        let scheme = match pick {
-            4 if g2 => SchemeSpec::CatmullClark,
-            5 if g2 => SchemeSpec::DooSabin,
+        // Catmull–Clark and Doo–Sabin on every join: where a later patch
+        // starts moves between depths with their edges, and its check grid
+        // is measured from where it starts (docs/math.md §11.5, "A start
+        // that moves")
+        let scheme = match r.below(6) {
+            4 => SchemeSpec::CatmullClark,
+            5 => SchemeSpec::DooSabin,
             _ => SchemeSpec::Kobbelt {
                 omega: Omega([1.0, 0.6, 1.4][r.below(3)]),
             },
@@ -143,7 +139,12 @@ impl Draw {
             Kind::Side(e, c) => format!("side-{e:?}-{c:?}"),
         };
         let turned = if self.turned { "-turned" } else { "" };
-        format!("{}-{kind}{turned}", self.seed)
+        let scheme = match self.scheme {
+            SchemeSpec::Kobbelt { .. } => "kobbelt",
+            SchemeSpec::CatmullClark => "catmull-clark",
+            _ => "doo-sabin",
+        };
+        format!("{}-{scheme}-{kind}{turned}", self.seed)
     }
 
     fn continuity(&self) -> ContinuitySpec {
@@ -304,11 +305,16 @@ impl Draw {
     }
 }
 
-fn point_file(dir: &Path, tag: &str, i: usize, points: &[DVec3]) -> String {
+/// Face `i`'s points with their parameters on it (`x y z u v`, for
+/// check_shell.py).
+fn point_file(dir: &Path, tag: &str, i: usize, grid: &Samples, v: &[f64]) -> String {
     let path = dir.join(format!("{tag}-{i}.xyz"));
-    let text: String = points
-        .iter()
-        .map(|q| format!("{:?} {:?} {:?}\n", q.x, q.y, q.z))
+    let cols = grid.points.cols();
+    let text: String = (grid.points.data().iter().enumerate())
+        .map(|(n, q)| {
+            let (u, v) = (grid.u[n % cols], v[n / cols]);
+            format!("{:?} {:?} {:?} {u:?} {v:?}\n", q.x, q.y, q.z)
+        })
         .collect();
     std::fs::write(&path, text).unwrap();
     path.display().to_string()
@@ -391,7 +397,7 @@ fn random_designs_export_as_one_shell_whose_smooth_seams_keep_their_normals() {
             .grids
             .iter()
             .enumerate()
-            .map(|(i, g)| point_file(&dir, &tag, i, g.data.points.data()))
+            .map(|(i, g)| point_file(&dir, &tag, i, &g.data, &out.faces[i].v.0))
             .collect();
         manifest.push(serde_json::json!({
             "file": path.display().to_string(),

@@ -1,4 +1,4 @@
-//! docs/math.md §11.5, "Where it does not reach": why a Catmull–Clark or
+//! docs/math.md §11.5, "A start that moves": why a Catmull–Clark or
 //! Doo–Sabin streamline moves between depths by a length that halves per
 //! depth, and what would make it converge.
 //!

@@ -256,13 +256,11 @@ fn export_faces(
     settings: &DocumentExportSettings,
     format: Format,
 ) -> Result<DocumentExported, SceneError> {
-    let how = if format == Format::Step {
-        FaceFit::Shell
-    } else {
-        FaceFit::Alone
-    };
-    let fit =
-        fit_document(doc, built, depth, &settings.fit, how).map_err(|e| fit_refused(path, e))?;
+    // IGES writes the shell's faces, each an entity of its own: their
+    // edges meet exactly, and a face is measured as the shell measures it
+    // (docs/math.md §11.5)
+    let fit = fit_document(doc, built, depth, &settings.fit, FaceFit::Shell)
+        .map_err(|e| fit_refused(path, e))?;
     let names = mirrored_names(doc);
     let shell = ShellFit {
         faces: fit.faces.clone(),

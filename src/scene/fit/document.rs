@@ -16,9 +16,11 @@ use crate::scene::design::document_build::{BuildError, BuiltDocument};
 use std::borrow::Cow;
 use std::fmt;
 use std::time::Instant;
+use streamline_kernel::SurfaceScheme;
+use streamline_kernel::joins::{Continuity, Edge};
 use streamline_kernel::nurbs::{
-    FitError, FitOptions, FitReport, PatchGrid, SeamSpec, ShellError, ShellFace, ShellSeam, fit,
-    fit_shell,
+    Direction, FitError, FitOptions, FitReport, PatchGrid, Samples, SeamSpec, ShellError,
+    ShellFace, ShellFit, ShellSeam, face_deviation, fit, fit_shell,
 };
 
 /// The most points the check grid of an export may have: the fit at depth
@@ -121,10 +123,31 @@ fn deeper_helps(e: &ShellError) -> bool {
     )
 }
 
+/// The approximating scheme that moves where patch `i` starts between
+/// depths (docs/math.md §11.5, "A start that moves"): its own or that of a
+/// patch down its chain of starts. None for a patch on its own initial
+/// curve, for a G2 chain's later patch (one net with the patch before it,
+/// cut where Eq. 69 says) and where every such patch is on Kobbelt's
+/// scheme, whose edges stay put.
+fn moving_start(doc: &Document, i: usize) -> Option<SurfaceScheme> {
+    let (_, join) = doc.parent(i)?;
+    if join.edge == Edge::End && join.continuity == Continuity::G2 {
+        return None;
+    }
+    let mut at = Some(i);
+    while let Some(k) = at {
+        let scheme = doc.patches[k].design.scheme();
+        if !scheme.is_interpolatory() {
+            return Some(scheme);
+        }
+        at = doc.parent(k).map(|(p, _)| p);
+    }
+    None
+}
+
 /// At the deepest depth, a grid too coarse says so with the depth, and for
-/// a patch on an earlier patch's edge with the approximating scheme of the
-/// one or the other: where it starts moves between depths (docs/math.md
-/// §11.5).
+/// a patch whose start moves between depths ([`moving_start`]) with the
+/// scheme that moves it.
 fn at_deepest(doc: &Document, e: ShellError, depth: u32) -> ShellError {
     match e {
         ShellError::Fit {
@@ -137,15 +160,7 @@ fn at_deepest(doc: &Document, e: ShellError, depth: u32) -> ShellError {
                     reached,
                 },
         } => {
-            // a patch on an earlier one's edge, where either is on an
-            // approximating scheme: where it starts moves with depth
-            let scheme = doc.index(&patch).and_then(|i| {
-                let (parent, _) = doc.parent(i)?;
-                [i, parent]
-                    .into_iter()
-                    .map(|k| doc.patches[k].design.scheme())
-                    .find(|s| !s.is_interpolatory())
-            });
+            let scheme = doc.index(&patch).and_then(|i| moving_start(doc, i));
             ShellError::Fit {
                 patch,
                 error: FitError::TooFewPointsAtDeepest {
@@ -158,8 +173,56 @@ fn at_deepest(doc: &Document, e: ShellError, depth: u32) -> ShellError {
                 },
             }
         }
+        // a moved check grid left the data points over the tolerance
+        ShellError::OverTolerance {
+            patch,
+            reached,
+            tolerance,
+        } => match doc.index(&patch).and_then(|i| moving_start(doc, i)) {
+            Some(scheme) => ShellError::Fit {
+                patch,
+                error: FitError::TooFewPointsAtDeepest {
+                    direction: Direction::U,
+                    points: 0,
+                    tolerance,
+                    reached,
+                    depth,
+                    moving: Some(scheme),
+                },
+            },
+            None => ShellError::OverTolerance {
+                patch,
+                reached,
+                tolerance,
+            },
+        },
         e => e,
     }
+}
+
+/// The faces of the patches whose check grids were moved onto where they
+/// start ([`PatchGrid::hold_start`]) measured at their data points too:
+/// those are not among the points the fit measured, and what the move
+/// leaves (docs/math.md §11.5, "A start that moves") can set them apart
+/// from the check grid. A face over its tolerance there is refused as over
+/// it, and the document is sampled one depth deeper.
+fn data_within(grids: &[PatchGrid], shell: &ShellFit, held: &[bool]) -> Result<(), ShellError> {
+    for (i, f) in shell.faces.iter().enumerate().filter(|&(i, _)| held[i]) {
+        let data = Samples {
+            points: grids[i].data.points.clone(),
+            u: grids[i].data.u.clone(),
+            v: f.v.0.clone(),
+        };
+        let reached = face_deviation(shell, i, &data).max;
+        if reached > f.tolerance {
+            return Err(ShellError::OverTolerance {
+                patch: f.name.clone(),
+                reached,
+                tolerance: f.tolerance,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Fits every patch of `doc` (built as `built`, built again deeper when
@@ -177,19 +240,27 @@ pub fn fit_document(
     let mut seconds = 0.0;
     loop {
         let b = built_to(doc, built, depth + 1).map_err(DocumentFitError::Build)?;
+        let held: Vec<bool> = (0..doc.patches.len())
+            .map(|i| moving_start(doc, i).is_some())
+            .collect();
         let grids = b
             .patches
             .iter()
             .zip(&doc.patches)
-            .map(|(s, p)| {
-                PatchGrid::from_stack(&p.name, s, depth, p.design.scheme().curve()).map_err(
-                    |error| {
+            .enumerate()
+            .map(|(i, (s, p))| {
+                let mut grid = PatchGrid::from_stack(&p.name, s, depth, p.design.scheme().curve())
+                    .map_err(|error| {
                         DocumentFitError::Shell(ShellError::Fit {
                             patch: p.name.clone(),
                             error,
                         })
-                    },
-                )
+                    })?;
+                // measured from where it starts at this depth (§11.5)
+                if held[i] {
+                    grid.hold_start();
+                }
+                Ok(grid)
             })
             .collect::<Result<Vec<_>, _>>()?;
         let start = Instant::now();
@@ -204,9 +275,19 @@ pub fn fit_document(
                         join: s.join,
                     })
                     .collect();
-                fit_shell(&grids, &specs, opts).map(|f| (f.faces, f.seams, Vec::new()))
+                fit_shell(&grids, &specs, opts).and_then(|f| {
+                    data_within(&grids, &f, &held)?;
+                    Ok((f.faces, f.seams, Vec::new()))
+                })
             }
-            FaceFit::Alone => fit_each(&grids, opts).map(|(f, r)| (f, Vec::new(), r)),
+            FaceFit::Alone => fit_each(&grids, opts).and_then(|(faces, r)| {
+                let shell = ShellFit {
+                    faces,
+                    seams: Vec::new(),
+                };
+                data_within(&grids, &shell, &held)?;
+                Ok((shell.faces, Vec::new(), r))
+            }),
         };
         seconds += start.elapsed().as_secs_f64();
         match result {
@@ -254,8 +335,6 @@ fn fit_each(
 mod tests {
     use super::*;
     use std::path::Path;
-    use streamline_kernel::SurfaceScheme;
-    use streamline_kernel::nurbs::Direction;
 
     /// A refusal at the deepest depth names the moving edge only for a
     /// patch on an earlier patch's edge where either is on an approximating

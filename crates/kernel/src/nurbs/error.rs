@@ -48,12 +48,12 @@ pub enum FitError {
         /// The depth of that grid.
         depth: u32,
         /// For a patch on an earlier patch's edge, the approximating scheme
-        /// (Catmull–Clark or Doo–Sabin) of the one or the other: where the
-        /// patch starts, on the earlier patch's shortened rows or its own,
-        /// moves between depths by a length that halves per depth
-        /// (docs/math.md §11.5, "Where it does not reach"), which the check
-        /// grid one depth finer reads, so no pole is missing and the message
-        /// says which tolerance does export.
+        /// (Catmull–Clark or Doo–Sabin) down its chain of starts: where the
+        /// patch starts moves between depths, and its check grid is measured
+        /// from there, but a turn of the direction it leaves in is not
+        /// (docs/math.md §11.5, "A start that moves"); it halves per depth,
+        /// so no pole is missing and the message says which tolerance does
+        /// export.
         moving: Option<SurfaceScheme>,
     },
     /// Parameters that do not rise strictly from 0 to 1 (or sizes that do not match).
@@ -90,7 +90,7 @@ impl fmt::Display for FitError {
                 ..
             } => write!(
                 f,
-                "this patch starts on the edge of an earlier patch, and on the {} scheme where it starts moves between depths by a length that only halves per depth, as the rows shorten when sampled deeper (docs/math.md §11.5): at depth {depth}, the deepest an export samples, its points one depth finer are still {reached:.3e} from the closest fit, over the tolerance {tolerance:.3e}; export with a tolerance of at least {:.1e}, or choose the Kobbelt scheme for both patches, whose edges stay put",
+                "this patch starts on the edge of an earlier patch, and on the {} scheme the way it leaves that edge turns between depths by an angle that only halves per depth, as the rows shorten when sampled deeper (docs/math.md §11.5, \"A start that moves\"): at depth {depth}, the deepest an export samples, its points one depth finer, measured from where it starts, are still {reached:.3e} from the closest fit, over the tolerance {tolerance:.3e}; export with a tolerance of at least {:.1e}, or choose the Kobbelt scheme for both patches, whose edges stay put",
                 scheme.title(),
                 round_up(*reached)
             ),

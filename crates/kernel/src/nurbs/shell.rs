@@ -53,6 +53,7 @@ mod hold;
 mod prepare;
 mod rounds;
 mod side;
+mod start;
 
 use super::deviation::Deviation;
 use super::error::FitError;
