@@ -446,7 +446,7 @@ def export(m, b):
         ("export-fit/car/d3/edited", "the same after every control tangent was turned (fixed seed)"),
         ("export/hood-screen-wing/d4/step", "three patches to a STEP shell: build, fit, text, write, read-back check"),
         ("export/hood-screen-wing/d4/shell-fit", "the shell's fit alone"),
-        ("export/hood-screen-wing/d4/iges", "IGES, each patch fitted alone, build included"),
+        ("export/hood-screen-wing/d4/iges", "IGES (the shell's faces, each an entity), build included"),
         ("export/hood-screen-wing/d4/glb", "`.glb`, one mesh a patch (no fit)"),
     ]
     out += table(["row", "what", "median"], [[f"`{n}`", w, t(b(n))] for n, w in rows if b(n) is not None])

@@ -28,7 +28,7 @@
 //! that halves per depth, and with it the later patch: its check grid is
 //! measured from where it starts (`PatchGrid::hold_start`, §11.5, "A start
 //! that moves"). Seeds 1–21: all 14 such draws exported but one, a side G1
-//! join 2 cm across whose later patch is refused alone too (2.3e-5 at its
+//! join 2 cm across whose later patch is refused alone too (9.5e-6 at its
 //! deepest depth against 2.9e-6, halving per depth); measured as they lie,
 //! only the two G2 chains and one Doo–Sabin side join exported.
 //!

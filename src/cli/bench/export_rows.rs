@@ -9,7 +9,7 @@
 //!   text, the atomic write and its verification);
 //! - `export/hood-screen-wing/d4/shell-fit`: the shell's fit alone (the
 //!   document already built one depth finer);
-//! - `export/hood-screen-wing/d4/iges`: the IGES file, each patch fitted alone;
+//! - `export/hood-screen-wing/d4/iges`: the IGES file (the shell's faces);
 //! - `export/hood-screen-wing/d4/glb`: the `.glb`, one node and mesh per patch.
 //!
 //! The rows are left out when the checkout's scene is missing (an installed binary).

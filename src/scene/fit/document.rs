@@ -1,6 +1,7 @@
 //! The patches of a document as B-spline faces (docs/math.md §10, §11): one
-//! STEP shell whose seams are shared ([`streamline_kernel::nurbs::fit_shell`])
-//! or each patch alone (IGES, and a design of one patch: [`super::surface`]).
+//! shell whose seams are shared ([`streamline_kernel::nurbs::fit_shell`]; STEP,
+//! and IGES as separate faces) or each patch alone (a design of one patch:
+//! [`super::surface`]).
 //! Which sampling reaches the tolerance is the exporter's business, not the
 //! designer's: every patch is sampled at one depth (so a seam's points stay
 //! one set of points and its edge stays shared), starting from the one
@@ -9,7 +10,10 @@
 //! document is sampled one depth deeper, up to [`max_fit_depth`]. Only when
 //! even the deepest grid is not enough is the fit refused
 //! ([`FitError::TooFewPointsAtDeepest`], whose message says to loosen the
-//! tolerance).
+//! tolerance). A patch whose start moves between depths, on an earlier
+//! patch's edge of an approximating scheme, is measured from where it
+//! starts ([`PatchGrid::hold_start`], docs/math.md §11.5, "A start that
+//! moves"), and at the points it was fitted to as well.
 
 use crate::scene::design::document::Document;
 use crate::scene::design::document_build::{BuildError, BuiltDocument};
@@ -55,9 +59,10 @@ pub fn max_fit_depth(doc: &Document) -> u32 {
 /// How the faces are fitted.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FaceFit {
-    /// One shell, each seam's boundary curve fitted once and shared (STEP).
+    /// One shell, each seam's boundary curve fitted once and shared (STEP,
+    /// IGES).
     Shell,
-    /// Each patch alone, as a face of its own (IGES, a design of one patch).
+    /// Each patch alone, as a face of its own (a design of one patch).
     Alone,
 }
 

@@ -96,4 +96,66 @@ mod tests {
         let p = at(&two, &[0.0, 1.0], &[0.0, 1.0], 0.25, 0.5);
         assert!(p.distance(DVec3::new(0.25, 0.5, 0.125)) < 1e-15, "{p}");
     }
+
+    use crate::nurbs::samples::Samples;
+    use proptest::prelude::*;
+
+    /// Rising parameters from 0 to 1 with `n` uneven steps.
+    fn rising(steps: &[f64]) -> Vec<f64> {
+        let total: f64 = steps.iter().sum();
+        let mut acc = 0.0;
+        let mut out = vec![0.0];
+        for s in steps {
+            acc += s / total;
+            out.push(acc);
+        }
+        *out.last_mut().unwrap() = 1.0;
+        out
+    }
+
+    proptest! {
+        /// Eq. 77 on a cubic surface: a check grid whose rows were each
+        /// moved by a random vector is moved back onto the surface exactly,
+        /// and the largest move is the largest of those vectors; a grid
+        /// already on it does not move.
+        #[test]
+        fn a_check_grid_moved_row_by_row_comes_back_onto_a_cubic(
+            c in prop::collection::vec(-1.0f64..1.0, 12),
+            du in prop::collection::vec(0.2f64..1.0, 3..9),
+            dv in prop::collection::vec(0.2f64..1.0, 3..9),
+            shifts in prop::collection::vec(prop::array::uniform3(-1e-2f64..1e-2), 5..12),
+            cu in prop::collection::vec(0.2f64..1.0, 4..12),
+        ) {
+            let f = |u: f64, v: f64| DVec3::new(
+                c[0] * u * u * u + c[1] * v * v + c[2] * u * v + c[3],
+                c[4] * v * v * v + c[5] * u * u * v + c[6] * u,
+                c[7] * u * v * v + c[8] * v + c[9] * u * u + c[10] * u * u * v * v + c[11],
+            );
+            let grid = |us: &[f64], vs: &[f64], shift: &dyn Fn(usize) -> DVec3| {
+                let pts = (0..vs.len())
+                    .flat_map(|j| us.iter().map(move |&u| (u, j)))
+                    .map(|(u, j)| f(u, vs[j]) + shift(j))
+                    .collect();
+                Grid::new(vs.len(), us.len(), pts).unwrap()
+            };
+            let (u, v) = (rising(&du), rising(&dv));
+            // the check grid inside the data's: its first column near 0
+            let cu = rising(&cu).iter().map(|x| 0.01 + 0.98 * x).collect::<Vec<_>>();
+            let cv = rising(&vec![1.0; shifts.len() - 1]);
+            let moved = |j: usize| DVec3::from(shifts[j]);
+            let mut g = PatchGrid {
+                name: "b".into(),
+                data: Samples { points: grid(&u, &v, &|_| DVec3::ZERO), u: u.clone(), v: v.clone() },
+                check: Samples { points: grid(&cu, &cv, &moved), u: cu.clone(), v: cv.clone() },
+            };
+            let most = shifts.iter().map(|s| DVec3::from(*s).length()).fold(0.0, f64::max);
+            let reported = g.hold_start();
+            prop_assert!((reported - most).abs() < 1e-12, "{reported} against {most}");
+            let on = grid(&cu, &cv, &|_| DVec3::ZERO);
+            for (p, q) in g.check.points.data().iter().zip(on.data()) {
+                prop_assert!(p.distance(*q) < 1e-12, "{p} off {q}");
+            }
+            prop_assert!(g.hold_start() < 1e-12);
+        }
+    }
 }
