@@ -3,6 +3,7 @@
 use super::PanelCtx;
 use crate::ecs::Stats;
 use crate::ecs::joined::{ActivePatch, JoinedDesign, PatchSlot, PatchSurface, PatchWork};
+use crate::ecs::resources::EditStats;
 use crate::ecs::warnings::BuildWarnings;
 use crate::editor::view::frame_timing::FrameTiming;
 use bevy::ecs::system::SystemParam;
@@ -153,47 +154,17 @@ pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, 
                 .to_string(),
             "Tangents blended again over all levels (a G2 run's: of its merged net)",
         );
-        row(
-            "details",
-            l.details_reapplied.to_string(),
-            "Multiresolution details applied again",
-        );
         let placed = work.map(|w| w.rows.map_or(0, |r| r.hi + 1 - r.lo));
         row(
             "re-integrated",
             placed.unwrap_or(l.streamlines_reintegrated).to_string(),
             "Streamlines integrated again (Eq. 65), of the active patch's last build",
         );
-        row(
-            "placed again",
-            l.streamlines_replaced.to_string(),
-            "Streamlines moved rigidly to a changed initial curve or anchor (Eq. 1), no tangent re-blended",
-        );
-        row(
-            "mesh rows",
-            l.mesh_rows.to_string(),
-            "Rows of the mesh rewritten",
-        );
-        row(
-            "µs edit",
-            format!("{:.0}", l.us_edit),
-            "Applying the edit messages",
-        );
-        row(
-            "µs blend",
-            format!("{:.0}", l.us_blend),
-            "Blending dirty windows on the sphere",
-        );
-        row(
-            "µs integrate",
-            format!("{:.0}", l.us_integrate),
-            "Integrating changed streamlines",
-        );
-        row(
-            "µs mesh",
-            format!("{:.0}", l.us_mesh),
-            "Rewriting mesh rows and normals",
-        );
+        // the first patch's pipeline counts and times its stages; a joined
+        // patch's build is one step, timed with the frame's below
+        if work.is_none() {
+            pipeline_rows(&mut row, l);
+        }
         row(
             "warnings",
             section.warnings.lines.len().to_string(),
@@ -217,6 +188,45 @@ pub fn rows(p: &PanelCtx, section: &StatsSection) -> Vec<(&'static str, String, 
         );
     }
     rows
+}
+
+/// What the first patch's pipeline did stage by stage in its last edit.
+fn pipeline_rows(row: &mut impl FnMut(&'static str, String, &'static str), l: &EditStats) {
+    row(
+        "details",
+        l.details_reapplied.to_string(),
+        "Multiresolution details applied again",
+    );
+    row(
+        "placed again",
+        l.streamlines_replaced.to_string(),
+        "Streamlines moved rigidly to a changed initial curve or anchor (Eq. 1), no tangent re-blended",
+    );
+    row(
+        "mesh rows",
+        l.mesh_rows.to_string(),
+        "Rows of the mesh rewritten",
+    );
+    row(
+        "µs edit",
+        format!("{:.0}", l.us_edit),
+        "Applying the edit messages",
+    );
+    row(
+        "µs blend",
+        format!("{:.0}", l.us_blend),
+        "Blending dirty windows on the sphere",
+    );
+    row(
+        "µs integrate",
+        format!("{:.0}", l.us_integrate),
+        "Integrating changed streamlines",
+    );
+    row(
+        "µs mesh",
+        format!("{:.0}", l.us_mesh),
+        "Rewriting mesh rows and normals",
+    );
 }
 
 /// The section, from [`rows`] (refreshed a few times a second, [`super::Throttled`]),
