@@ -7,7 +7,7 @@
 //! - STEP: one `ADVANCED_FACE` per patch in one shell, each seam one
 //!   `EDGE_CURVE` ([`super::step_shell`]), every patch sampled at one depth,
 //!   raised until the fit meets the tolerance ([`crate::scene::fit::document`]);
-//! - IGES: one entity 128 per patch, each fitted alone ([`super::iges`]);
+//! - IGES: one entity 128 per patch, the STEP shell's faces ([`super::iges`]);
 //! - OBJ: one `o <name>` object per patch, its vertices row by row ([`super::obj_shell`]);
 //! - glTF: one node and one mesh per patch, named for it ([`super::glb`]);
 //! - STL: binary for one patch, ASCII with one `solid <name>` per patch

@@ -1,5 +1,5 @@
-//! A design's patches as B-spline faces: one STEP shell or each patch alone
-//! ([`document`]), the one face of a design of one patch ([`surface`]), the
+//! A design's patches as B-spline faces: one shell whose seams are shared
+//! (STEP, and IGES as separate faces) or each patch alone ([`document`]), the one face of a design of one patch ([`surface`]), the
 //! deviation map of a design of several patches ([`deviation`]), and a
 //! design fitted to and measured against its reference ([`mod@reference`]).
 
