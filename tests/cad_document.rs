@@ -11,12 +11,13 @@
 
 mod common;
 
+use common::shell_read::{point_file, seam_angle, shell_as_it_lies, valid_within};
+
 use glam::DVec3;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use streamline_kernel::Design;
 use streamline_kernel::grid::Grid;
-use streamline_kernel::nurbs::{FitOptions, PatchGrid, SeamSpec, ShellError, ShellFace, fit_shell};
 use streamline_kernel::streamline::surface_mesh::SurfaceMesh;
 use streamline_studio::scene::design::document::{Document, Start};
 use streamline_studio::scene::design::document_io::load;
@@ -154,16 +155,6 @@ fn every_mirrored_patch_is_the_reflection_of_its_original_at_every_level() {
     assert_eq!(mirrored(&plain, &built).patches.len(), n);
 }
 
-fn point_file(dir: &Path, tag: &str, i: usize, points: &[DVec3]) -> String {
-    let path = dir.join(format!("{tag}-{i}.xyz"));
-    let text: String = points
-        .iter()
-        .map(|q| format!("{:?} {:?} {:?}\n", q.x, q.y, q.z))
-        .collect();
-    std::fs::write(&path, text).unwrap();
-    path.display().to_string()
-}
-
 /// The manifest entry of an exported CAD file: every face's points (the
 /// originals' check grids; the reflections' reflected here).
 fn entry(
@@ -205,33 +196,6 @@ fn entry(
         "tolerance": out.faces.iter().map(|f| f.tolerance).fold(f64::INFINITY, f64::min),
         "samples": 40,
     })
-}
-
-/// OpenCascade's reading `r` of a file of `faces`: as many faces, valid,
-/// each within its tolerance of its points.
-fn valid_within(tag: &str, faces: &[ShellFace], r: &serde_json::Value) {
-    assert_eq!(r["faces"], faces.len(), "{tag}: {r}");
-    assert_eq!(r["valid"], true, "{tag}: {r}");
-    for (f, d) in faces.iter().zip(r["deviation"].as_array().unwrap()) {
-        let d = d.as_f64().unwrap();
-        assert!(
-            d <= f.tolerance,
-            "{tag}: face {} is {d} from its points, over {}",
-            f.name,
-            f.tolerance
-        );
-    }
-}
-
-fn seam_angle(r: &serde_json::Value, faces: [usize; 2]) -> f64 {
-    let s = r["seams"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|s| s["faces"] == serde_json::json!(faces))
-        .unwrap_or_else(|| panic!("no shared edge between faces {faces:?}: {r}"));
-    assert!(s["samples"].as_u64().unwrap() >= 32);
-    s["max_angle_deg"].as_f64().unwrap()
 }
 
 #[test]
@@ -512,104 +476,4 @@ fn obj_and_stl_hold_one_object_per_patch_and_bad_names_say_what_to_do() {
     );
     assert_eq!(text.into_bytes(), std::fs::read(&b).unwrap());
     let _ = std::fs::remove_dir_all(&dir);
-}
-
-/// docs/math.md §11.5, "A start that moves": hood-screen-wing with every
-/// patch on Catmull–Clark and on Doo–Sabin exports as one STEP shell and as
-/// IGES faces. The screen is the hood's G2 chain (one net); the wing starts
-/// on the hood's first streamline, which moves between depths, and is
-/// measured from where it starts. OpenCascade reads one valid shell (and
-/// three IGES faces, the shell's), every face within its tolerance of the
-/// points it was fitted to, the G2 seam's normals within 0.1°. The
-/// negative control: the wing measured as it lies, at the depth the export
-/// sampled, is refused.
-#[test]
-fn hood_screen_wing_on_the_approximating_schemes_exports_its_wing_from_where_it_starts() {
-    use streamline_kernel::SurfaceScheme;
-    let dir = scratch("approximating");
-    let settings = DocumentExportSettings::default();
-    let (mut manifest, mut outs) = (Vec::new(), Vec::new());
-    for (name, scheme) in [
-        ("catmull-clark", SurfaceScheme::CatmullClark),
-        ("doo-sabin", SurfaceScheme::DooSabin),
-    ] {
-        let mut doc = hood_screen_wing();
-        for p in &mut doc.patches {
-            p.design.set_scheme(scheme).unwrap();
-        }
-        let built = doc.build(doc.display_depth).unwrap();
-        for ext in ["step", "igs"] {
-            let tag = format!("{name}.{ext}");
-            let path = dir.join(&tag);
-            let out = export_document(&doc, &built, &path, &settings)
-                .unwrap_or_else(|e| panic!("{tag}: {e}"));
-            let fit = out.fit.as_ref().unwrap();
-            eprintln!(
-                "{tag}: sampled at depth {}, poles {:?}, deviations {:?} within {:?}, {:.1} s",
-                out.depth,
-                (out.faces.iter())
-                    .map(|f| f.surface.pole_counts())
-                    .collect::<Vec<_>>(),
-                (out.faces.iter())
-                    .map(|f| format!("{:.2e}", f.deviation.max))
-                    .collect::<Vec<_>>(),
-                (out.faces.iter())
-                    .map(|f| format!("{:.2e}", f.tolerance))
-                    .collect::<Vec<_>>(),
-                fit.seconds
-            );
-            // the points fitted (the check grid one depth finer is the
-            // shell's to measure: a G2 chain's later patch's starts a strip
-            // on the earlier face, docs/math.md §11.5)
-            let files: Vec<String> = (fit.grids.iter().enumerate())
-                .map(|(i, g)| point_file(&dir, &format!("{name}-{ext}"), i, g.data.points.data()))
-                .collect();
-            manifest.push(serde_json::json!({
-                "file": path.display().to_string(),
-                "points": files,
-                "tolerance": out.faces.iter().map(|f| f.tolerance).fold(f64::INFINITY, f64::min),
-                "samples": 40,
-            }));
-            outs.push((tag.clone(), out.faces.clone()));
-            if ext == "step" {
-                // the negative control: the wing as it lies is refused
-                let e = shell_as_it_lies(&doc, out.depth)
-                    .map(|_| ())
-                    .expect_err("the wing as it lies was fitted");
-                eprintln!("{tag}, the wing as it lies: {e}");
-                assert!(e.to_string().contains("\"wing\""), "{tag}: {e}");
-            }
-        }
-    }
-    let results = common::opencascade_manifest("check_shell.py", &dir, &manifest);
-    for ((tag, faces), r) in outs.iter().zip(&results) {
-        eprintln!("{tag}: {r}");
-        valid_within(tag, faces, r);
-        if tag.contains(".step") {
-            assert_eq!(r["shells"], 1, "{tag}: {r}");
-            assert_eq!(r["shared_edges"], 2, "{tag}: {r}");
-            assert!(seam_angle(r, [0, 1]) < 0.1, "{tag}: {r}");
-            assert!(seam_angle(r, [0, 2]) < 90.0, "{tag}: {r}");
-        } else {
-            assert_eq!(r["shared_edges"], 0, "{tag}: {r}");
-        }
-    }
-    let _ = std::fs::remove_dir_all(&dir);
-}
-
-/// The shell of `doc` sampled at `depth`, every patch measured at its check
-/// grid as it lies (no start held: docs/math.md §11.5).
-fn shell_as_it_lies(doc: &Document, depth: u32) -> Result<(), ShellError> {
-    let built = doc.build(depth + 1).unwrap();
-    let grids: Vec<PatchGrid> = (doc.patches.iter().zip(&built.patches))
-        .map(|(p, s)| PatchGrid::from_stack(&p.name, s, depth, p.design.scheme().curve()).unwrap())
-        .collect();
-    let specs: Vec<SeamSpec> = (built.seams.iter())
-        .map(|s| SeamSpec {
-            a: s.a,
-            b: s.b,
-            join: s.join,
-        })
-        .collect();
-    fit_shell(&grids, &specs, &FitOptions::DEFAULT).map(|_| ())
 }

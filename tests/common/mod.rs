@@ -4,6 +4,7 @@
 pub mod built;
 pub mod documents;
 pub mod headless_editor;
+pub mod shell_read;
 
 use bevy::prelude::*;
 use streamline_kernel::{DVec3, Grid};

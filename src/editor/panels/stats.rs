@@ -207,26 +207,22 @@ fn pipeline_rows(row: &mut impl FnMut(&'static str, String, &'static str), l: &E
         l.mesh_rows.to_string(),
         "Rows of the mesh rewritten",
     );
-    row(
-        "µs edit",
-        format!("{:.0}", l.us_edit),
-        "Applying the edit messages",
-    );
-    row(
-        "µs blend",
-        format!("{:.0}", l.us_blend),
-        "Blending dirty windows on the sphere",
-    );
-    row(
-        "µs integrate",
-        format!("{:.0}", l.us_integrate),
-        "Integrating changed streamlines",
-    );
-    row(
-        "µs mesh",
-        format!("{:.0}", l.us_mesh),
-        "Rewriting mesh rows and normals",
-    );
+    for (key, us, tip) in [
+        ("µs edit", l.us_edit, "Applying the edit messages"),
+        (
+            "µs blend",
+            l.us_blend,
+            "Blending dirty windows on the sphere",
+        ),
+        (
+            "µs integrate",
+            l.us_integrate,
+            "Integrating changed streamlines",
+        ),
+        ("µs mesh", l.us_mesh, "Rewriting mesh rows and normals"),
+    ] {
+        row(key, format!("{us:.0}"), tip);
+    }
 }
 
 /// The section, from [`rows`] (refreshed a few times a second, [`super::Throttled`]),
